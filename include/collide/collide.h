@@ -1,0 +1,10 @@
+// collide: collision detection and response for 3D games. Include this for the whole public API.
+#pragma once
+
+#include <collide/error.h>
+#include <collide/math.h>
+#include <collide/shapes.h>
+
+namespace collide {
+inline constexpr const char* kVersion = "0.1.0";
+}  // namespace collide

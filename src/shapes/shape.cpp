@@ -1,0 +1,275 @@
+// Shape: validation at construction, and the world-frame queries mapped onto the local per-proxy
+// functions of shape_functions.h.
+#include "shapes/shape_functions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace collide {
+
+std::string_view toString(ShapeType type) {
+  switch (type) {
+    case ShapeType::Sphere: return "sphere";
+    case ShapeType::Capsule: return "capsule";
+    case ShapeType::Plane: return "plane";
+    case ShapeType::Box: return "box";
+    case ShapeType::Kdop: return "kdop";
+    case ShapeType::Ellipsoid: return "ellipsoid";
+    case ShapeType::Cylinder: return "cylinder";
+    case ShapeType::ConvexHull: return "convex_hull";
+    case ShapeType::Mesh: return "mesh";
+    case ShapeType::Compound: return "compound";
+  }
+  return "unknown";
+}
+
+namespace {
+
+std::string formatValue(float v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+std::string formatValue(const Vec3& v) {
+  std::ostringstream out;
+  out << '[' << v.x << ", " << v.y << ", " << v.z << ']';
+  return out.str();
+}
+
+void requirePositive(const char* shape, const char* field, float value) {
+  if (!isFinite(value) || value <= 0.0f) {
+    throw Error(std::string(shape) + ": " + field + " must be finite and > 0, got " + formatValue(value));
+  }
+}
+
+void requirePositive(const char* shape, const char* field, const Vec3& value) {
+  if (!isFinite(value) || value.x <= 0.0f || value.y <= 0.0f || value.z <= 0.0f) {
+    throw Error(std::string(shape) + ": " + field + " must be finite and > 0 in every axis, got " +
+                formatValue(value));
+  }
+}
+
+template <class T> std::shared_ptr<const T> share(T&& value) {
+  return std::make_shared<const T>(std::forward<T>(value));
+}
+
+}  // namespace
+
+Shape::Shape(const Sphere& sphere) : data_(sphere) { requirePositive("sphere", "radius", sphere.radius); }
+
+Shape::Shape(const Capsule& capsule) : data_(capsule) {
+  requirePositive("capsule", "radius", capsule.radius);
+  requirePositive("capsule", "half_height", capsule.halfHeight);
+}
+
+Shape::Shape(const Plane& plane) : data_(plane) {
+  if (!isFinite(plane.normal) || std::abs(glm::length(plane.normal) - 1.0f) > 1e-3f) {
+    throw Error("plane: normal must be a finite unit vector, got " + formatValue(plane.normal));
+  }
+  if (!isFinite(plane.distance)) {
+    throw Error("plane: distance must be finite, got " + formatValue(plane.distance));
+  }
+  std::get<Plane>(data_).normal = glm::normalize(plane.normal);
+}
+
+Shape::Shape(const Box& box) : data_(box) { requirePositive("box", "half_extents", box.halfExtents); }
+
+Shape::Shape(const Ellipsoid& ellipsoid) : data_(ellipsoid) {
+  requirePositive("ellipsoid", "radii", ellipsoid.radii);
+}
+
+Shape::Shape(const Cylinder& cylinder) : data_(cylinder) {
+  requirePositive("cylinder", "radius", cylinder.radius);
+  requirePositive("cylinder", "half_height", cylinder.halfHeight);
+}
+
+// Polyhedra, meshes and compounds are validated by their factories, the only way to make them.
+Shape::Shape(Kdop kdop) : data_(share(std::move(kdop))) {}
+Shape::Shape(ConvexHull hull) : data_(share(std::move(hull))) {}
+Shape::Shape(TriangleMesh mesh) : data_(share(std::move(mesh))) {}
+Shape::Shape(Compound compound) : data_(share(std::move(compound))) {}
+
+Shape::Shape(std::shared_ptr<const ConvexHull> hull) : data_(std::move(hull)) {
+  if (!std::get<std::shared_ptr<const ConvexHull>>(data_)) throw Error("convex_hull: null hull");
+}
+
+Shape::Shape(std::shared_ptr<const TriangleMesh> mesh) : data_(std::move(mesh)) {
+  if (!std::get<std::shared_ptr<const TriangleMesh>>(data_)) throw Error("mesh: null mesh");
+}
+
+bool Shape::isConvex() const {
+  switch (type()) {
+    case ShapeType::Plane:
+    case ShapeType::Mesh:
+    case ShapeType::Compound: return false;
+    default: return true;
+  }
+}
+
+// ---- World-frame queries ----
+
+namespace {
+
+void requireValid(const Transform& transform, const char* query) {
+  if (!isValid(transform)) {
+    throw Error(std::string(query) + ": transform must have a finite position, a unit rotation and a "
+                                     "finite scale > 0, got position " +
+                formatValue(transform.position) + ", scale " + formatValue(transform.scale));
+  }
+}
+
+void requireFinite(const Vec3& point, const char* query) {
+  if (!isFinite(point)) throw Error(std::string(query) + ": point must be finite, got " + formatValue(point));
+}
+
+}  // namespace
+
+Aabb localBounds(const Shape& shape) {
+  return shape.visit([](const auto& s) { return detail::computeLocalBounds(s); });
+}
+
+Aabb worldBounds(const Shape& shape, const Transform& transform) {
+  return shape.visit([&](const auto& s) { return detail::computeWorldBounds(s, transform); });
+}
+
+BoundingSphere localBoundingSphere(const Shape& shape) {
+  switch (shape.type()) {
+    case ShapeType::Sphere: return {Vec3(0.0f), shape.sphere().radius};
+    case ShapeType::Capsule: return {Vec3(0.0f), shape.capsule().radius + shape.capsule().halfHeight};
+    case ShapeType::Plane: return {Vec3(0.0f), 1e30f};
+    case ShapeType::Box: return {Vec3(0.0f), glm::length(shape.box().halfExtents)};
+    case ShapeType::Ellipsoid: {
+      const Vec3 r = shape.ellipsoid().radii;
+      return {Vec3(0.0f), std::max({r.x, r.y, r.z})};
+    }
+    case ShapeType::Cylinder: {
+      const Cylinder& c = shape.cylinder();
+      return {Vec3(0.0f), std::sqrt(c.radius * c.radius + c.halfHeight * c.halfHeight)};
+    }
+    case ShapeType::ConvexHull: {
+      // Centred on the box: cheap, and within sqrt(3) of the minimal sphere (bounding.h has that).
+      const ConvexHull& hull = shape.convexHull();
+      const Vec3 center = hull.bounds().center();
+      float radiusSquared = 0.0f;
+      for (const Vec3& v : hull.vertices()) radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
+      return {center, std::sqrt(radiusSquared)};
+    }
+    case ShapeType::Kdop: {
+      const ConvexHull& hull = shape.kdop().polytope();
+      const Vec3 center = hull.bounds().center();
+      float radiusSquared = 0.0f;
+      for (const Vec3& v : hull.vertices()) radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
+      return {center, std::sqrt(radiusSquared)};
+    }
+    case ShapeType::Mesh: {
+      const TriangleMesh& mesh = shape.mesh();
+      const Vec3 center = mesh.bounds().center();
+      float radiusSquared = 0.0f;
+      for (const Vec3& v : mesh.vertices()) radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
+      return {center, std::sqrt(radiusSquared)};
+    }
+    case ShapeType::Compound: {
+      const Aabb box = shape.compound().bounds();
+      const Vec3 center = box.center();
+      float radius = 0.0f;
+      for (const Compound::Child& child : shape.compound().children()) {
+        const BoundingSphere s = localBoundingSphere(child.shape);
+        const Vec3 childCenter = child.transform.applyToPoint(s.center);
+        radius = std::max(radius, glm::length(childCenter - center) + s.radius * child.transform.scale);
+      }
+      return {center, radius};
+    }
+  }
+  return {};
+}
+
+Vec3 support(const Shape& shape, const Vec3& direction) {
+  if (!shape.isConvex()) {
+    throw Error("support: a " + std::string(toString(shape.type())) + " is not convex and has no support function");
+  }
+  requireFinite(direction, "support");
+  return shape.visit([&](const auto& s) -> Vec3 {
+    using T = std::decay_t<decltype(s)>;
+    if constexpr (std::is_same_v<T, Plane> || std::is_same_v<T, TriangleMesh> || std::is_same_v<T, Compound>) {
+      return Vec3(0.0f);  // unreachable: rejected above
+    } else {
+      return detail::computeSupport(s, direction);
+    }
+  });
+}
+
+MassProperties massProperties(const Shape& shape, float density, float scale) {
+  if (!isFinite(density) || density <= 0.0f) {
+    throw Error("mass properties: density must be finite and > 0, got " + formatValue(density));
+  }
+  if (!isFinite(scale) || scale <= 0.0f) {
+    throw Error("mass properties: scale must be finite and > 0, got " + formatValue(scale));
+  }
+  if (shape.type() == ShapeType::Plane) {
+    throw Error("mass properties: a plane is an infinite half-space and has no mass; make it static");
+  }
+  if (shape.type() == ShapeType::Mesh && !shape.mesh().isClosed()) {
+    throw Error("mass properties: an open triangle mesh encloses no volume; close it or make it static");
+  }
+  MassProperties m = shape.visit([&](const auto& s) -> MassProperties {
+    using T = std::decay_t<decltype(s)>;
+    if constexpr (std::is_same_v<T, Plane>) {
+      return {};  // unreachable: rejected above
+    } else {
+      return detail::computeMassProperties(s, density);
+    }
+  });
+  // Uniform scale s: volume and mass grow as s^3, lengths as s, inertia as mass * length^2 = s^5.
+  const float s3 = scale * scale * scale;
+  m.mass *= s3;
+  m.volume *= s3;
+  m.centerOfMass *= scale;
+  m.inertia *= s3 * scale * scale;
+  return m;
+}
+
+bool containsPoint(const Shape& shape, const Transform& transform, const Vec3& point) {
+  requireValid(transform, "containsPoint");
+  requireFinite(point, "containsPoint");
+  const Vec3 local = transform.inverseApplyToPoint(point);
+  return shape.visit([&](const auto& s) { return detail::localContains(s, local); });
+}
+
+SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const Vec3& point) {
+  requireValid(transform, "closestPoint");
+  requireFinite(point, "closestPoint");
+  const Vec3 local = transform.inverseApplyToPoint(point);
+  SurfacePoint result = shape.visit([&](const auto& s) { return detail::localClosestPoint(s, local); });
+  result.point = transform.applyToPoint(result.point);
+  result.normal = transform.applyToDirection(result.normal);
+  result.signedDistance *= transform.scale;
+  return result;
+}
+
+std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, const Ray& ray) {
+  requireValid(transform, "rayCast");
+  if (!isFinite(ray.origin) || !isFinite(ray.direction) || std::isnan(ray.maxDistance) || ray.maxDistance < 0.0f) {
+    throw Error("rayCast: ray must have a finite origin and direction and maxDistance >= 0, got origin " +
+                formatValue(ray.origin) + ", direction " + formatValue(ray.direction) + ", maxDistance " +
+                formatValue(ray.maxDistance));
+  }
+  if (std::abs(glm::dot(ray.direction, ray.direction) - 1.0f) > 1e-3f) {
+    throw Error("rayCast: ray direction must be unit length, got " + formatValue(ray.direction));
+  }
+  Ray local;
+  local.origin = transform.inverseApplyToPoint(ray.origin);
+  local.direction = transform.inverseApplyToDirection(ray.direction);
+  local.maxDistance = ray.maxDistance / transform.scale;
+  std::optional<RayHit> hit = shape.visit([&](const auto& s) { return detail::localRayCast(s, local); });
+  if (hit) {
+    hit->distance *= transform.scale;
+    hit->point = ray.origin + hit->distance * ray.direction;
+    hit->normal = transform.applyToDirection(hit->normal);
+  }
+  return hit;
+}
+
+}  // namespace collide
