@@ -90,20 +90,27 @@ struct RawFace {
 };
 
 // Runs Qhull and reads each (merged) facet's vertices in order around it.
-std::vector<RawFace> runQhull(std::span<const Vec3> points) {
+std::vector<RawFace> runQhull(std::span<const Vec3> points, double size) {
   std::vector<coordT> coordinates;
   coordinates.reserve(points.size() * 3);
+  double largestCoordinate = 0.0;
   for (const Vec3& p : points) {
     coordinates.push_back(p.x);
     coordinates.push_back(p.y);
     coordinates.push_back(p.z);
+    largestCoordinate =
+        std::max({largestCoordinate, std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
   }
   QhullErrorStream errors;
   QhullSession session(errors.file());
   qhT* qh = session.get();  // the FORALL/FOREACH macros expect this name
-  // C-0: merge facets whose centrums are coplanar within round-off, so that a cube has 6 quads
-  // rather than 12 triangles. No output file: Qhull prints nothing.
-  char options[] = "qhull C-0";
+  // C-n: merge facets whose centrums are within n of each other's planes, so that a cube has 6 quads
+  // rather than 12 triangles. Qhull's own round-off is that of doubles; ours is that of the float
+  // coordinates (a k-DOP's corners are rounded to float), so n is a few float ulps of the largest
+  // coordinate plus the flatness tolerance of the set's size. No output file: Qhull prints nothing.
+  const double mergeDistance = HullBuilder::kFlatness * size + 5e-7 * largestCoordinate;
+  char options[64];
+  std::snprintf(options, sizeof options, "qhull C-%.6g", mergeDistance);
   const int exitCode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False,
                                     options, nullptr, errors.file());
   if (exitCode != 0) {
@@ -142,7 +149,7 @@ DVec3 newellNormal(const std::vector<DVec3>& polygon) {
 
 }  // namespace
 
-void requireSolidPointSet(std::string_view who, std::span<const Vec3> points) {
+double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) {
   const std::string prefix(who);
   if (points.size() < 4) {
     throw Error(prefix + ": need at least 4 points to enclose a volume, got " +
@@ -195,11 +202,12 @@ void requireSolidPointSet(std::string_view who, std::span<const Vec3> points) {
     throw Error(prefix + ": points are coplanar (all within " + format(planeDistance) +
                 " of a plane, tolerance " + format(tolerance) + ")");
   }
+  return diameter;
 }
 
 ConvexHull HullBuilder::build(std::span<const Vec3> points) {
-  requireSolidPointSet("convex_hull", points);
-  const std::vector<RawFace> rawFaces = runQhull(points);
+  const double size = requireSolidPointSet("convex_hull", points);
+  const std::vector<RawFace> rawFaces = runQhull(points, size);
 
   ConvexHull hull;
   // Keep only the points Qhull made vertices, numbered in order of first use.

@@ -11,7 +11,8 @@ namespace collide {
 
 // Throws Error, prefixed with `who` ("convex_hull", "kdop"), unless `points` holds at least 4 finite
 // points that span a volume: not all identical, collinear or coplanar within 1e-6 of the set's size.
-void requireSolidPointSet(std::string_view who, std::span<const Vec3> points);
+// Returns that size (the distance between two far-apart points, within a factor 2 of the diameter).
+double requireSolidPointSet(std::string_view who, std::span<const Vec3> points);
 
 class HullBuilder {
  public:
