@@ -1,0 +1,285 @@
+// Convex hull building. Qhull (Barber, Dobkin and Huhdanpaa, "The Quickhull algorithm for convex
+// hulls", ACM TOMS 1996) finds the facets and merges coplanar ones; we turn its facets into the
+// half-edge polyhedron of shapes.h (Gregorius, "Implementing Quickhull", GDC 2014, explains why
+// merged faces and twin half-edges are what SAT and contact clipping want).
+#include "geometry/hull_builder.h"
+
+#include "shapes/shape_functions.h"
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace collide {
+
+namespace {
+
+using DVec3 = glm::dvec3;
+
+std::string format(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+std::string format(const Vec3& v) {
+  std::ostringstream out;
+  out << '[' << v.x << ", " << v.y << ", " << v.z << ']';
+  return out.str();
+}
+
+// Qhull reports through a FILE*. A temporary file keeps it silent and lets us quote its error in
+// ours; the null device is the fallback if no temporary file can be made.
+class QhullErrorStream {
+ public:
+  QhullErrorStream() {
+    file_ = std::tmpfile();
+    if (!file_) file_ = std::fopen("/dev/null", "w");
+  }
+  ~QhullErrorStream() {
+    if (file_) std::fclose(file_);
+  }
+  QhullErrorStream(const QhullErrorStream&) = delete;
+  QhullErrorStream& operator=(const QhullErrorStream&) = delete;
+
+  FILE* file() const { return file_; }
+  // The first line Qhull wrote, or "" (for the null device, or nothing written).
+  std::string firstLine() const {
+    if (!file_) return {};
+    std::fflush(file_);
+    std::rewind(file_);
+    char buffer[512] = {};
+    if (!std::fgets(buffer, sizeof buffer, file_)) return {};
+    std::string line(buffer);
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    return line;
+  }
+
+ private:
+  FILE* file_ = nullptr;
+};
+
+// Frees every Qhull allocation however we leave the builder.
+class QhullSession {
+ public:
+  explicit QhullSession(FILE* errorFile) { qh_zero(&qh_, errorFile); }
+  ~QhullSession() {
+    qh_freeqhull(&qh_, !qh_ALL);
+    int currentLong = 0, totalLong = 0;
+    qh_memfreeshort(&qh_, &currentLong, &totalLong);
+  }
+  QhullSession(const QhullSession&) = delete;
+  QhullSession& operator=(const QhullSession&) = delete;
+  qhT* get() { return &qh_; }
+
+ private:
+  qhT qh_;
+};
+
+struct RawFace {
+  std::vector<std::uint32_t> inputIndices;  // Qhull's order, oriented below
+  DVec3 qhullNormal{0.0};
+};
+
+// Runs Qhull and reads each (merged) facet's vertices in order around it.
+std::vector<RawFace> runQhull(std::span<const Vec3> points, double size) {
+  std::vector<coordT> coordinates;
+  coordinates.reserve(points.size() * 3);
+  double largestCoordinate = 0.0;
+  for (const Vec3& p : points) {
+    coordinates.push_back(p.x);
+    coordinates.push_back(p.y);
+    coordinates.push_back(p.z);
+    largestCoordinate =
+        std::max({largestCoordinate, std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
+  }
+  QhullErrorStream errors;
+  QhullSession session(errors.file());
+  qhT* qh = session.get();  // the FORALL/FOREACH macros expect this name
+  // C-n: merge facets whose centrums are within n of each other's planes, so that a cube has 6 quads
+  // rather than 12 triangles. Qhull's own round-off is that of doubles; ours is that of the float
+  // coordinates (a k-DOP's corners are rounded to float), so n is a few float ulps of the largest
+  // coordinate plus the flatness tolerance of the set's size. No output file: Qhull prints nothing.
+  const double mergeDistance = HullBuilder::kFlatness * size + 5e-7 * largestCoordinate;
+  char options[64];
+  std::snprintf(options, sizeof options, "qhull C-%.6g", mergeDistance);
+  const int exitCode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False,
+                                    options, nullptr, errors.file());
+  if (exitCode != 0) {
+    const std::string detail = errors.firstLine();
+    throw Error("convex_hull: Qhull failed with code " + std::to_string(exitCode) +
+                (detail.empty() ? std::string() : ": " + detail));
+  }
+  std::vector<RawFace> faces;
+  facetT* facet;
+  FORALLfacets {
+    RawFace face;
+    face.qhullNormal = DVec3(facet->normal[0], facet->normal[1], facet->normal[2]);
+    setT* ordered = qh_facet3vertex(qh, facet);
+    vertexT *vertex, **vertexp;
+    FOREACHvertex_(ordered) {
+      face.inputIndices.push_back(static_cast<std::uint32_t>(qh_pointid(qh, vertex->point)));
+    }
+    qh_settempfree(qh, &ordered);
+    faces.push_back(std::move(face));
+  }
+  return faces;
+}
+
+// Newell's method: the area-weighted normal of a polygon, robust for nearly degenerate ones.
+DVec3 newellNormal(const std::vector<DVec3>& polygon) {
+  DVec3 normal(0.0);
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const DVec3& a = polygon[i];
+    const DVec3& b = polygon[(i + 1) % polygon.size()];
+    normal.x += (a.y - b.y) * (a.z + b.z);
+    normal.y += (a.z - b.z) * (a.x + b.x);
+    normal.z += (a.x - b.x) * (a.y + b.y);
+  }
+  return normal;
+}
+
+}  // namespace
+
+double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) {
+  const std::string prefix(who);
+  if (points.size() < 4) {
+    throw Error(prefix + ": need at least 4 points to enclose a volume, got " +
+                std::to_string(points.size()));
+  }
+  double largestCoordinate = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!isFinite(points[i])) {
+      throw Error(prefix + ": point " + std::to_string(i) + " is not finite, got " + format(points[i]));
+    }
+    for (int axis = 0; axis < 3; ++axis)
+      largestCoordinate = std::max(largestCoordinate, std::abs(double(points[i][axis])));
+  }
+  // The initial simplex of Quickhull: two far-apart points, the point farthest from their line, the
+  // point farthest from their plane. Each step measures how far the set is from one dimension fewer.
+  auto farthestFrom = [&](const DVec3& from) {
+    std::size_t best = 0;
+    double bestDistance = -1.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double d = glm::length(DVec3(points[i]) - from);
+      if (d > bestDistance) bestDistance = d, best = i;
+    }
+    return best;
+  };
+  const DVec3 b(points[farthestFrom(DVec3(points[0]))]);
+  const DVec3 a(points[farthestFrom(b)]);
+  const double diameter = glm::length(b - a);  // within a factor 2 of the true diameter
+  if (diameter == 0.0 || diameter <= HullBuilder::kFlatness * largestCoordinate) {
+    throw Error(prefix + ": points are all identical (within " + format(diameter) + " of " + format(Vec3(a)) +
+                ")");
+  }
+  const double tolerance = HullBuilder::kFlatness * diameter;
+  const DVec3 axis = (b - a) / diameter;
+  double lineDistance = 0.0;
+  DVec3 c = a;
+  for (const Vec3& p : points) {
+    const DVec3 offset = DVec3(p) - a;
+    const double d = glm::length(offset - glm::dot(offset, axis) * axis);
+    if (d > lineDistance) lineDistance = d, c = DVec3(p);
+  }
+  if (lineDistance <= tolerance) {
+    throw Error(prefix + ": points are collinear (all within " + format(lineDistance) +
+                " of a line, tolerance " + format(tolerance) + ")");
+  }
+  const DVec3 normal = glm::normalize(glm::cross(b - a, c - a));
+  double planeDistance = 0.0;
+  for (const Vec3& p : points)
+    planeDistance = std::max(planeDistance, std::abs(glm::dot(DVec3(p) - a, normal)));
+  if (planeDistance <= tolerance) {
+    throw Error(prefix + ": points are coplanar (all within " + format(planeDistance) +
+                " of a plane, tolerance " + format(tolerance) + ")");
+  }
+  return diameter;
+}
+
+ConvexHull HullBuilder::build(std::span<const Vec3> points) {
+  const double size = requireSolidPointSet("convex_hull", points);
+  const std::vector<RawFace> rawFaces = runQhull(points, size);
+
+  ConvexHull hull;
+  // Keep only the points Qhull made vertices, numbered in order of first use.
+  std::unordered_map<std::uint32_t, std::uint32_t> vertexIndex;
+  auto remap = [&](std::uint32_t input) {
+    const auto [it, inserted] =
+        vertexIndex.try_emplace(input, static_cast<std::uint32_t>(hull.vertices_.size()));
+    if (inserted) hull.vertices_.push_back(points[input]);
+    return it->second;
+  };
+
+  std::unordered_map<std::uint64_t, std::uint32_t> edgeByEndpoints;
+  auto key = [](std::uint32_t from, std::uint32_t to) { return (std::uint64_t(from) << 32) | to; };
+  for (const RawFace& raw : rawFaces) {
+    std::vector<std::uint32_t> loop;
+    std::vector<DVec3> polygon;
+    for (std::uint32_t input : raw.inputIndices) {
+      loop.push_back(remap(input));
+      polygon.emplace_back(points[input]);
+    }
+    DVec3 normal = newellNormal(polygon);
+    // Qhull's facet normal is outward; make the loop counter-clockwise seen from outside.
+    if (glm::dot(normal, raw.qhullNormal) < 0.0) {
+      std::reverse(loop.begin(), loop.end());
+      std::reverse(polygon.begin(), polygon.end());
+      normal = -normal;
+    }
+    const double length = glm::length(normal);
+    if (!(length > 0.0)) throw Error("convex_hull: Qhull returned a face of zero area");
+    normal /= length;
+    double offset = 0.0;
+    for (const DVec3& p : polygon) offset += glm::dot(normal, p);
+    offset /= double(polygon.size());
+
+    const auto faceIndex = static_cast<std::uint32_t>(hull.faces_.size());
+    const auto first = static_cast<std::uint32_t>(hull.halfEdges_.size());
+    const auto count = static_cast<std::uint32_t>(loop.size());
+    hull.faces_.push_back({Plane{Vec3(normal), float(offset)}, first, count});
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t from = loop[i], to = loop[(i + 1) % count];
+      if (!edgeByEndpoints.try_emplace(key(from, to), first + i).second) {
+        throw Error("convex_hull: Qhull returned an edge walked twice in the same direction");
+      }
+      hull.halfEdges_.push_back({from, 0, first + (i + 1) % count, faceIndex});
+    }
+  }
+  for (std::uint32_t h = 0; h < hull.halfEdges_.size(); ++h) {
+    ConvexHull::HalfEdge& edge = hull.halfEdges_[h];
+    const std::uint32_t to = hull.halfEdges_[edge.next].origin;
+    const auto twin = edgeByEndpoints.find(key(to, edge.origin));
+    if (twin == edgeByEndpoints.end()) throw Error("convex_hull: Qhull returned an edge with only one face");
+    edge.twin = twin->second;
+  }
+
+  for (const Vec3& v : hull.vertices_) hull.bounds_.grow(v);
+  // Integrate about the box centre: the polyhedron formulas lose precision far from the origin.
+  const Vec3 reference = hull.bounds_.center();
+  detail::PolyhedronIntegrals integrals;
+  for (const ConvexHull::Face& face : hull.faces_) {
+    const ConvexHull::HalfEdge* edge = &hull.halfEdges_[face.firstEdge];
+    const Vec3 apex = hull.vertices_[edge->origin] - reference;
+    edge = &hull.halfEdges_[edge->next];
+    for (std::uint32_t i = 1; i + 1 < face.edgeCount; ++i) {
+      const Vec3 b = hull.vertices_[edge->origin] - reference;
+      edge = &hull.halfEdges_[edge->next];
+      integrals.addTriangle(apex, b, hull.vertices_[edge->origin] - reference);
+    }
+  }
+  integrals.finish(hull.volume_, hull.centroid_, hull.unitInertia_);
+  hull.centroid_ += reference;
+  if (!(hull.volume_ > 0.0f)) throw Error("convex_hull: the hull has no volume, got " + format(hull.volume_));
+  return hull;
+}
+
+}  // namespace collide

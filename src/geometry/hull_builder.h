@@ -1,0 +1,29 @@
+// Building convex hulls: input validation, Qhull for the facets, and our own half-edge topology and
+// mass properties on top. The queries on a finished hull live in shapes/convex_hull.cpp.
+#pragma once
+
+#include <collide/shapes.h>
+
+#include <span>
+#include <string_view>
+
+namespace collide {
+
+// Throws Error, prefixed with `who` ("convex_hull", "kdop"), unless `points` holds at least 4 finite
+// points that span a volume: not all identical, collinear or coplanar within 1e-6 of the set's size.
+// Returns that size (the distance between two far-apart points, within a factor 2 of the diameter).
+double requireSolidPointSet(std::string_view who, std::span<const Vec3> points);
+
+class HullBuilder {
+ public:
+  // Relative flatness below which a point set has no volume (the distance to the best line or plane
+  // found, divided by the set's diameter). Float coordinates carry ~1.2e-7 relative error, so a few
+  // ulps above that.
+  static constexpr double kFlatness = 1e-6;
+
+  // The convex hull of the points: faces are the merged (coplanar) Qhull facets, counter-clockwise
+  // from outside, with twin half-edges. Validates with requireSolidPointSet("convex_hull", points).
+  static ConvexHull build(std::span<const Vec3> points);
+};
+
+}  // namespace collide
