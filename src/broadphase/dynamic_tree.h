@@ -2,7 +2,8 @@
 // insert, remove and move. Insertion picks the sibling by the surface-area heuristic (the cost of a
 // tree is the summed area of its inner nodes: Goldsmith and Salmon 1987; the branch-and-descend
 // variant of Catto's b2DynamicTree, GDC 2019 "Dynamic BVH"), and every node on the way back up is
-// rebalanced by an AVL-style rotation, so the height stays logarithmic under any insertion order.
+// rebalanced by an AVL-style rotation when its subtrees' heights differ by more than a small slack,
+// so the height stays logarithmic under any insertion order (see kBalanceSlack for why not strict).
 // Nodes live in one array addressed by index (no pointers), with a free list.
 #pragma once
 
