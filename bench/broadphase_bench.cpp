@@ -196,7 +196,7 @@ void sizes(benchmark::internal::Benchmark* b, int largest) {
   for (int n : {1000, 3000, 10000, 30000, 100000}) {
     if (n <= largest) b->Arg(n);
   }
-  b->Unit(benchmark::kMillisecond)->MinTime(0.2);
+  b->Unit(benchmark::kMillisecond)->MinTime(1.0);
 }
 
 }  // namespace
