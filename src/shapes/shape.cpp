@@ -141,8 +141,10 @@ void requireValid(const Transform& transform, const char* query) {
   }
 }
 
-void requireFinite(const Vec3& point, const char* query) {
-  if (!isFinite(point)) throw Error(std::string(query) + ": point must be finite, got " + formatValue(point));
+void requireFinite(const Vec3& value, const char* query, const char* field = "point") {
+  if (!isFinite(value)) {
+    throw Error(std::string(query) + ": " + field + " must be finite, got " + formatValue(value));
+  }
 }
 
 }  // namespace
@@ -219,7 +221,7 @@ Vec3 support(const Shape& shape, const Vec3& direction) {
     throw Error("support: a " + std::string(toString(shape.type())) +
                 " is not convex and has no support function");
   }
-  requireFinite(direction, "support");
+  requireFinite(direction, "support", "direction");
   // Only the direction matters. Dividing by the largest component keeps tiny (or huge) directions
   // from underflowing (overflowing) when a proxy normalises them; a zero one has no direction.
   const float largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
