@@ -47,6 +47,44 @@ const std::vector<ShapeCase> kCases = {
      [] {
        return Shape(Cylinder{1.2f, 0.15f});
      }},
+    {"ConvexHull",
+     [] {
+       const std::vector<Vec3> points = {{0.5f, 0, 0},  {-0.5f, 0, 0}, {0, 0.7f, 0},      {0, -0.7f, 0},
+                                         {0, 0, 0.5f},  {0, 0, -0.5f}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, 0.3f}};
+       return Shape(ConvexHull::fromPoints(points));
+     }},
+    {"RandomHull",
+     [] {
+       std::mt19937 random(7);
+       std::normal_distribution<float> normal(0.0f, 1.0f);
+       std::vector<Vec3> points;
+       for (int i = 0; i < 40; ++i) {
+         const float x = normal(random);
+         const float y = normal(random);
+         const float z = normal(random);
+         points.push_back(Vec3(0.9f, 0.6f, 0.4f) * Vec3(x, y, z));
+       }
+       return Shape(ConvexHull::fromPoints(points));
+     }},
+    {"Kdop18",
+     [] {
+       const std::vector<Vec3> points = {{0.5f, 0, 0},  {-0.5f, 0, 0}, {0, 0.7f, 0},      {0, -0.7f, 0},
+                                         {0, 0, 0.5f},  {0, 0, -0.5f}, {0.3f, 0.3f, 0.3f}, {-0.3f, -0.3f, 0.3f}};
+       return Shape(Kdop::fromPoints(18, points));
+     }},
+    {"Kdop26",
+     [] {
+       std::mt19937 random(11);
+       std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+       std::vector<Vec3> points;
+       for (int i = 0; i < 30; ++i) {
+         const float x = uniform(random);
+         const float y = uniform(random);
+         const float z = uniform(random);
+         points.push_back(Vec3(x, 0.5f * y, 0.8f * z));
+       }
+       return Shape(Kdop::fromPoints(26, points));
+     }},
 };
 
 // Per shape: 1000 transforms, each with a few rays, support directions and closest-point queries
