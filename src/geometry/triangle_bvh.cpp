@@ -28,8 +28,9 @@ int medianLevels(std::uint32_t count) {
 
 class Builder {
  public:
-  Builder(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles, TriangleBvh& out)
-      : out_(out) {
+  Builder(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles, int maxDepth,
+          TriangleBvh& out)
+      : maxDepth_(maxDepth), out_(out) {
     boxes_.reserve(triangles.size());
     centers_.reserve(triangles.size());
     for (const MeshTriangle& t : triangles) {
@@ -59,11 +60,11 @@ class Builder {
       return index;
     }
     std::uint32_t middle = sahSplit(begin, end, centerBounds);
-    // Invariant depth + medianLevels(count) <= kTriangleBvhMaxDepth holds at the root (a mesh has
-    // fewer than 2^32 triangles) and is kept by every split we accept; a median split keeps it by
-    // construction, so the final depth is bounded whatever the geometry.
+    // Invariant depth + medianLevels(count) <= maxDepth holds at the root (maxDepth is at least
+    // medianLevels of all triangles) and is kept by every split we accept; a median split keeps it
+    // by construction, so the final depth is bounded whatever the geometry.
     const std::uint32_t larger = std::max(middle - begin, end - middle);
-    if (middle == begin || middle == end || depth + 1 + medianLevels(larger) > kTriangleBvhMaxDepth) {
+    if (middle == begin || middle == end || depth + 1 + medianLevels(larger) > maxDepth_) {
       middle = medianSplit(begin, end, centerBounds);
     }
     build(begin, middle, depth + 1);
@@ -151,6 +152,7 @@ class Builder {
     return std::clamp(b, 0, kBinCount - 1);
   }
 
+  int maxDepth_;
   TriangleBvh& out_;
   std::vector<Aabb> boxes_;
   std::vector<Vec3> centers_;
@@ -158,11 +160,13 @@ class Builder {
 
 }  // namespace
 
-TriangleBvh buildTriangleBvh(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles) {
+TriangleBvh buildTriangleBvh(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles,
+                             int maxDepth) {
   TriangleBvh bvh;
   if (triangles.empty()) return bvh;
-  Builder builder(vertices, triangles, bvh);
-  builder.build(0, static_cast<std::uint32_t>(triangles.size()), 0);
+  const auto count = static_cast<std::uint32_t>(triangles.size());
+  Builder builder(vertices, triangles, std::max(maxDepth, medianLevels(count)), bvh);
+  builder.build(0, count, 0);
   return bvh;
 }
 

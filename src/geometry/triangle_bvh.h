@@ -25,8 +25,10 @@ struct TriangleBvh {
 
 // Binned SAH build (Wald, "On fast construction of SAH-based bounding volume hierarchies", 2007),
 // falling back to a median split by count where the SAH finds no split or would make the tree
-// deeper than kTriangleBvhMaxDepth. Indices must be valid (the mesh factory checks them).
-TriangleBvh buildTriangleBvh(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles);
+// deeper than maxDepth (raised to the depth a pure median split needs, if it is lower). Indices
+// must be valid (the mesh factory checks them).
+TriangleBvh buildTriangleBvh(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles,
+                             int maxDepth = kTriangleBvhMaxDepth);
 
 // The depth of the deepest leaf (root = 0).
 int triangleBvhDepth(std::span<const TriangleMesh::BvhNode> nodes);

@@ -20,10 +20,11 @@ std::string formatVec3(const Vec3& v) {
   return out.str();
 }
 
-// A triangle whose doubled area is below this fraction of the squared mesh diagonal is rejected as
-// degenerate: float vertices carry a relative error of ~1e-7 of the mesh size, so such a triangle's
-// normal would be rounding noise.
-constexpr double kDegenerateAreaTolerance = 1e-12;
+// A triangle is degenerate when it is flat within the precision of the mesh's coordinates: its
+// height over its longest edge (twice its area / that edge) is below this fraction of the mesh's
+// diagonal. Float vertices carry a relative error of ~1e-7 of the mesh size, so a flatter
+// triangle's normal would be rounding noise; intentionally collinear vertices land here too.
+constexpr double kDegenerateRelativeHeight = 1e-6;
 
 // Closed: every directed edge appears once and its reverse appears once, i.e. each undirected edge
 // is shared by exactly two triangles that walk it in opposite directions.
@@ -72,17 +73,19 @@ TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector
                   ")");
     }
   }
-  const glm::dvec3 diagonal = glm::dvec3(used.max) - glm::dvec3(used.min);
-  const double minDoubleArea = kDegenerateAreaTolerance * glm::dot(diagonal, diagonal);
+  const double meshSize = glm::length(glm::dvec3(used.max) - glm::dvec3(used.min));
+  const double minHeight = kDegenerateRelativeHeight * meshSize;
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const glm::dvec3 a(vertices[triangles[i].v[0]]);
     const glm::dvec3 b(vertices[triangles[i].v[1]]);
     const glm::dvec3 c(vertices[triangles[i].v[2]]);
     const double doubleArea = glm::length(glm::cross(b - a, c - a));
-    if (!(doubleArea > minDoubleArea)) {
+    const double longestEdge = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    if (!(doubleArea > minHeight * longestEdge)) {
       std::ostringstream message;
-      message << "mesh: triangle " << i << " has zero area (area " << 0.5 * doubleArea
-              << ", below the tolerance " << 0.5 * minDoubleArea << " for a mesh of this size)";
+      message << "mesh: triangle " << i << " has zero area (area " << 0.5 * doubleArea << "; its height "
+              << doubleArea / longestEdge << " is below " << kDegenerateRelativeHeight << " of the mesh size "
+              << meshSize << ")";
       throw Error(message.str());
     }
   }
@@ -173,7 +176,7 @@ Parity crossingParity(const TriangleMesh& s, const Vec3& p, const Vec3& directio
   bool ambiguous = false;
   bool onSurface = false;
   walkAlongRay(s, ray, [&](std::uint32_t index) {
-    if (ambiguous || onSurface) return;
+    if (onSurface) return;  // decided; keep scanning after an ambiguity, p may still be on the surface
     const auto [a, b, c] = s.triangle(index);
     const Vec3 e1 = b - a;
     const Vec3 e2 = c - a;
@@ -194,11 +197,9 @@ Parity crossingParity(const TriangleMesh& s, const Vec3& p, const Vec3& directio
     const float w = 1.0f - u - v;
     if (u < -kEdgeTolerance || v < -kEdgeTolerance || w < -kEdgeTolerance) return;  // clear miss
     const float t = glm::dot(e2, qvec) * inverseDet;
-    if (std::abs(t) * glm::length(direction) <= surfaceTolerance) {
-      if (u >= 0.0f && v >= 0.0f && w >= 0.0f)
-        onSurface = true;
-      else if (t >= 0.0f)
-        ambiguous = true;
+    if (std::abs(t) <= surfaceTolerance) {
+      // p lies on this triangle, or within the tolerance of one of its edges.
+      onSurface = true;
       return;
     }
     if (t < 0.0f) return;

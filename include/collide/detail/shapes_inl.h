@@ -7,11 +7,14 @@
 namespace collide {
 
 namespace detail {
-template <class T> struct IsSharedPtr : std::false_type {};
-template <class T> struct IsSharedPtr<std::shared_ptr<T>> : std::true_type {};
+template <class T>
+struct IsSharedPtr : std::false_type {};
+template <class T>
+struct IsSharedPtr<std::shared_ptr<T>> : std::true_type {};
 }  // namespace detail
 
-template <class F> decltype(auto) Shape::visit(F&& f) const {
+template <class F>
+decltype(auto) Shape::visit(F&& f) const {
   return std::visit(
       [&](const auto& alternative) -> decltype(auto) {
         using T = std::decay_t<decltype(alternative)>;
@@ -35,7 +38,12 @@ void TriangleMesh::forEachTriangleOverlapping(const Aabb& box, Visitor&& visit) 
     if (!node.bounds.overlaps(box)) continue;
     if (node.count > 0) {
       for (std::uint32_t i = 0; i < node.count; ++i) {
-        visit(triangleOrder_[node.firstTriangleOrSecondChild + i]);
+        // A leaf's box covers all its triangles; test each one's own box, as shapes.h promises.
+        const std::uint32_t index = triangleOrder_[node.firstTriangleOrSecondChild + i];
+        const MeshTriangle& t = triangles_[index];
+        Aabb triangleBox;
+        for (std::uint32_t v : t.v) triangleBox.grow(vertices_[v]);
+        if (triangleBox.overlaps(box)) visit(index);
       }
     } else {
       const auto self = static_cast<std::uint32_t>(&node - nodes_.data());
