@@ -7,14 +7,11 @@
 namespace collide {
 
 namespace detail {
-template <class T>
-struct IsSharedPtr : std::false_type {};
-template <class T>
-struct IsSharedPtr<std::shared_ptr<T>> : std::true_type {};
+template <class T> struct IsSharedPtr : std::false_type {};
+template <class T> struct IsSharedPtr<std::shared_ptr<T>> : std::true_type {};
 }  // namespace detail
 
-template <class F>
-decltype(auto) Shape::visit(F&& f) const {
+template <class F> decltype(auto) Shape::visit(F&& f) const {
   return std::visit(
       [&](const auto& alternative) -> decltype(auto) {
         using T = std::decay_t<decltype(alternative)>;
