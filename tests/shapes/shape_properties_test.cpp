@@ -1,6 +1,7 @@
 // Properties every proxy must have, checked over random transforms and rays by the harness in
 // tests/shape_property_harness.h. To cover another proxy, add one line to kCases.
 #include "shape_property_harness.h"
+#include "shapes/test_meshes.h"
 
 #include <collide/shapes.h>
 #include <gtest/gtest.h>
@@ -85,6 +86,19 @@ const std::vector<ShapeCase> kCases = {
        }
        return Shape(Kdop::fromPoints(26, points));
      }},
+    {"BoxMesh", [] { return Shape(test::boxMesh(Vec3(0.4f, 0.7f, 0.3f))); }, false},
+    {"Icosphere", [] { return Shape(test::icosphere(2)); }, false},
+    {"Compound",
+     [] {
+       std::vector<Compound::Child> children;
+       // Disjoint children: inside a union of overlapping ones, mass counts the overlap twice and
+       // closest points are only a bound (see compound.cpp).
+       children.push_back({Sphere{0.3f}, Transform{Vec3(-0.9f, 0, 0)}});
+       children.push_back({Box{Vec3(0.4f, 0.1f, 0.2f)}, Transform{Vec3(0.0f), glm::angleAxis(0.4f, Vec3(0, 0, 1))}});
+       children.push_back({Capsule{0.2f, 0.3f}, Transform{Vec3(0.9f, 0.1f, 0), Quat(1, 0, 0, 0), 1.5f}});
+       return Shape(Compound::fromChildren(std::move(children)));
+     },
+     false},
 };
 
 // Per shape: 1000 transforms, each with a few rays, support directions and closest-point queries

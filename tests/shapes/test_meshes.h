@@ -4,6 +4,8 @@
 
 #include <collide/shapes.h>
 
+#include "test_random.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -98,26 +100,6 @@ inline TriangleMesh terrain(int n, float spacing, float maxHeight, unsigned seed
     }
   }
   return TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
-}
-
-inline Quat randomRotation(std::mt19937& rng) {
-  std::normal_distribution<float> gauss;
-  return glm::normalize(Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
-}
-
-inline Vec3 randomUnit(std::mt19937& rng) {
-  std::normal_distribution<float> gauss;
-  return glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
-}
-
-inline Vec3 randomPoint(std::mt19937& rng, float lo, float hi) {
-  std::uniform_real_distribution<float> u(lo, hi);
-  return {u(rng), u(rng), u(rng)};
-}
-
-inline Transform randomTransform(std::mt19937& rng) {
-  std::uniform_real_distribution<float> scale(0.5f, 2.0f);
-  return {randomPoint(rng, -5.0f, 5.0f), randomRotation(rng), scale(rng)};
 }
 
 }  // namespace collide::test
