@@ -5,6 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <functional>
 #include <random>
 #include <vector>
@@ -17,6 +18,40 @@ struct ShapeEntry {
   const char* name;
   std::function<Shape()> make;
 };
+
+// Points on a sphere, from a fixed seed: a typical rock-like hull.
+std::vector<Vec3> spherePoints(int count, float radius) {
+  std::mt19937 rng(5);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::vector<Vec3> points;
+  for (int i = 0; i < count; ++i) {
+    const float x = gauss(rng);
+    const float y = gauss(rng);
+    const float z = gauss(rng);
+    points.push_back(radius * glm::normalize(Vec3(x, y, z)));
+  }
+  return points;
+}
+
+// A wavy n x n grid of quads (2 n² triangles) spanning [-1, 1]² in x and z.
+TriangleMesh gridMesh(int n) {
+  std::vector<Vec3> vertices;
+  std::vector<MeshTriangle> triangles;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const float x = -1.0f + 2.0f * float(i) / float(n), z = -1.0f + 2.0f * float(j) / float(n);
+      vertices.emplace_back(x, 0.2f * std::sin(3.0f * x) * std::cos(3.0f * z), z);
+    }
+  }
+  auto index = [n](int i, int j) { return std::uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      triangles.push_back({{index(i, j), index(i, j + 1), index(i + 1, j)}});
+      triangles.push_back({{index(i + 1, j), index(i, j + 1), index(i + 1, j + 1)}});
+    }
+  }
+  return TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
+}
 
 const std::vector<ShapeEntry> kShapes = {
     {"sphere", [] { return Shape(Sphere{0.7f}); }},
@@ -33,6 +68,17 @@ const std::vector<ShapeEntry> kShapes = {
     {"cylinder",
      [] {
        return Shape(Cylinder{0.6f, 0.9f});
+     }},
+    {"hull32", [] { return Shape(ConvexHull::fromPoints(spherePoints(32, 1.0f))); }},
+    {"kdop18", [] { return Shape(Kdop::fromPoints(18, spherePoints(32, 1.0f))); }},
+    {"mesh_grid_2k", [] { return Shape(gridMesh(32)); }},
+    {"compound3",
+     [] {
+       std::vector<Compound::Child> children;
+       children.push_back({Sphere{0.4f}, Transform{Vec3(-0.8f, 0, 0)}});
+       children.push_back({Box{Vec3(0.4f, 0.2f, 0.2f)}, Transform{}});
+       children.push_back({Capsule{0.2f, 0.3f}, Transform{Vec3(0.8f, 0, 0)}});
+       return Shape(Compound::fromChildren(std::move(children)));
      }},
 };
 
