@@ -2,6 +2,7 @@
 #pragma once
 
 #include <collide/bounding.h>
+#include <collide/broadphase.h>
 #include <collide/error.h>
 #include <collide/math.h>
 #include <collide/shapes.h>

@@ -15,7 +15,8 @@ Aabb computeWorldBounds(const Cylinder& s, const Transform& t) {
   const Vec3 axis = t.applyToDirection(Vec3(0.0f, 1.0f, 0.0f));
   Vec3 extent;
   for (int i = 0; i < 3; ++i) {
-    extent[i] = s.halfHeight * std::abs(axis[i]) + s.radius * std::sqrt(std::max(0.0f, 1.0f - axis[i] * axis[i]));
+    extent[i] =
+        s.halfHeight * std::abs(axis[i]) + s.radius * std::sqrt(std::max(0.0f, 1.0f - axis[i] * axis[i]));
   }
   return Aabb::fromCenterHalfExtents(t.position, t.scale * extent);
 }
@@ -52,11 +53,15 @@ SurfacePoint localClosestPoint(const Cylinder& s, const Vec3& p) {
   const bool outsideSide = radial > s.radius;
   const bool outsideCap = std::abs(p.y) > s.halfHeight;
   if (outsideSide || outsideCap) {
-    const Vec3 point = Vec3(0.0f, glm::clamp(p.y, -s.halfHeight, s.halfHeight), 0.0f) +
-                       std::min(radial, s.radius) * outward;
-    const Vec3 d = p - point;
-    const float distance = glm::length(d);
-    return {point, d / distance, distance};
+    const Vec3 point =
+        Vec3(0.0f, glm::clamp(p.y, -s.halfHeight, s.halfHeight), 0.0f) + std::min(radial, s.radius) * outward;
+    // The offset in the (radial, axial) half-plane, from the scalar gaps rather than p - point: a
+    // point a few ulps outside the side would otherwise get a normal made of rounding noise.
+    const float radialGap = std::max(radial - s.radius, 0.0f);
+    const float capGap = std::max(std::abs(p.y) - s.halfHeight, 0.0f);
+    const float distance = std::sqrt(radialGap * radialGap + capGap * capGap);
+    const Vec3 normal = (radialGap * outward + Vec3(0.0f, capSign * capGap, 0.0f)) / distance;
+    return {point, normal, distance};
   }
   // Inside: leave through the nearer of the side and the caps.
   const float sideGap = s.radius - radial;

@@ -48,6 +48,9 @@ SurfacePoint localClosestPoint(const Ellipsoid& s, const Vec3& p) {
   // t with F(t) = sum (r_i p_i / (r_i² + t))² - 1 = 0. F decreases on t > -min r_i², so bisection
   // finds the one root there, for points inside (t < 0) and outside (t > 0) alike (Eberly,
   // "Distance from a Point to an Ellipse, an Ellipsoid, or a Hyperellipsoid", 2013).
+  // We solve for u = t + min r_i² > 0 instead of t: near the plane of the shortest axis, deep
+  // inside, the root sits just above t = -min r_i², where t itself has too few significant digits
+  // left for r_i² + t (a point 1e-12 off the plane came out 1e-4 off the surface).
   const double r[3] = {s.radii.x, s.radii.y, s.radii.z};
   const double q[3] = {std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))};
   int smallest = 0;
@@ -55,27 +58,26 @@ SurfacePoint localClosestPoint(const Ellipsoid& s, const Vec3& p) {
     if (r[i] < r[smallest]) smallest = i;
   }
   const double rMin2 = r[smallest] * r[smallest];
-  auto f = [&](double t) {
+  double gap[3];  // r_i² - min r², exactly 0 on the shortest axis
+  for (int i = 0; i < 3; ++i) gap[i] = r[i] * r[i] - rMin2;
+  auto f = [&](double u) {
     double sum = 0.0;
     for (int i = 0; i < 3; ++i) {
-      const double v = r[i] * q[i] / (r[i] * r[i] + t);
+      const double v = r[i] * q[i] / (gap[i] + u);
       sum += v * v;
     }
     return sum - 1.0;
   };
   double x[3];
-  double lo = -rMin2;
-  double hi = std::max({r[0], r[1], r[2]}) * std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) + 1.0;
-  // F(lo + ε) < 0 only when p lies (almost) on the plane of the shortest axis, deep inside: then
+  // F(u = ε) < 0 only when p lies (almost) on the plane of the shortest axis, deep inside: then
   // the nearest points sit on the "waist" where that axis' coordinate leaves the plane.
-  const double tiny = rMin2 * 1e-12 + 1e-30;
+  const double tiny = rMin2 * 1e-12;
   bool waist = false;
-  if (f(lo + tiny) < 0.0) {
+  if (f(tiny) < 0.0) {
     double sum = 0.0;
     for (int i = 0; i < 3; ++i) {
       if (i == smallest) continue;
-      const double denominator = r[i] * r[i] - rMin2;
-      x[i] = denominator > 0.0 ? r[i] * r[i] * q[i] / denominator : q[i];
+      x[i] = gap[i] > 0.0 ? r[i] * r[i] * q[i] / gap[i] : q[i];
       sum += (x[i] / r[i]) * (x[i] / r[i]);
     }
     if (sum < 1.0) {
@@ -84,13 +86,17 @@ SurfacePoint localClosestPoint(const Ellipsoid& s, const Vec3& p) {
     }
   }
   if (!waist) {
-    lo += tiny;
-    for (int iteration = 0; iteration < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++iteration) {
-      const double mid = 0.5 * (lo + hi);
+    // F(tiny) >= 0 > F(hi): the root is in between. The root may be many orders of magnitude
+    // below hi, so bisect geometrically (on log u) to full relative precision.
+    double lo = tiny;
+    double hi =
+        std::max({r[0], r[1], r[2]}) * std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) + 1.0 + rMin2;
+    for (int iteration = 0; iteration < 200 && hi - lo > 1e-15 * lo; ++iteration) {
+      const double mid = std::sqrt(lo * hi);
       (f(mid) > 0.0 ? lo : hi) = mid;
     }
-    const double t = 0.5 * (lo + hi);
-    for (int i = 0; i < 3; ++i) x[i] = r[i] * r[i] * q[i] / (r[i] * r[i] + t);
+    const double u = 0.5 * (lo + hi);
+    for (int i = 0; i < 3; ++i) x[i] = r[i] * r[i] * q[i] / (gap[i] + u);
   }
   Vec3 point;
   for (int i = 0; i < 3; ++i) point[i] = static_cast<float>(std::copysign(x[i], double(p[i])));

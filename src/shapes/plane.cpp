@@ -9,13 +9,17 @@ namespace {
 constexpr float kInfinite = 1e30f;
 
 // The box of a half-space is unbounded, except on the far side of an axis-aligned normal: a ground
-// plane with normal +y has nothing above y = distance, which the broad phase can use.
+// plane with normal +y has nothing above y = distance, which the broad phase can use. Only an
+// exactly aligned normal bounds the solid: with any tilt it rises without limit far enough out (a
+// 1 mrad tilt is 1 unit higher 1000 units away), so a near-axis normal gets the infinite box.
 Aabb halfSpaceBounds(const Vec3& normal, float distance) {
   Aabb box{Vec3(-kInfinite), Vec3(kInfinite)};
   for (int axis = 0; axis < 3; ++axis) {
-    if (std::abs(std::abs(normal[axis]) - 1.0f) > 1e-6f) continue;
-    if (normal[axis] > 0.0f) box.max[axis] = distance;
-    else box.min[axis] = -distance;
+    if (normal[(axis + 1) % 3] != 0.0f || normal[(axis + 2) % 3] != 0.0f) continue;
+    if (normal[axis] > 0.0f)
+      box.max[axis] = distance / normal[axis];
+    else
+      box.min[axis] = distance / normal[axis];
   }
   return box;
 }

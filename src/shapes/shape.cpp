@@ -11,16 +11,26 @@ namespace collide {
 
 std::string_view toString(ShapeType type) {
   switch (type) {
-    case ShapeType::Sphere: return "sphere";
-    case ShapeType::Capsule: return "capsule";
-    case ShapeType::Plane: return "plane";
-    case ShapeType::Box: return "box";
-    case ShapeType::Kdop: return "kdop";
-    case ShapeType::Ellipsoid: return "ellipsoid";
-    case ShapeType::Cylinder: return "cylinder";
-    case ShapeType::ConvexHull: return "convex_hull";
-    case ShapeType::Mesh: return "mesh";
-    case ShapeType::Compound: return "compound";
+    case ShapeType::Sphere:
+      return "sphere";
+    case ShapeType::Capsule:
+      return "capsule";
+    case ShapeType::Plane:
+      return "plane";
+    case ShapeType::Box:
+      return "box";
+    case ShapeType::Kdop:
+      return "kdop";
+    case ShapeType::Ellipsoid:
+      return "ellipsoid";
+    case ShapeType::Cylinder:
+      return "cylinder";
+    case ShapeType::ConvexHull:
+      return "convex_hull";
+    case ShapeType::Mesh:
+      return "mesh";
+    case ShapeType::Compound:
+      return "compound";
   }
   return "unknown";
 }
@@ -52,7 +62,8 @@ void requirePositive(const char* shape, const char* field, const Vec3& value) {
   }
 }
 
-template <class T> std::shared_ptr<const T> share(T&& value) {
+template <class T>
+std::shared_ptr<const T> share(T&& value) {
   return std::make_shared<const T>(std::forward<T>(value));
 }
 
@@ -72,7 +83,11 @@ Shape::Shape(const Plane& plane) : data_(plane) {
   if (!isFinite(plane.distance)) {
     throw Error("plane: distance must be finite, got " + formatValue(plane.distance));
   }
-  std::get<Plane>(data_).normal = glm::normalize(plane.normal);
+  // (normal, distance) is one 4-vector (lecture, slide 58): normalise both parts, so that the
+  // surface normal·x = distance stays where the caller put it.
+  const float length = glm::length(plane.normal);
+  std::get<Plane>(data_).normal = plane.normal / length;
+  std::get<Plane>(data_).distance = plane.distance / length;
 }
 
 Shape::Shape(const Box& box) : data_(box) { requirePositive("box", "half_extents", box.halfExtents); }
@@ -104,8 +119,10 @@ bool Shape::isConvex() const {
   switch (type()) {
     case ShapeType::Plane:
     case ShapeType::Mesh:
-    case ShapeType::Compound: return false;
-    default: return true;
+    case ShapeType::Compound:
+      return false;
+    default:
+      return true;
   }
 }
 
@@ -115,14 +132,19 @@ namespace {
 
 void requireValid(const Transform& transform, const char* query) {
   if (!isValid(transform)) {
-    throw Error(std::string(query) + ": transform must have a finite position, a unit rotation and a "
-                                     "finite scale > 0, got position " +
-                formatValue(transform.position) + ", scale " + formatValue(transform.scale));
+    throw Error(std::string(query) +
+                ": transform must have a finite position, a unit rotation and a "
+                "finite scale > 0, got position " +
+                formatValue(transform.position) + ", rotation (w " + formatValue(transform.rotation.w) +
+                ", " + formatValue(Vec3(transform.rotation.x, transform.rotation.y, transform.rotation.z)) +
+                "), scale " + formatValue(transform.scale));
   }
 }
 
-void requireFinite(const Vec3& point, const char* query) {
-  if (!isFinite(point)) throw Error(std::string(query) + ": point must be finite, got " + formatValue(point));
+void requireFinite(const Vec3& value, const char* query, const char* field = "point") {
+  if (!isFinite(value)) {
+    throw Error(std::string(query) + ": " + field + " must be finite, got " + formatValue(value));
+  }
 }
 
 }  // namespace
@@ -132,15 +154,20 @@ Aabb localBounds(const Shape& shape) {
 }
 
 Aabb worldBounds(const Shape& shape, const Transform& transform) {
+  requireValid(transform, "worldBounds");
   return shape.visit([&](const auto& s) { return detail::computeWorldBounds(s, transform); });
 }
 
 BoundingSphere localBoundingSphere(const Shape& shape) {
   switch (shape.type()) {
-    case ShapeType::Sphere: return {Vec3(0.0f), shape.sphere().radius};
-    case ShapeType::Capsule: return {Vec3(0.0f), shape.capsule().radius + shape.capsule().halfHeight};
-    case ShapeType::Plane: return {Vec3(0.0f), 1e30f};
-    case ShapeType::Box: return {Vec3(0.0f), glm::length(shape.box().halfExtents)};
+    case ShapeType::Sphere:
+      return {Vec3(0.0f), shape.sphere().radius};
+    case ShapeType::Capsule:
+      return {Vec3(0.0f), shape.capsule().radius + shape.capsule().halfHeight};
+    case ShapeType::Plane:
+      return {Vec3(0.0f), 1e30f};
+    case ShapeType::Box:
+      return {Vec3(0.0f), glm::length(shape.box().halfExtents)};
     case ShapeType::Ellipsoid: {
       const Vec3 r = shape.ellipsoid().radii;
       return {Vec3(0.0f), std::max({r.x, r.y, r.z})};
@@ -154,21 +181,24 @@ BoundingSphere localBoundingSphere(const Shape& shape) {
       const ConvexHull& hull = shape.convexHull();
       const Vec3 center = hull.bounds().center();
       float radiusSquared = 0.0f;
-      for (const Vec3& v : hull.vertices()) radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
+      for (const Vec3& v : hull.vertices())
+        radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
       return {center, std::sqrt(radiusSquared)};
     }
     case ShapeType::Kdop: {
       const ConvexHull& hull = shape.kdop().polytope();
       const Vec3 center = hull.bounds().center();
       float radiusSquared = 0.0f;
-      for (const Vec3& v : hull.vertices()) radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
+      for (const Vec3& v : hull.vertices())
+        radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
       return {center, std::sqrt(radiusSquared)};
     }
     case ShapeType::Mesh: {
       const TriangleMesh& mesh = shape.mesh();
       const Vec3 center = mesh.bounds().center();
       float radiusSquared = 0.0f;
-      for (const Vec3& v : mesh.vertices()) radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
+      for (const Vec3& v : mesh.vertices())
+        radiusSquared = std::max(radiusSquared, glm::dot(v - center, v - center));
       return {center, std::sqrt(radiusSquared)};
     }
     case ShapeType::Compound: {
@@ -188,15 +218,22 @@ BoundingSphere localBoundingSphere(const Shape& shape) {
 
 Vec3 support(const Shape& shape, const Vec3& direction) {
   if (!shape.isConvex()) {
-    throw Error("support: a " + std::string(toString(shape.type())) + " is not convex and has no support function");
+    throw Error("support: a " + std::string(toString(shape.type())) +
+                " is not convex and has no support function");
   }
-  requireFinite(direction, "support");
+  requireFinite(direction, "support", "direction");
+  // Only the direction matters. Dividing by the largest component keeps tiny (or huge) directions
+  // from underflowing (overflowing) when a proxy normalises them; a zero one has no direction.
+  const float largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
+  if (largest == 0.0f) throw Error("support: direction must be non-zero, got " + formatValue(direction));
+  const Vec3 unitish = direction / largest;
   return shape.visit([&](const auto& s) -> Vec3 {
     using T = std::decay_t<decltype(s)>;
-    if constexpr (std::is_same_v<T, Plane> || std::is_same_v<T, TriangleMesh> || std::is_same_v<T, Compound>) {
+    if constexpr (std::is_same_v<T, Plane> || std::is_same_v<T, TriangleMesh> ||
+                  std::is_same_v<T, Compound>) {
       return Vec3(0.0f);  // unreachable: rejected above
     } else {
-      return detail::computeSupport(s, direction);
+      return detail::computeSupport(s, unitish);
     }
   });
 }
@@ -251,7 +288,8 @@ SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const 
 
 std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, const Ray& ray) {
   requireValid(transform, "rayCast");
-  if (!isFinite(ray.origin) || !isFinite(ray.direction) || std::isnan(ray.maxDistance) || ray.maxDistance < 0.0f) {
+  if (!isFinite(ray.origin) || !isFinite(ray.direction) || std::isnan(ray.maxDistance) ||
+      ray.maxDistance < 0.0f) {
     throw Error("rayCast: ray must have a finite origin and direction and maxDistance >= 0, got origin " +
                 formatValue(ray.origin) + ", direction " + formatValue(ray.direction) + ", maxDistance " +
                 formatValue(ray.maxDistance));

@@ -35,7 +35,12 @@ void TriangleMesh::forEachTriangleOverlapping(const Aabb& box, Visitor&& visit) 
     if (!node.bounds.overlaps(box)) continue;
     if (node.count > 0) {
       for (std::uint32_t i = 0; i < node.count; ++i) {
-        visit(triangleOrder_[node.firstTriangleOrSecondChild + i]);
+        // A leaf's box covers all its triangles; test each one's own box, as shapes.h promises.
+        const std::uint32_t index = triangleOrder_[node.firstTriangleOrSecondChild + i];
+        const MeshTriangle& t = triangles_[index];
+        Aabb triangleBox;
+        for (std::uint32_t v : t.v) triangleBox.grow(vertices_[v]);
+        if (triangleBox.overlaps(box)) visit(index);
       }
     } else {
       const auto self = static_cast<std::uint32_t>(&node - nodes_.data());

@@ -1,0 +1,69 @@
+// The n² reference: every pair and every query tests every proxy. It is the ground truth the other
+// three algorithms are tested against, and honestly the fastest choice for a handful of proxies.
+#include "broadphase/broad_phase_internal.h"
+
+namespace collide {
+
+namespace {
+
+class BruteForceBroadPhase final : public BroadPhase {
+ public:
+  explicit BruteForceBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
+
+ private:
+  void onAdd(std::uint32_t) override {}
+  void onRemove(std::uint32_t) override {}
+  void onUpdate(std::uint32_t, const Aabb&) override {}
+
+  bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
+    const auto count = static_cast<std::uint32_t>(proxies_.size());
+    for (std::uint32_t a = 0; a < count; ++a) {
+      const ProxyRecord& pa = proxies_[a];
+      if (!pa.alive) continue;
+      for (std::uint32_t b = a + 1; b < count; ++b) {
+        const ProxyRecord& pb = proxies_[b];
+        if (!pb.alive) continue;
+        if (pa.motion == MotionType::Static && pb.motion == MotionType::Static) continue;
+        ++outBoxTests;
+        if (pa.bounds.overlaps(pb.bounds)) outKeys.push_back(pairKey(a, b));
+      }
+    }
+    return true;  // generated in (a, b) order
+  }
+
+  void rayCastImpl(RayQuery& query) const override {
+    const auto count = static_cast<std::uint32_t>(proxies_.size());
+    for (std::uint32_t i = 0; i < count; ++i) {
+      if (proxies_[i].alive && !query.report(i)) return;
+    }
+  }
+
+  template <typename Test>
+  void scan(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
+    const auto count = static_cast<std::uint32_t>(proxies_.size());
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const ProxyRecord& p = proxies_[i];
+      if (p.alive && passesMask(p, mask) && test(p.bounds) && !callback(idOf(i))) return;
+    }
+  }
+
+  void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {
+    scan(mask, callback, [&](const Aabb& b) { return b.overlaps(box); });
+  }
+  void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
+                       const OverlapCallback& callback) const override {
+    scan(mask, callback, [&](const Aabb& b) { return sphereTouchesBox(sphere, b); });
+  }
+  void queryFrustumImpl(const Frustum& frustum, LayerMask mask,
+                        const OverlapCallback& callback) const override {
+    scan(mask, callback, [&](const Aabb& b) { return frustum.intersects(b); });
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<BroadPhase> makeBruteForceBroadPhase(const BroadPhaseSettings& settings) {
+  return std::make_unique<BruteForceBroadPhase>(settings);
+}
+
+}  // namespace collide

@@ -1,0 +1,229 @@
+// The tree broad phase: two dynamic AABB trees, one for static and one for movable proxies, as in
+// Box2D v3 (b2BroadPhase keeps a tree per body type) and Bullet's btDbvtBroadphase (two btDbvt).
+//
+// Movable proxies are stored with boxes fattened by a margin; a proxy whose tight box stays inside its
+// fat box does not touch the tree at all. Only proxies whose fat box changed ("moved", re-inserted)
+// are queried against both trees, and the pairs found join a persistent set of fat-box overlaps, so
+// the pairs between proxies that did not move cost nothing to find again (a broad phase that touches
+// only what moved). Each call then walks the persistent set once: pairs whose fat boxes separated are
+// dropped, and pairs whose tight boxes overlap are reported, so the output is exact, like the others.
+#include "broadphase/broad_phase_internal.h"
+#include "broadphase/dynamic_tree.h"
+
+#include <algorithm>
+#include <string>
+
+namespace collide {
+
+namespace {
+
+class TreeBroadPhase final : public BroadPhase {
+ public:
+  explicit TreeBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
+
+  void validate() const override {
+    staticTree_.validate();
+    movableTree_.validate();
+    std::size_t statics = 0, movables = 0;
+    for (std::uint32_t i = 0; i < proxies_.size(); ++i) {
+      const ProxyRecord& p = proxies_[i];
+      if (!p.alive) continue;
+      const DynamicTree& tree = treeOf(i);
+      (p.motion == MotionType::Static ? statics : movables) += 1;
+      if (tree.proxy(leaf_[i]) != i)
+        throw Error("tree broad phase: leaf of proxy " + std::to_string(i) + " is wrong");
+      if (!tree.box(leaf_[i]).contains(p.bounds)) {
+        throw Error("tree broad phase: fat box of proxy " + std::to_string(i) + " does not contain its box");
+      }
+    }
+    if (statics != staticTree_.leafCount() || movables != movableTree_.leafCount()) {
+      throw Error("tree broad phase: leaf counts do not match the proxies");
+    }
+  }
+
+  const DynamicTree& staticTree() const { return staticTree_; }
+  const DynamicTree& movableTree() const { return movableTree_; }
+
+ private:
+  DynamicTree& treeOf(std::uint32_t index) {
+    return proxies_[index].motion == MotionType::Static ? staticTree_ : movableTree_;
+  }
+  const DynamicTree& treeOf(std::uint32_t index) const {
+    return proxies_[index].motion == MotionType::Static ? staticTree_ : movableTree_;
+  }
+  Aabb fatten(std::uint32_t index) const {
+    const ProxyRecord& p = proxies_[index];
+    return p.motion == MotionType::Static ? p.bounds : p.bounds.expanded(settings_.treeMargin);
+  }
+  const Aabb& fatBox(std::uint32_t index) const { return treeOf(index).box(leaf_[index]); }
+
+  void markMoved(std::uint32_t index) {
+    if (!moved_[index]) {
+      moved_[index] = 1;
+      moveBuffer_.push_back(index);
+    }
+  }
+
+  void onAdd(std::uint32_t index) override {
+    if (leaf_.size() <= index) {
+      leaf_.resize(index + 1, DynamicTree::kNull);
+      moved_.resize(index + 1, 0);
+    }
+    leaf_[index] = treeOf(index).insert(fatten(index), index);
+    markMoved(index);
+  }
+
+  void onRemove(std::uint32_t index) override {
+    treeOf(index).remove(leaf_[index]);
+    leaf_[index] = DynamicTree::kNull;
+    // Its pairs leave the persistent set in the next findPairs (the record is no longer alive, or the
+    // slot holds a new proxy, which is then in the move buffer and checked afresh).
+    moved_[index] = 0;
+  }
+
+  void onUpdate(std::uint32_t index, const Aabb&) override {
+    const ProxyRecord& p = proxies_[index];
+    DynamicTree& tree = treeOf(index);
+    // The whole point of the margin: a small motion leaves the tree and the pair set untouched.
+    if (p.motion == MotionType::Movable && tree.box(leaf_[index]).contains(p.bounds)) return;
+    tree.move(leaf_[index], fatten(index));
+    markMoved(index);
+  }
+
+  bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
+    // 1. New fat-box overlaps of the moved proxies, against both trees (a static one only against
+    //    the movable tree: static-static pairs are never wanted).
+    candidates_.clear();
+    for (const std::uint32_t i : moveBuffer_) {
+      if (!moved_[i]) continue;  // removed since it was buffered
+      moved_[i] = 0;
+      const Aabb query = fatBox(i);
+      auto collect = [&](const DynamicTree::Node& leaf) {
+        if (leaf.proxy != i) candidates_.push_back(pairKey(i, leaf.proxy));
+        return true;
+      };
+      auto overlapsQuery = [&](const Aabb& box) { return box.overlaps(query); };
+      movableTree_.traverse(overlapsQuery, collect, outBoxTests);
+      if (proxies_[i].motion == MotionType::Movable)
+        staticTree_.traverse(overlapsQuery, collect, outBoxTests);
+    }
+    moveBuffer_.clear();
+    std::sort(candidates_.begin(), candidates_.end());
+    candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+
+    // 2. Merge them into the persistent set (both sorted), dropping pairs whose fat boxes no longer
+    //    overlap and reporting those whose tight boxes do. The merge keeps the output sorted.
+    merged_.clear();
+    merged_.reserve(pairs_.size() + candidates_.size());
+    auto consider = [&](std::uint64_t key) {
+      const std::uint32_t a = pairKeyFirst(key), b = pairKeySecond(key);
+      const ProxyRecord& pa = proxies_[a];
+      const ProxyRecord& pb = proxies_[b];
+      if (!pa.alive || !pb.alive) return;
+      if (pa.motion == MotionType::Static && pb.motion == MotionType::Static) return;  // slot reused
+      outBoxTests += 1;
+      if (!fatBox(a).overlaps(fatBox(b))) return;
+      merged_.push_back(key);
+      outBoxTests += 1;
+      if (pa.bounds.overlaps(pb.bounds)) outKeys.push_back(key);
+    };
+    std::size_t i = 0, j = 0;
+    while (i < pairs_.size() || j < candidates_.size()) {
+      std::uint64_t key;
+      if (j == candidates_.size() || (i < pairs_.size() && pairs_[i] < candidates_[j])) {
+        key = pairs_[i++];
+      } else if (i == pairs_.size() || candidates_[j] < pairs_[i]) {
+        key = candidates_[j++];
+      } else {
+        key = pairs_[i++];
+        ++j;
+      }
+      consider(key);
+    }
+    pairs_.swap(merged_);
+    return true;
+  }
+
+  void rayCastImpl(RayQuery& query) const override {
+    rayCastTree(staticTree_, query);
+    if (!query.stopped) rayCastTree(movableTree_, query);
+  }
+
+  // Depth first, nearer child first, so that a closest-hit callback clips the ray early.
+  static void rayCastTree(const DynamicTree& tree, RayQuery& query) {
+    if (tree.root() == DynamicTree::kNull) return;
+    if (query.entry(tree.node(tree.root()).box) < 0.0f) return;
+    NodeStack stack;
+    stack.push(tree.root());
+    while (!stack.empty()) {
+      const DynamicTree::Node& n = tree.node(stack.pop());
+      // Pushed nodes were hit when pushed; the ray may have been clipped since.
+      if (n.isLeaf()) {
+        if (!query.report(n.proxy)) return;
+        continue;
+      }
+      const float t1 = query.entry(tree.node(n.child1).box);
+      const float t2 = query.entry(tree.node(n.child2).box);
+      if (t1 >= 0.0f && t2 >= 0.0f) {
+        if (t1 <= t2) {
+          stack.push(n.child2);
+          stack.push(n.child1);
+        } else {
+          stack.push(n.child1);
+          stack.push(n.child2);
+        }
+      } else if (t1 >= 0.0f) {
+        stack.push(n.child1);
+      } else if (t2 >= 0.0f) {
+        stack.push(n.child2);
+      }
+    }
+  }
+
+  template <typename Test>
+  void query(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
+    std::uint64_t tests = 0;
+    auto visit = [&](const DynamicTree::Node& leaf) {
+      const ProxyRecord& p = proxies_[leaf.proxy];
+      if (!passesMask(p, mask) || !test(p.bounds)) return true;
+      return callback(idOf(leaf.proxy));
+    };
+    if (staticTree_.traverse(test, visit, tests)) movableTree_.traverse(test, visit, tests);
+  }
+
+  void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {
+    query(mask, callback, [&](const Aabb& b) { return b.overlaps(box); });
+  }
+  void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
+                       const OverlapCallback& callback) const override {
+    query(mask, callback, [&](const Aabb& b) { return sphereTouchesBox(sphere, b); });
+  }
+  void queryFrustumImpl(const Frustum& frustum, LayerMask mask,
+                        const OverlapCallback& callback) const override {
+    query(mask, callback, [&](const Aabb& b) { return frustum.intersects(b); });
+  }
+
+  DynamicTree staticTree_;
+  DynamicTree movableTree_;
+  std::vector<std::int32_t> leaf_;   // per proxy: its leaf in its tree
+  std::vector<std::uint8_t> moved_;  // per proxy: in the move buffer
+  std::vector<std::uint32_t> moveBuffer_;
+  std::vector<std::uint64_t> pairs_;  // sorted keys of all fat-box overlaps (persistent)
+  std::vector<std::uint64_t> candidates_;
+  std::vector<std::uint64_t> merged_;
+};
+
+}  // namespace
+
+std::unique_ptr<BroadPhase> makeTreeBroadPhase(const BroadPhaseSettings& settings) {
+  return std::make_unique<TreeBroadPhase>(settings);
+}
+
+// For tests: the trees' own invariants and heights.
+const DynamicTree* treeOfBroadPhase(const BroadPhase& broadPhase, MotionType motion) {
+  const auto* tree = dynamic_cast<const TreeBroadPhase*>(&broadPhase);
+  if (tree == nullptr) return nullptr;
+  return motion == MotionType::Static ? &tree->staticTree() : &tree->movableTree();
+}
+
+}  // namespace collide

@@ -1,0 +1,112 @@
+// The dynamic AABB tree's invariants: containment, parent links, heights, and a logarithmic height
+// whatever the insertion order (the AVL rotations' job).
+#include "broadphase/dynamic_tree.h"
+#include "broadphase/broad_phase_internal.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace collide;
+
+namespace {
+
+float log2Of(std::size_t n) { return std::log2(static_cast<float>(n)); }
+
+}  // namespace
+
+TEST(DynamicTree, RandomInsertsKeepInvariantsAndLogHeight) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> position(-100.0f, 100.0f), size(0.1f, 2.0f);
+  DynamicTree tree;
+  std::vector<std::int32_t> leaves;
+  for (std::uint32_t i = 0; i < 4096; ++i) {
+    const Vec3 c(position(rng), position(rng), position(rng));
+    leaves.push_back(tree.insert(Aabb::fromCenterHalfExtents(c, Vec3(size(rng), size(rng), size(rng))), i));
+    if ((i & (i + 1)) == 0) tree.validate();  // at every power of two
+  }
+  tree.validate();
+  EXPECT_EQ(tree.leafCount(), 4096u);
+  EXPECT_LE(tree.height(), 2.5f * log2Of(4096));
+  // Every leaf is found by a query with its own box.
+  for (std::uint32_t i = 0; i < leaves.size(); i += 97) {
+    bool found = false;
+    std::uint64_t tests = 0;
+    const Aabb box = tree.box(leaves[i]);
+    tree.traverse([&](const Aabb& b) { return b.overlaps(box); },
+                  [&](const DynamicTree::Node& leaf) {
+                    found = found || leaf.proxy == i;
+                    return true;
+                  },
+                  tests);
+    EXPECT_TRUE(found);
+    EXPECT_LT(tests, 4096u);  // and the query prunes
+  }
+  // Remove half, move the rest: still valid and balanced.
+  for (std::size_t i = 0; i < leaves.size(); i += 2) tree.remove(leaves[i]);
+  for (std::size_t i = 1; i < leaves.size(); i += 2) {
+    const Vec3 c(position(rng), position(rng), position(rng));
+    tree.move(leaves[i], Aabb::fromCenterHalfExtents(c, Vec3(1.0f)));
+  }
+  tree.validate();
+  EXPECT_EQ(tree.leafCount(), 2048u);
+  EXPECT_LE(tree.height(), 2.5f * log2Of(2048));
+}
+
+TEST(DynamicTree, SortedInsertionStaysBalanced) {
+  // Boxes along a line inserted in order: the worst case for an unbalanced incremental tree, which
+  // would degenerate into a list of height n.
+  DynamicTree tree;
+  for (std::uint32_t i = 0; i < 2000; ++i) {
+    tree.insert(Aabb::fromCenterHalfExtents(Vec3(static_cast<float>(i), 0.0f, 0.0f), Vec3(0.4f)), i);
+  }
+  tree.validate();
+  EXPECT_LE(tree.height(), 2.5f * log2Of(2000));
+}
+
+TEST(DynamicTree, EmptyAndSingleLeaf) {
+  DynamicTree tree;
+  tree.validate();
+  EXPECT_EQ(tree.height(), 0);
+  const std::int32_t leaf = tree.insert(Aabb{Vec3(0.0f), Vec3(1.0f)}, 3);
+  EXPECT_EQ(tree.root(), leaf);
+  EXPECT_EQ(tree.proxy(leaf), 3u);
+  tree.remove(leaf);
+  EXPECT_EQ(tree.root(), DynamicTree::kNull);
+  tree.validate();
+}
+
+TEST(TreeBroadPhase, FatBoxesAbsorbSmallMotionAndTreesStayBalanced) {
+  BroadPhaseSettings settings;
+  settings.treeMargin = 0.5f;
+  auto bp = createBroadPhase(settings);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> position(-50.0f, 50.0f);
+  std::vector<ProxyId> ids;
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 c(position(rng), position(rng), position(rng));
+    ids.push_back(bp->add(
+        {Aabb::fromCenterHalfExtents(c, Vec3(0.5f)), i % 5 == 0 ? MotionType::Static : MotionType::Movable}));
+  }
+  std::vector<ProxyPair> pairs;
+  bp->findPairs(pairs);
+  const DynamicTree* movable = treeOfBroadPhase(*bp, MotionType::Movable);
+  const DynamicTree* fixed = treeOfBroadPhase(*bp, MotionType::Static);
+  ASSERT_NE(movable, nullptr);
+  EXPECT_EQ(movable->leafCount(), 800u);
+  EXPECT_EQ(fixed->leafCount(), 200u);
+  EXPECT_LE(movable->height(), 2.5f * log2Of(800));
+  // Moving every movable box by 0.2 (< margin 0.5) re-inserts nothing: the next findPairs queries no
+  // tree and only re-checks the few persistent pairs (two box tests each at most).
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (i % 5 == 0) continue;
+    Aabb box = bp->bounds(ids[i]);
+    box = {box.min + Vec3(0.2f), box.max + Vec3(0.2f)};
+    bp->update(ids[i], box);
+  }
+  const BroadPhaseStats& stats = bp->findPairs(pairs);
+  // A tree query costs at least one box test, so 800 re-insertions would cost 800 tests or more.
+  EXPECT_LT(stats.boxTests, 400u);
+  bp->validate();
+}

@@ -1,0 +1,376 @@
+#include "geometry/triangle.h"
+#include "shapes/test_meshes.h"
+
+#include <collide/shapes.h>
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+#include <string>
+
+using namespace collide;
+
+namespace {
+
+void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << "element " << c << "," << r;
+  }
+}
+
+void expectVecNear(const Vec3& a, const Vec3& b, float tolerance) {
+  EXPECT_LT(glm::length(a - b), tolerance)
+      << "[" << a.x << " " << a.y << " " << a.z << "] vs [" << b.x << " " << b.y << " " << b.z << "]";
+}
+
+std::string errorOf(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
+  try {
+    TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+const std::vector<Vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}};
+
+}  // namespace
+
+// ---- Topology and mass properties ----
+
+TEST(TriangleMesh, BoxMeshIsClosedAndHasTheBoxMassProperties) {
+  const Vec3 h(1.0f, 0.5f, 0.25f);
+  const Vec3 offset(3.0f, -2.0f, 1.0f);
+  const TriangleMesh mesh = test::boxMesh(h, [&](const Vec3& p) { return p + offset; });
+  EXPECT_TRUE(mesh.isClosed());
+  EXPECT_EQ(mesh.triangles().size(), 12u);
+  EXPECT_NEAR(mesh.volume(), 8.0f * h.x * h.y * h.z, 1e-5f);
+  expectVecNear(mesh.centroid(), offset, 1e-5f);
+
+  const MassProperties fromMesh = massProperties(Shape(mesh), 3.0f, 2.0f);
+  const MassProperties fromBox = massProperties(Box{h}, 3.0f, 2.0f);
+  EXPECT_NEAR(fromMesh.mass, fromBox.mass, 1e-4f * fromBox.mass);
+  EXPECT_NEAR(fromMesh.volume, fromBox.volume, 1e-4f * fromBox.volume);
+  expectVecNear(fromMesh.centerOfMass, 2.0f * offset, 1e-4f);  // scale 2 moves the centroid too
+  expectMatNear(fromMesh.inertia, fromBox.inertia, 1e-4f * fromBox.inertia[0][0]);
+}
+
+TEST(TriangleMesh, IcosphereVolumeConvergesToTheSphereFromBelow) {
+  const float sphereVolume = 4.0f / 3.0f * kPi;
+  float previousError = sphereVolume - test::icosphere(1).volume();
+  for (int level = 2; level <= 4; ++level) {
+    const TriangleMesh mesh = test::icosphere(level);
+    ASSERT_TRUE(mesh.isClosed()) << "level " << level;
+    const float error = sphereVolume - mesh.volume();
+    EXPECT_GT(error, 0.0f) << "an inscribed polyhedron is smaller than its sphere";
+    // Vertices on the sphere, edges halved per level: a second-order error shrinks fourfold.
+    EXPECT_GT(previousError / error, 3.5f) << "level " << level;
+    EXPECT_LT(previousError / error, 4.5f) << "level " << level;
+    previousError = error;
+    // Symmetric about the origin, and nearly isotropic inertia 2/5 m r^2 (unit density, r = 1).
+    expectVecNear(mesh.centroid(), Vec3(0.0f), 1e-5f);
+    const float expected = 0.4f * mesh.volume();
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(mesh.unitInertia()[i][i], expected, 2.0f * error / sphereVolume * expected);
+    }
+  }
+  EXPECT_LT(previousError / sphereVolume, 0.005f);  // 5120 triangles: within half a percent
+}
+
+TEST(TriangleMesh, OpenMeshesAreNotClosedAndContainNothing) {
+  const TriangleMesh quad = TriangleMesh::fromTriangles(kQuad, {{{0, 2, 1}}, {{0, 3, 2}}});
+  EXPECT_FALSE(quad.isClosed());
+  EXPECT_FALSE(containsPoint(Shape(quad), Transform{}, {0.5f, 0.0f, 0.5f}));
+  EXPECT_FALSE(containsPoint(Shape(quad), Transform{}, {0.5f, -0.1f, 0.5f}));
+  EXPECT_THROW(massProperties(Shape(quad), 1.0f), Error);
+
+  const TriangleMesh ground = test::terrain(16, 1.0f, 2.0f, 1);
+  EXPECT_FALSE(ground.isClosed());
+  std::mt19937 rng(2);
+  for (int i = 0; i < 200; ++i) {
+    EXPECT_FALSE(containsPoint(Shape(ground), Transform{}, test::randomPoint(rng, -1.0f, 17.0f)));
+  }
+}
+
+TEST(TriangleMesh, InconsistentlyWoundOrDuplicatedSurfacesAreNotClosed) {
+  const TriangleMesh box = test::boxMesh(Vec3(1.0f));
+  std::vector<MeshTriangle> flippedOne(box.triangles().begin(), box.triangles().end());
+  std::swap(flippedOne[5].v[1], flippedOne[5].v[2]);
+  std::vector<Vec3> vertices(box.vertices().begin(), box.vertices().end());
+  EXPECT_FALSE(TriangleMesh::fromTriangles(vertices, flippedOne).isClosed());
+  std::vector<MeshTriangle> missingOne(box.triangles().begin(), box.triangles().end() - 1);
+  EXPECT_FALSE(TriangleMesh::fromTriangles(vertices, missingOne).isClosed());
+  std::vector<MeshTriangle> doubled(box.triangles().begin(), box.triangles().end());
+  doubled.insert(doubled.end(), box.triangles().begin(), box.triangles().end());
+  EXPECT_FALSE(TriangleMesh::fromTriangles(vertices, doubled).isClosed());
+}
+
+TEST(TriangleMesh, InsideOutClosedMeshStillHasPositiveMassAndOutwardNormals) {
+  const TriangleMesh box = test::boxMesh(Vec3(1.0f, 2.0f, 3.0f));
+  std::vector<MeshTriangle> flipped(box.triangles().begin(), box.triangles().end());
+  for (MeshTriangle& t : flipped) std::swap(t.v[1], t.v[2]);
+  const TriangleMesh inverted =
+      TriangleMesh::fromTriangles(std::vector<Vec3>(box.vertices().begin(), box.vertices().end()), flipped);
+  EXPECT_TRUE(inverted.isClosed());
+  EXPECT_LT(inverted.volume(), 0.0f);
+  const MassProperties m = massProperties(Shape(inverted), 1.0f);
+  EXPECT_NEAR(m.volume, 48.0f, 1e-4f);
+  expectMatNear(m.inertia, massProperties(Box{{1.0f, 2.0f, 3.0f}}, 1.0f).inertia, 1e-3f);
+  EXPECT_TRUE(containsPoint(Shape(inverted), Transform{}, {0.5f, 0.5f, 0.5f}));
+  const SurfacePoint inside = closestPoint(Shape(inverted), Transform{}, {0.9f, 0.0f, 0.0f});
+  expectVecNear(inside.normal, Vec3(1, 0, 0), 1e-6f);
+  EXPECT_NEAR(inside.signedDistance, -0.1f, 1e-5f);
+}
+
+TEST(TriangleMesh, BoundsAndTriangleAccess) {
+  const TriangleMesh mesh = test::terrain(8, 0.5f, 1.0f, 4);
+  Aabb expected;
+  for (const Vec3& v : mesh.vertices()) expected.grow(v);
+  EXPECT_EQ(localBounds(Shape(mesh)).min, expected.min);
+  EXPECT_EQ(localBounds(Shape(mesh)).max, expected.max);
+  const auto corners = mesh.triangle(3);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(corners[k], mesh.vertices()[mesh.triangles()[3].v[k]]);
+  std::mt19937 rng(8);
+  for (int i = 0; i < 50; ++i) {
+    const Transform t = test::randomTransform(rng);
+    const Aabb world = worldBounds(Shape(mesh), t);
+    for (const Vec3& v : mesh.vertices()) EXPECT_TRUE(world.expanded(1e-4f).contains(t.applyToPoint(v)));
+  }
+}
+
+// ---- Queries against references ----
+
+TEST(TriangleMesh, RayCastsOnABoxMeshAgreeWithTheBoxShape) {
+  const Vec3 h(1.0f, 0.6f, 0.3f);
+  const Shape mesh(test::boxMesh(h));
+  const Shape box(Box{h});
+  std::mt19937 rng(12);
+  int hits = 0, inside = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Transform t = test::randomTransform(rng);
+    Ray ray;
+    ray.origin = t.applyToPoint(test::randomPoint(rng, -2.5f, 2.5f));
+    ray.direction = glm::normalize(t.applyToPoint(test::randomPoint(rng, -1.2f, 1.2f)) - ray.origin);
+    ray.maxDistance = i % 5 == 0 ? 2.0f : 1e30f;
+    const std::optional<RayHit> expected = rayCast(box, t, ray);
+    const std::optional<RayHit> actual = rayCast(mesh, t, ray);
+    ASSERT_EQ(actual.has_value(), expected.has_value()) << "ray " << i;
+    if (!expected) continue;
+    ++hits;
+    if (expected->distance == 0.0f) ++inside;
+    EXPECT_NEAR(actual->distance, expected->distance, 1e-4f) << "ray " << i;
+    expectVecNear(actual->normal, expected->normal, 1e-4f);
+    expectVecNear(actual->point, expected->point, 1e-4f);
+  }
+  EXPECT_GT(hits, 400);
+  EXPECT_GT(inside, 10);
+}
+
+TEST(TriangleMesh, TerrainRayCastsMatchBruteForce) {
+  const TriangleMesh mesh = test::terrain(64, 1.0f, 6.0f, 17);
+  const Shape shape(mesh);
+  std::mt19937 rng(13);
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Ray ray;
+    ray.origin = test::randomPoint(rng, -10.0f, 74.0f);
+    ray.origin.y = std::uniform_real_distribution<float>(-5.0f, 15.0f)(rng);
+    Vec3 target = test::randomPoint(rng, 0.0f, 64.0f);
+    target.y = std::uniform_real_distribution<float>(0.0f, 6.0f)(rng);
+    ray.direction = glm::normalize(target - ray.origin);
+    ray.maxDistance = i % 4 == 0 ? 20.0f : 1e30f;
+    std::optional<detail::RayTriangleHit> best;
+    std::uint32_t bestTriangle = 0;
+    for (std::uint32_t t = 0; t < mesh.triangles().size(); ++t) {
+      const auto [a, b, c] = mesh.triangle(t);
+      const auto hit = detail::intersectRayTriangle(ray, a, b, c);
+      if (hit && (!best || hit->distance < best->distance)) {
+        best = hit;
+        bestTriangle = t;
+      }
+    }
+    const std::optional<RayHit> actual = rayCast(shape, Transform{}, ray);
+    ASSERT_EQ(actual.has_value(), best.has_value()) << "ray " << i;
+    if (!best) continue;
+    ++hits;
+    EXPECT_FLOAT_EQ(actual->distance, best->distance) << "ray " << i;
+    if (actual->subShape != bestTriangle) {
+      // Only a tie (a ray through a shared edge) may pick the other triangle.
+      const auto [a, b, c] = mesh.triangle(actual->subShape);
+      const auto other = detail::intersectRayTriangle(ray, a, b, c);
+      ASSERT_TRUE(other);
+      EXPECT_FLOAT_EQ(other->distance, best->distance);
+    }
+    // Two-sided: the normal faces the side the ray came from.
+    EXPECT_LT(glm::dot(actual->normal, ray.direction), 0.0f);
+  }
+  EXPECT_GT(hits, 1000);
+}
+
+TEST(TriangleMesh, ClosestPointsMatchBruteForce) {
+  const TriangleMesh mesh = test::terrain(64, 1.0f, 6.0f, 23);
+  const Shape shape(mesh);
+  std::mt19937 rng(14);
+  for (int i = 0; i < 2000; ++i) {
+    Vec3 p = test::randomPoint(rng, -8.0f, 72.0f);
+    p.y = std::uniform_real_distribution<float>(-4.0f, 10.0f)(rng);
+    float bestSquared = 1e30f;
+    for (std::uint32_t t = 0; t < mesh.triangles().size(); ++t) {
+      const auto [a, b, c] = mesh.triangle(t);
+      const Vec3 q = detail::closestPointOnTriangle(p, a, b, c).point;
+      bestSquared = std::min(bestSquared, glm::dot(p - q, p - q));
+    }
+    const SurfacePoint actual = closestPoint(shape, Transform{}, p);
+    const float expected = std::sqrt(bestSquared);
+    EXPECT_NEAR(actual.signedDistance, expected, 1e-5f * std::max(1.0f, expected)) << "point " << i;
+    EXPECT_NEAR(glm::length(p - actual.point), expected, 1e-5f * std::max(1.0f, expected));
+    // Open surface: the normal runs from the surface to the point.
+    if (expected > 1e-3f) expectVecNear(actual.normal, (p - actual.point) / expected, 1e-4f);
+  }
+}
+
+TEST(TriangleMesh, ClosestPointsOnABoxMeshAgreeWithTheBoxShape) {
+  const Vec3 h(1.0f, 0.6f, 0.3f);
+  const Shape mesh(test::boxMesh(h));
+  const Shape box(Box{h});
+  std::mt19937 rng(15);
+  int insideCount = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Transform t = test::randomTransform(rng);
+    const Vec3 local = test::randomPoint(rng, -1.5f, 1.5f);
+    const SurfacePoint expected = closestPoint(box, t, t.applyToPoint(local));
+    const SurfacePoint actual = closestPoint(mesh, t, t.applyToPoint(local));
+    EXPECT_NEAR(actual.signedDistance, expected.signedDistance, 1e-4f) << "point " << i;
+    expectVecNear(actual.point, expected.point, 1e-4f);
+    // The outward face normal matches the box's wherever one face is nearest: inside, and outside
+    // in a face region (exactly one coordinate beyond the box).
+    const int beyond =
+        int(std::abs(local.x) > h.x) + int(std::abs(local.y) > h.y) + int(std::abs(local.z) > h.z);
+    if (beyond <= 1) {
+      const Vec3 gaps = h - glm::abs(local);
+      const float sorted[3] = {gaps.x, gaps.y, gaps.z};
+      const float smallest = std::min({sorted[0], sorted[1], sorted[2]});
+      int ties = 0;
+      for (float g : sorted) ties += int(g - smallest < 1e-3f);
+      if (ties == 1 || beyond == 1) expectVecNear(actual.normal, expected.normal, 1e-4f);
+    }
+    insideCount += int(expected.signedDistance < 0.0f);
+  }
+  EXPECT_GT(insideCount, 100);
+}
+
+TEST(TriangleMesh, ContainmentOfABoxMeshAgreesWithTheBox) {
+  const Vec3 h(1.0f, 0.6f, 0.3f);
+  const Shape mesh(test::boxMesh(h));
+  const Shape box(Box{h});
+  std::mt19937 rng(16);
+  const Transform t = test::randomTransform(rng);
+  int inside = 0, compared = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Vec3 local = test::randomPoint(rng, -1.4f, 1.4f);
+    if (std::abs(closestPoint(box, Transform{}, local).signedDistance) < 1e-4f) continue;
+    const Vec3 world = t.applyToPoint(local);
+    const bool expected = containsPoint(box, t, world);
+    ASSERT_EQ(containsPoint(mesh, t, world), expected) << "point " << i;
+    inside += int(expected);
+    ++compared;
+  }
+  EXPECT_GT(inside, 300);
+  EXPECT_GT(compared, 4900);
+}
+
+TEST(TriangleMesh, ContainmentOnALatticeThroughEdgesAndVertices) {
+  // Lattice points line up with the box's edges, face diagonals and vertices, and some lie on the
+  // surface (which counts as inside, like the box's closed set): the cases where a parity count
+  // along an unlucky ray would go wrong.
+  const Shape mesh(test::boxMesh(Vec3(1.0f)));
+  const Shape box(Box{Vec3(1.0f)});
+  for (int i = -6; i <= 6; ++i) {
+    for (int j = -6; j <= 6; ++j) {
+      for (int k = -6; k <= 6; ++k) {
+        const Vec3 p = 0.25f * Vec3(i, j, k);
+        ASSERT_EQ(containsPoint(mesh, Transform{}, p), containsPoint(box, Transform{}, p))
+            << p.x << " " << p.y << " " << p.z;
+      }
+    }
+  }
+}
+
+TEST(TriangleMesh, IcosphereContainmentAndSignedDistance) {
+  const Shape sphere(test::icosphere(3));
+  std::mt19937 rng(18);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 p = test::randomUnit(rng) * std::uniform_real_distribution<float>(0.0f, 1.5f)(rng);
+    const float r = glm::length(p);
+    // Inscribed polyhedron: inside below the face distance (> 0.98 at level 3), outside beyond 1.
+    if (r < 0.98f) {
+      EXPECT_TRUE(containsPoint(sphere, Transform{}, p)) << r;
+    }
+    if (r > 1.0f) {
+      EXPECT_FALSE(containsPoint(sphere, Transform{}, p)) << r;
+    }
+    const SurfacePoint s = closestPoint(sphere, Transform{}, p);
+    EXPECT_EQ(s.signedDistance < 0.0f, containsPoint(sphere, Transform{}, p));
+    EXPECT_NEAR(s.signedDistance, r - 1.0f, 0.03f);  // within the facets' sag of the sphere
+    EXPECT_GT(glm::dot(s.normal, s.point), 0.9f);    // outward
+  }
+}
+
+TEST(TriangleMesh, RayFromInsideAClosedMeshHitsAtZero) {
+  const Shape mesh(test::boxMesh(Vec3(1.0f)));
+  const Ray ray{{0.2f, 0.1f, 0.0f}, {0.0f, 1.0f, 0.0f}, 10.0f};
+  const std::optional<RayHit> hit = rayCast(mesh, Transform{}, ray);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->distance, 0.0f);
+  EXPECT_EQ(hit->normal, -ray.direction);
+  // An open mesh has no inside: the same ray through a single quad hits the quad.
+  const Shape quad(TriangleMesh::fromTriangles(kQuad, {{{0, 2, 1}}, {{0, 3, 2}}}));
+  const std::optional<RayHit> quadHit = rayCast(quad, Transform{}, {{0.5f, -1.0f, 0.5f}, {0, 1, 0}, 10.0f});
+  ASSERT_TRUE(quadHit);
+  EXPECT_FLOAT_EQ(quadHit->distance, 1.0f);
+  expectVecNear(quadHit->normal, Vec3(0, -1, 0), 1e-6f);
+}
+
+// ---- Bad input ----
+
+TEST(TriangleMesh, RejectsBadInputWithMessages) {
+  const TriangleMesh box = test::boxMesh(Vec3(1.0f));
+  const std::vector<Vec3> vertices(box.vertices().begin(), box.vertices().end());
+  const std::vector<MeshTriangle> triangles(box.triangles().begin(), box.triangles().end());
+
+  EXPECT_EQ(errorOf(vertices, {}), "mesh: needs at least one triangle, got 0");
+
+  std::vector<Vec3> nan = vertices;
+  nan[5].y = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(errorOf(nan, triangles).find("vertex 5 is not finite"), std::string::npos);
+  std::vector<Vec3> infinite = vertices;
+  infinite[2].x = std::numeric_limits<float>::infinity();
+  EXPECT_NE(errorOf(infinite, triangles).find("vertex 2 is not finite"), std::string::npos);
+
+  std::vector<MeshTriangle> outOfRange = triangles;
+  outOfRange[3].v[1] = 9;
+  EXPECT_EQ(errorOf(vertices, outOfRange), "mesh: triangle 3 index 9 out of range (8 vertices)");
+
+  std::vector<MeshTriangle> repeated = triangles;
+  repeated[7].v[2] = repeated[7].v[0];
+  EXPECT_NE(errorOf(vertices, repeated).find("triangle 7 has zero area: it repeats a vertex index"),
+            std::string::npos);
+
+  // Three distinct but collinear vertices.
+  std::vector<Vec3> line = vertices;
+  line.push_back({0.0f, 0.0f, 0.0f});
+  line.push_back({0.5f, 0.5f, 0.5f});
+  std::vector<MeshTriangle> withSliver = triangles;
+  withSliver.push_back({{7, 8, 9}});  // (1,1,1), origin, (0.5,0.5,0.5)
+  EXPECT_NE(errorOf(line, withSliver).find("triangle 12 has zero area"), std::string::npos);
+
+  // Nonzero in float but far below the mesh's precision: a 1e-7-high sliver in a 2 m mesh.
+  std::vector<Vec3> sliver = vertices;
+  sliver.push_back({-1.0f, -1.0f, -1.0f + 1e-7f});
+  sliver.push_back({1.0f, -1.0f, -1.0f});
+  withSliver.back() = {{0, 9, 8}};
+  EXPECT_NE(errorOf(sliver, withSliver).find("triangle 12 has zero area"), std::string::npos);
+
+  // A small triangle in a small mesh is fine: the tolerance is relative.
+  EXPECT_NO_THROW(TriangleMesh::fromTriangles({{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0}}, {{{0, 1, 2}}}));
+}
