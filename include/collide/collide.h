@@ -1,6 +1,7 @@
 // collide: collision detection and response for 3D games. Include this for the whole public API.
 #pragma once
 
+#include <collide/bounding.h>
 #include <collide/broadphase.h>
 #include <collide/error.h>
 #include <collide/math.h>

@@ -1,0 +1,25 @@
+// Input checks shared by the bounding-volume fitters: the API boundary, so a clear Error, not a
+// crash or a NaN proxy.
+#include "bounding/point_set.h"
+
+#include <sstream>
+
+namespace collide::bounding {
+
+std::string formatPoint(const Vec3& p) {
+  std::ostringstream out;
+  out << '[' << p.x << ", " << p.y << ", " << p.z << ']';
+  return out.str();
+}
+
+void requireFinitePoints(std::string_view who, std::span<const Vec3> points) {
+  if (points.empty()) throw Error(std::string(who) + ": the point set is empty, need at least one point");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!isFinite(points[i])) {
+      throw Error(std::string(who) + ": point " + std::to_string(i) + " is not finite, got " +
+                  formatPoint(points[i]));
+    }
+  }
+}
+
+}  // namespace collide::bounding
