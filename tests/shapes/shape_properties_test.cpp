@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <ostream>
 #include <random>
 #include <string>
 
@@ -20,6 +21,9 @@ struct ShapeCase {
   // compounds only promise a conservative one).
   bool exactBounds = true;
 };
+
+// Test names and failure messages show the case's name rather than its bytes.
+void PrintTo(const ShapeCase& shapeCase, std::ostream* out) { *out << shapeCase.name; }
 
 const std::vector<ShapeCase> kCases = {
     {"Sphere", [] { return Shape(Sphere{0.7f}); }},
