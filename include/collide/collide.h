@@ -3,6 +3,7 @@
 
 #include <collide/error.h>
 #include <collide/math.h>
+#include <collide/narrowphase.h>
 #include <collide/shapes.h>
 
 namespace collide {
