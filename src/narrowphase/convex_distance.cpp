@@ -21,7 +21,7 @@ bool convexSignedDistance(const ConvexSupport& a, const ConvexSupport& b, float 
   const float coreDistance = gjk.distance;
   const float size = std::max(
       {glm::length(gjk.pointOnA - a.center()), glm::length(gjk.pointOnB - b.center()), radii, 1e-20f});
-  if (gjk.status == GjkResult::Status::Separated && coreDistance > 1e-5f * size) {
+  if (gjk.status == GjkResult::Status::Separated && coreDistance > (radii > 0.0f ? 1e-4f : 1e-5f) * size) {
     const Vec3 normal = gap / glm::length(gap);
     out.distance = coreDistance - radii;
     out.normal = normal;
@@ -29,6 +29,23 @@ bool convexSignedDistance(const ConvexSupport& a, const ConvexSupport& b, float 
     out.pointOnB = gjk.pointOnB - b.radius * normal;
     out.overlapping = out.distance < 0.0f;
     return out.distance <= maxDistance;
+  }
+  if (radii > 0.0f && gjk.status == GjkResult::Status::Separated) {
+    // The cores nearly touch but the rounded shapes overlap deeply: the direction between the
+    // cores' closest points is lost in rounding, so run EPA on the whole rounded shapes instead,
+    // whose difference holds the origin well inside (Jolt does the same with its convex radius).
+    ConvexSupport wholeA = a, wholeB = b;
+    wholeA.inflated = wholeB.inflated = true;
+    const GjkResult whole = gjkDistance(wholeA, wholeB);
+    if (whole.status == GjkResult::Status::Overlapping) {
+      const EpaResult epa = epaPenetration(wholeA, wholeB, whole.simplex);
+      out.distance = -epa.depth;
+      out.normal = epa.normal;
+      out.pointOnA = epa.pointOnA;
+      out.pointOnB = epa.pointOnB;
+      out.overlapping = out.distance < 0.0f;
+      return out.distance <= maxDistance;
+    }
   }
   // The cores touch or overlap: EPA gives their penetration; the radii add to it.
   const EpaResult epa = epaPenetration(a, b, gjk.simplex);

@@ -24,11 +24,17 @@ struct ConvexSupport {
   const ConvexHull* hull = nullptr;  // Hull (a convex hull or a k-DOP's polytope)
   const Vec3* points = nullptr;      // Points: local vertices (a triangle, a point cloud)
   std::uint32_t pointCount = 0;
+  // When set, supportCore() answers for the whole shape, core plus radius (see
+  // convexSignedDistance: EPA on the rounded shapes when their cores nearly touch).
+  bool inflated = false;
 
   // The farthest point of the core in a world direction (need not be unit), in world coordinates.
   Vec3 supportCore(const Vec3& worldDirection) const {
     const Vec3 d = glm::transpose(rotation) * worldDirection;  // rotation is orthonormal
-    return position + rotation * (scale * localSupportCore(d));
+    const Vec3 p = position + rotation * (scale * localSupportCore(d));
+    if (!inflated) return p;
+    const float length = glm::length(worldDirection);
+    return length > 0.0f ? p + (radius / length) * worldDirection : p;
   }
 
   // A point inside the core, to seed GJK's search direction.

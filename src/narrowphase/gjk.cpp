@@ -14,72 +14,56 @@ constexpr float kRelativeGap = 1e-6f;
 constexpr float kTouchingSquared = 1e-12f;
 constexpr int kMaxIterations = 64;
 
-Vec3 closestBarycentricOnSegment(const Vec3& a, const Vec3& b, const Vec3& p) {
-  const Vec3 ab = b - a;
-  const float lengthSquared = glm::dot(ab, ab);
-  if (lengthSquared <= 0.0f) return {1.0f, 0.0f, 0.0f};
-  const float t = std::clamp(glm::dot(p - a, ab) / lengthSquared, 0.0f, 1.0f);
-  if (t == 0.0f) return {1.0f, 0.0f, 0.0f};
-  if (t == 1.0f) return {0.0f, 1.0f, 0.0f};
-  return {1.0f - t, t, 0.0f};
+// The simplex is solved in double precision: its vertices are single-precision support points,
+// but the solve subtracts nearly equal products (a thin triangle far from the origin), and in
+// single precision that misplaces the closest point enough for GJK to stall or cycle.
+using DVec3 = glm::dvec3;
+
+Vec3 closestBarycentricOnSegment(const DVec3& a, const DVec3& b, const DVec3& p) {
+  const DVec3 ab = b - a;
+  const double lengthSquared = glm::dot(ab, ab);
+  if (lengthSquared <= 0.0) return {1.0f, 0.0f, 0.0f};
+  const double t = std::clamp(glm::dot(p - a, ab) / lengthSquared, 0.0, 1.0);
+  if (t == 0.0) return {1.0f, 0.0f, 0.0f};
+  if (t == 1.0) return {0.0f, 1.0f, 0.0f};
+  return {static_cast<float>(1.0 - t), static_cast<float>(t), 0.0f};
+}
+
+Vec3 closestBarycentricOnTriangleD(const DVec3& a, const DVec3& b, const DVec3& c, const DVec3& p) {
+  // The projection onto the plane, with barycentric coordinates as ratios of signed areas; if one
+  // is negative the answer lies on an edge, and the nearest of the three edges is it.
+  const DVec3 n = glm::cross(b - a, c - a);
+  const double nn = glm::dot(n, n);
+  const double scale = glm::dot(b - a, b - a) * glm::dot(c - a, c - a);
+  if (nn > 1e-20 * scale) {
+    const DVec3 q = p - (glm::dot(p - a, n) / nn) * n;
+    const double u = glm::dot(glm::cross(b - q, c - q), n) / nn;
+    const double v = glm::dot(glm::cross(c - q, a - q), n) / nn;
+    const double w = 1.0 - u - v;
+    if (u >= 0.0 && v >= 0.0 && w >= 0.0)
+      return {static_cast<float>(u), static_cast<float>(v), static_cast<float>(w)};
+  }
+  const Vec3 eab = closestBarycentricOnSegment(a, b, p);
+  const Vec3 eac = closestBarycentricOnSegment(a, c, p);
+  const Vec3 ebc = closestBarycentricOnSegment(b, c, p);
+  const Vec3 candidates[3] = {{eab.x, eab.y, 0.0f}, {eac.x, 0.0f, eac.y}, {0.0f, ebc.x, ebc.y}};
+  Vec3 best = candidates[0];
+  double bestDistance = 1e300;
+  for (const Vec3& candidate : candidates) {
+    const DVec3 r = double(candidate.x) * a + double(candidate.y) * b + double(candidate.z) * c - p;
+    const double distance = glm::dot(r, r);
+    if (distance < bestDistance) {
+      bestDistance = distance;
+      best = candidate;
+    }
+  }
+  return best;
 }
 
 }  // namespace
 
 Vec3 closestBarycentricOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
-  // Voronoi regions of the vertices, then the edges, then the face (Ericson 5.1.5).
-  const Vec3 ab = b - a;
-  const Vec3 ac = c - a;
-  const Vec3 ap = p - a;
-  const float d1 = glm::dot(ab, ap);
-  const float d2 = glm::dot(ac, ap);
-  if (d1 <= 0.0f && d2 <= 0.0f) return {1.0f, 0.0f, 0.0f};
-  const Vec3 bp = p - b;
-  const float d3 = glm::dot(ab, bp);
-  const float d4 = glm::dot(ac, bp);
-  if (d3 >= 0.0f && d4 <= d3) return {0.0f, 1.0f, 0.0f};
-  const float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
-    const float v = d1 / (d1 - d3);
-    return {1.0f - v, v, 0.0f};
-  }
-  const Vec3 cp = p - c;
-  const float d5 = glm::dot(ab, cp);
-  const float d6 = glm::dot(ac, cp);
-  if (d6 >= 0.0f && d5 <= d6) return {0.0f, 0.0f, 1.0f};
-  const float vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
-    const float w = d2 / (d2 - d6);
-    return {1.0f - w, 0.0f, w};
-  }
-  const float va = d3 * d6 - d5 * d4;
-  if (va <= 0.0f && d4 - d3 >= 0.0f && d5 - d6 >= 0.0f) {
-    const float w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0.0f, 1.0f - w, w};
-  }
-  const float sum = va + vb + vc;  // |ab × ac|², the squared double area
-  const float scale = glm::dot(ab, ab) * glm::dot(ac, ac);
-  if (!(sum > 1e-12f * scale)) {
-    // A sliver triangle: the face region is numerically meaningless; take the best edge.
-    const Vec3 eab = closestBarycentricOnSegment(a, b, p);
-    const Vec3 eac = closestBarycentricOnSegment(a, c, p);
-    const Vec3 ebc = closestBarycentricOnSegment(b, c, p);
-    const Vec3 candidates[3] = {{eab.x, eab.y, 0.0f}, {eac.x, 0.0f, eac.y}, {0.0f, ebc.x, ebc.y}};
-    Vec3 best = candidates[0];
-    float bestDistance = 1e30f;
-    for (const Vec3& candidate : candidates) {
-      const Vec3 q = candidate.x * a + candidate.y * b + candidate.z * c - p;
-      const float distance = glm::dot(q, q);
-      if (distance < bestDistance) {
-        bestDistance = distance;
-        best = candidate;
-      }
-    }
-    return best;
-  }
-  const float v = vb / sum;
-  const float w = vc / sum;
-  return {1.0f - v - w, v, w};
+  return closestBarycentricOnTriangleD(DVec3(a), DVec3(b), DVec3(c), DVec3(p));
 }
 
 namespace {
@@ -102,9 +86,9 @@ void compact(Simplex& simplex, const float* lambda, int count) {
 }
 
 Vec3 pointOf(const Simplex& simplex) {
-  Vec3 p(0.0f);
-  for (int i = 0; i < simplex.count; ++i) p += simplex.lambda[i] * simplex.vertices[i].w;
-  return p;
+  DVec3 p(0.0);
+  for (int i = 0; i < simplex.count; ++i) p += double(simplex.lambda[i]) * DVec3(simplex.vertices[i].w);
+  return Vec3(p);
 }
 
 }  // namespace
@@ -116,7 +100,8 @@ bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
       simplex.lambda[0] = 1.0f;
       break;
     case 2: {
-      const Vec3 l = closestBarycentricOnSegment(simplex.vertices[0].w, simplex.vertices[1].w, origin);
+      const Vec3 l =
+          closestBarycentricOnSegment(DVec3(simplex.vertices[0].w), DVec3(simplex.vertices[1].w), DVec3(0.0));
       const float lambda[2] = {l.x, l.y};
       compact(simplex, lambda, 2);
       break;
@@ -129,30 +114,36 @@ bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
       break;
     }
     case 4: {
-      // The origin is inside unless it lies beyond one of the four faces; then the closest point is
-      // on the nearest such face.
+      // Inside when the origin is on the inner side of all four faces. A nearly flat tetrahedron
+      // gives those signs no meaning, so it never counts as enclosing the origin (GJK then goes
+      // on, or ends on its other tests). Outside, the closest point of the solid is the closest
+      // of its four faces' closest points: all four are evaluated rather than trusting the signs.
       static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
-      const Vec3* w[4] = {&simplex.vertices[0].w, &simplex.vertices[1].w, &simplex.vertices[2].w,
-                          &simplex.vertices[3].w};
-      const Vec3 e1 = *w[1] - *w[0], e2 = *w[2] - *w[0], e3 = *w[3] - *w[0];
-      const float volume = glm::dot(e3, glm::cross(e1, e2));
-      const bool flat = std::abs(volume) <= 1e-6f * glm::length(e1) * glm::length(e2) * glm::length(e3);
-      float bestDistance = 1e30f;
-      float bestLambda[4] = {0, 0, 0, 0};
-      bool outside = false;
+      const DVec3 w[4] = {DVec3(simplex.vertices[0].w), DVec3(simplex.vertices[1].w),
+                          DVec3(simplex.vertices[2].w), DVec3(simplex.vertices[3].w)};
+      const DVec3 e1 = w[1] - w[0], e2 = w[2] - w[0], e3 = w[3] - w[0];
+      const double volume = glm::dot(e3, glm::cross(e1, e2));
+      const bool flat = std::abs(volume) <= 1e-6 * glm::length(e1) * glm::length(e2) * glm::length(e3);
+      bool inside = !flat;
       for (const auto& face : kFaces) {
-        const Vec3& a = *w[face[0]];
-        const Vec3& b = *w[face[1]];
-        const Vec3& c = *w[face[2]];
-        const Vec3& d = *w[face[3]];
-        const Vec3 n = glm::cross(b - a, c - a);
-        const float originSide = -glm::dot(n, a);
-        const float oppositeSide = glm::dot(n, d - a);
-        if (!flat && originSide * oppositeSide >= 0.0f) continue;  // origin on the inner side
-        outside = true;
-        const Vec3 l = closestBarycentricOnTriangle(a, b, c, origin);
-        const Vec3 q = l.x * a + l.y * b + l.z * c;
-        const float distance = glm::dot(q, q);
+        if (!inside) break;
+        const DVec3& a = w[face[0]];
+        const DVec3 n = glm::cross(w[face[1]] - a, w[face[2]] - a);
+        if (-glm::dot(n, a) * glm::dot(n, w[face[3]] - a) < 0.0) inside = false;
+      }
+      if (inside) {
+        outClosest = origin;
+        return false;
+      }
+      double bestDistance = 1e300;
+      float bestLambda[4] = {0, 0, 0, 0};
+      for (const auto& face : kFaces) {
+        const DVec3& a = w[face[0]];
+        const DVec3& b = w[face[1]];
+        const DVec3& c = w[face[2]];
+        const Vec3 l = closestBarycentricOnTriangleD(a, b, c, DVec3(0.0));
+        const DVec3 q = double(l.x) * a + double(l.y) * b + double(l.z) * c;
+        const double distance = glm::dot(q, q);
         if (distance < bestDistance) {
           bestDistance = distance;
           std::fill(bestLambda, bestLambda + 4, 0.0f);
@@ -160,10 +151,6 @@ bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
           bestLambda[face[1]] = l.y;
           bestLambda[face[2]] = l.z;
         }
-      }
-      if (!outside) {
-        outClosest = origin;
-        return false;
       }
       compact(simplex, bestLambda, 4);
       break;
@@ -205,7 +192,9 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
       return result;
     }
     // No progress beyond the relative tolerance: v is the closest point (van den Bergen 1999).
-    if (vv - vw <= kRelativeGap * vv) break;
+    // The |v| |w| term is single precision's floor: v·w carries rounding of ~1e-7 |v| |w|, so a
+    // small distance between large shapes cannot converge relative to itself alone.
+    if (vv - vw <= kRelativeGap * (vv + std::sqrt(vv * maxVertexSquared))) break;
     // A repeated vertex means the support cannot get any closer either (rounding).
     bool repeated = false;
     for (int i = 0; i < simplex.count; ++i) {
@@ -221,11 +210,14 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
       break;
     }
     const float closestSquared = glm::dot(closest, closest);
-    if (closestSquared >= vv) {
-      // Rounding made the new simplex no better: keep the previous answer and stop.
+    if (closestSquared > vv) {
+      // Rounding made the new simplex worse: keep the previous answer and stop.
       simplex = previous;
       break;
     }
+    // An unchanged point would repeat this iteration forever. (An equal length alone is still
+    // progress: near convergence |v|² changes below float resolution while v itself moves.)
+    if (closest == v) break;
     v = closest;
     maxVertexSquared = 0.0f;
     for (int i = 0; i < simplex.count; ++i) {

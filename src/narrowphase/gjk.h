@@ -53,8 +53,8 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
 // inside a tetrahedron (then the simplex is unchanged and the point is the origin).
 bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest);
 
-// Barycentric coordinates (u, v, w) of the point of triangle abc closest to p (Ericson,
-// "Real-Time Collision Detection", 5.1.5). Degenerate triangles fall back to their edges.
+// Barycentric coordinates (u, v, w) of the point of triangle abc closest to p. Degenerate
+// triangles fall back to their edges.
 Vec3 closestBarycentricOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p);
 
 }  // namespace collide::detail

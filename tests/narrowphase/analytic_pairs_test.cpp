@@ -73,7 +73,8 @@ TEST(SphereSphere, SpeculativeMarginReportsNegativeDepth) {
 
 TEST(SphereSphere, UniformScaleScalesTheRadius) {
   Manifold m;
-  ASSERT_TRUE(collide::collide(Sphere{1.0f}, at({0, 0, 0}, Quat(1, 0, 0, 0), 2.0f), Sphere{1.0f}, at({2.5f, 0, 0}), m));
+  ASSERT_TRUE(collide::collide(Sphere{1.0f}, at({0, 0, 0}, Quat(1, 0, 0, 0), 2.0f), Sphere{1.0f},
+                               at({2.5f, 0, 0}), m));
   EXPECT_NEAR(m.points[0].depth, 0.5f, kTolerance);
 }
 
@@ -141,7 +142,7 @@ TEST(SphereBox, RotatedAndScaledBox) {
   EXPECT_FALSE(collide::collide(Sphere{0.5f}, at({1.6f, 0.0f, 0.0f}), Box{Vec3(1.0f, 0.5f, 1.0f)},
                                 at({0, 0, 0}, axisAngle({0, 0, 1}, 90.0f), 2.0f), m));
   ASSERT_TRUE(collide::collide(Sphere{0.5f}, at({1.3f, 0.0f, 0.0f}), Box{Vec3(1.0f, 0.5f, 1.0f)},
-                      at({0, 0, 0}, axisAngle({0, 0, 1}, 90.0f), 2.0f), m));
+                               at({0, 0, 0}, axisAngle({0, 0, 1}, 90.0f), 2.0f), m));
   EXPECT_NEAR(m.points[0].depth, 0.2f, kTolerance);
   expectVecNear(m.normal, {-1, 0, 0});
 }
@@ -164,15 +165,17 @@ TEST(CapsuleCapsule, ParallelOverlappingGiveTwoPoints) {
   const float y1 = std::max(m.points[0].pointOnA.y, m.points[1].pointOnA.y);
   EXPECT_NEAR(y0, 0.0f, kTolerance);
   EXPECT_NEAR(y1, 1.0f, kTolerance);
-  EXPECT_EQ(featureIds(m), (std::set<std::uint32_t>{featurePair(detail::kCapsuleSide, detail::kCapsuleEnd0),
-                                                     featurePair(detail::kCapsuleEnd1, detail::kCapsuleSide)}));
+  EXPECT_EQ(featureIds(m),
+            (std::set<std::uint32_t>{featurePair(detail::kCapsuleSide, detail::kCapsuleEnd0),
+                                     featurePair(detail::kCapsuleEnd1, detail::kCapsuleSide)}));
 }
 
 TEST(CapsuleCapsule, CrossedEndToEndAndSeparated) {
   const Capsule capsule{0.5f, 1.0f};
   Manifold m;
   // Crossed: B along z at x = 0.9.
-  ASSERT_TRUE(collide::collide(capsule, kIdentity, capsule, at({0.9f, 0.0f, 0.0f}, axisAngle({1, 0, 0}, 90.0f)), m));
+  ASSERT_TRUE(
+      collide::collide(capsule, kIdentity, capsule, at({0.9f, 0.0f, 0.0f}, axisAngle({1, 0, 0}, 90.0f)), m));
   ASSERT_EQ(m.count, 1);
   expectVecNear(m.normal, {1, 0, 0});
   EXPECT_NEAR(m.points[0].depth, 0.1f, kTolerance);
@@ -209,7 +212,7 @@ TEST(CapsuleBox, LyingOnAFaceGivesTwoClippedPoints) {
     EXPECT_NEAR(m.points[i].pointOnB.y, 0.5f, kTolerance);
   }
   EXPECT_EQ(featureIds(m), (std::set<std::uint32_t>{featurePair(detail::kCapsuleEnd0, boxFeature(1, 2, 1)),
-                                                     featurePair(detail::kCapsuleEnd1, boxFeature(1, 2, 1))}));
+                                                    featurePair(detail::kCapsuleEnd1, boxFeature(1, 2, 1))}));
   // Hanging over the edge x = 2: the segment x in [1.5, 3.5] is clipped to [1.5, 2].
   ASSERT_TRUE(collide::collide(capsule, at({2.5f, 0.9f, 0.0f}, lying), box, kIdentity, m));
   ASSERT_EQ(m.count, 2);
@@ -258,7 +261,8 @@ TEST(PlanePairs, TransformedPlane) {
   // normal becomes -x and the surface x = -1.
   const Plane plane{{0.0f, 1.0f, 0.0f}, 1.0f};
   Manifold m;
-  ASSERT_TRUE(collide::collide(plane, at({0, 0, 0}, axisAngle({0, 0, 1}, 90.0f)), Sphere{0.5f}, at({-1.3f, 0, 0}), m));
+  ASSERT_TRUE(collide::collide(plane, at({0, 0, 0}, axisAngle({0, 0, 1}, 90.0f)), Sphere{0.5f},
+                               at({-1.3f, 0, 0}), m));
   expectVecNear(m.normal, {-1, 0, 0});
   EXPECT_NEAR(m.points[0].depth, 0.2f, kTolerance);
 }
@@ -266,7 +270,8 @@ TEST(PlanePairs, TransformedPlane) {
 TEST(PlanePairs, CapsuleLyingGivesTwoPointsStandingOne) {
   const Capsule capsule{0.5f, 1.0f};
   Manifold m;
-  ASSERT_TRUE(collide::collide(kGround, kIdentity, capsule, at({0.0f, 0.4f, 0.0f}, axisAngle({0, 0, 1}, 90.0f)), m));
+  ASSERT_TRUE(
+      collide::collide(kGround, kIdentity, capsule, at({0.0f, 0.4f, 0.0f}, axisAngle({0, 0, 1}, 90.0f)), m));
   expectContract(m);
   ASSERT_EQ(m.count, 2);
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(m.points[i].depth, 0.1f, kTolerance);
@@ -288,8 +293,9 @@ TEST(PlanePairs, BoxFaceDownGivesFourPointsWithDepthAndNormal) {
     EXPECT_NEAR(m.points[i].pointOnB.y, -0.05f, kTolerance);
     EXPECT_NEAR(m.points[i].pointOnA.y, 0.0f, kTolerance);
   }
-  EXPECT_EQ(featureIds(m), (std::set<std::uint32_t>{featurePair(0, boxFeature(0, 0, 0)), featurePair(0, boxFeature(2, 0, 0)),
-                                                     featurePair(0, boxFeature(0, 0, 2)), featurePair(0, boxFeature(2, 0, 2))}));
+  EXPECT_EQ(featureIds(m), (std::set<std::uint32_t>{
+                               featurePair(0, boxFeature(0, 0, 0)), featurePair(0, boxFeature(2, 0, 0)),
+                               featurePair(0, boxFeature(0, 0, 2)), featurePair(0, boxFeature(2, 0, 2))}));
   EXPECT_FALSE(collide::collide(kGround, kIdentity, box, at({0.0f, 0.55f, 0.0f}), m));
 }
 
@@ -306,7 +312,8 @@ TEST(PlanePairs, BoxOnPlaneKeepsItsFourFeatureIdsUnderSmallPerturbation) {
     const Quat tilt = axisAngle(randomUnit(rng), 0.5f * wobble(rng));
     const Vec3 position(0.01f * wobble(rng), 0.25f + 0.003f * wobble(rng), 0.01f * wobble(rng));
     Manifold m;
-    ASSERT_TRUE(collide::collide(kGround, kIdentity, box, at(position, tilt * axisAngle({0, 1, 0}, 2.0f * wobble(rng))), m));
+    ASSERT_TRUE(collide::collide(kGround, kIdentity, box,
+                                 at(position, tilt * axisAngle({0, 1, 0}, 2.0f * wobble(rng))), m));
     ASSERT_EQ(m.count, 4);
     EXPECT_EQ(featureIds(m), ids);
   }
@@ -334,24 +341,27 @@ TEST(PlanePairs, CylinderFlatOnCapOnSideAndTilted) {
     EXPECT_NEAR(m.points[i].depth, 0.05f, kTolerance);
     EXPECT_NEAR(glm::length(Vec3(m.points[i].pointOnB.x, 0, m.points[i].pointOnB.z)), 0.5f, kTolerance);
   }
-  ASSERT_TRUE(collide::collide(kGround, kIdentity, cylinder, at({0.0f, 0.45f, 0.0f}, axisAngle({1, 0, 0}, 90.0f)), m));
+  ASSERT_TRUE(collide::collide(kGround, kIdentity, cylinder,
+                               at({0.0f, 0.45f, 0.0f}, axisAngle({1, 0, 0}, 90.0f)), m));
   ASSERT_EQ(m.count, 2);
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(m.points[i].depth, 0.05f, kTolerance);
   // Tilted 30 degrees: the lowest rim point is at -(h cos 30 + r sin 30).
   const float lowest = 1.0f * std::cos(glm::radians(30.0f)) + 0.5f * std::sin(glm::radians(30.0f));
-  ASSERT_TRUE(collide::collide(kGround, kIdentity, cylinder, at({0.0f, lowest - 0.1f, 0.0f}, axisAngle({1, 0, 0}, 30.0f)), m));
+  ASSERT_TRUE(collide::collide(kGround, kIdentity, cylinder,
+                               at({0.0f, lowest - 0.1f, 0.0f}, axisAngle({1, 0, 0}, 30.0f)), m));
   ASSERT_EQ(m.count, 1);
   EXPECT_NEAR(m.points[0].depth, 0.1f, kTolerance);
 }
 
 TEST(PlanePairs, EllipsoidLowestPoint) {
   Manifold m;
-  ASSERT_TRUE(collide::collide(kGround, kIdentity, Ellipsoid{Vec3(1.0f, 2.0f, 3.0f)}, at({0.0f, 1.5f, 0.0f}), m));
+  ASSERT_TRUE(
+      collide::collide(kGround, kIdentity, Ellipsoid{Vec3(1.0f, 2.0f, 3.0f)}, at({0.0f, 1.5f, 0.0f}), m));
   ASSERT_EQ(m.count, 1);
   EXPECT_NEAR(m.points[0].depth, 0.5f, kTolerance);
   expectVecNear(m.points[0].pointOnB, {0.0f, -0.5f, 0.0f});
   // Turned 90 degrees about x: the 3-radius lies vertical.
   ASSERT_TRUE(collide::collide(kGround, kIdentity, Ellipsoid{Vec3(1.0f, 2.0f, 3.0f)},
-                      at({0.0f, 2.5f, 0.0f}, axisAngle({1, 0, 0}, 90.0f)), m));
+                               at({0.0f, 2.5f, 0.0f}, axisAngle({1, 0, 0}, 90.0f)), m));
   EXPECT_NEAR(m.points[0].depth, 0.5f, kTolerance);
 }

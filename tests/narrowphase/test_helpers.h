@@ -12,7 +12,8 @@
 
 namespace collide::test {
 
-inline Transform at(const Vec3& position, const Quat& rotation = Quat(1.0f, 0.0f, 0.0f, 0.0f), float scale = 1.0f) {
+inline Transform at(const Vec3& position, const Quat& rotation = Quat(1.0f, 0.0f, 0.0f, 0.0f),
+                    float scale = 1.0f) {
   return {position, rotation, scale};
 }
 
@@ -42,12 +43,18 @@ inline Vec3 randomUnit(std::mt19937& rng) {
 inline Shape randomPrimitive(ShapeType type, std::mt19937& rng) {
   std::uniform_real_distribution<float> size(0.2f, 1.2f);
   switch (type) {
-    case ShapeType::Sphere: return Sphere{size(rng)};
-    case ShapeType::Capsule: return Capsule{size(rng), size(rng)};
-    case ShapeType::Box: return Box{Vec3(size(rng), size(rng), size(rng))};
-    case ShapeType::Ellipsoid: return Ellipsoid{Vec3(size(rng), size(rng), size(rng))};
-    case ShapeType::Cylinder: return Cylinder{size(rng), size(rng)};
-    default: return Sphere{1.0f};
+    case ShapeType::Sphere:
+      return Sphere{size(rng)};
+    case ShapeType::Capsule:
+      return Capsule{size(rng), size(rng)};
+    case ShapeType::Box:
+      return Box{Vec3(size(rng), size(rng), size(rng))};
+    case ShapeType::Ellipsoid:
+      return Ellipsoid{Vec3(size(rng), size(rng), size(rng))};
+    case ShapeType::Cylinder:
+      return Cylinder{size(rng), size(rng)};
+    default:
+      return Sphere{1.0f};
   }
 }
 
