@@ -75,26 +75,30 @@ bool collideSphereBox(const Shape& shapeA, const Transform& transformA, const Sh
   for (int i = 0; i < 3; ++i) digits[i] = local[i] < -h[i] ? 0 : (local[i] > h[i] ? 2 : 1);
 
   if (clamped != local) {
-    const float distance = glm::length(local - clamped) * transformB.scale;
+    const Vec3 onBox = transformB.applyToPoint(clamped);
+    const Vec3 towardsBox = onBox - center;
+    const float distance = glm::length(towardsBox);
     if (distance > radiusA + margin) {
       out.count = 0;
       return false;
     }
-    const Vec3 onBox = transformB.applyToPoint(clamped);
-    // From the centre towards the box: A to B.
-    const Vec3 normal = (onBox - center) / distance;
-    out.normal = normal;
-    ContactPoint& point = out.points[0];
-    point.pointOnA = center + radiusA * normal;
-    point.pointOnB = onBox;
-    point.depth = radiusA - distance;
-    point.featureId = featurePair(0, boxFeature(digits[0], digits[1], digits[2]));
-    out.count = 1;
-    return true;
+    // A centre a rounding error outside the box has no usable direction: treat it as inside.
+    if (distance > 1e-6f * transformB.scale * glm::length(h)) {
+      const Vec3 normal = towardsBox / distance;  // from the centre towards the box: A to B
+      out.normal = normal;
+      ContactPoint& point = out.points[0];
+      point.pointOnA = center + radiusA * normal;
+      point.pointOnB = onBox;
+      point.depth = radiusA - distance;
+      point.featureId = featurePair(0, boxFeature(digits[0], digits[1], digits[2]));
+      out.count = 1;
+      return true;
+    }
+    for (int& digit : digits) digit = 1;
   }
   // The centre is inside: it leaves the box through the nearest face.
   int axis = 0;
-  float gap = h.x - std::abs(local.x);
+  float gap = h.x - std::abs(local.x);  // may be a rounding error below 0 (see above)
   for (int i = 1; i < 3; ++i) {
     const float g = h[i] - std::abs(local[i]);
     if (g < gap) {
