@@ -5,6 +5,7 @@
 #include <collide/broadphase.h>
 #include <collide/error.h>
 #include <collide/math.h>
+#include <collide/narrowphase.h>
 #include <collide/shapes.h>
 
 namespace collide {

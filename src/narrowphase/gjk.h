@@ -1,0 +1,60 @@
+// GJK: the distance between two convex cores through the support mapping of their Minkowski
+// difference (Gilbert, Johnson and Keerthi 1988; van den Bergen, "A Fast and Robust GJK
+// Implementation for Collision Detection of Convex Objects", 1999). The closest points come from
+// the barycentric coordinates of the origin's projection on the final simplex.
+#pragma once
+
+#include "narrowphase/convex_support.h"
+
+namespace collide::detail {
+
+// A vertex of the Minkowski difference A - B with the two support points that made it.
+struct SimplexVertex {
+  Vec3 a{0.0f};
+  Vec3 b{0.0f};
+  Vec3 w{0.0f};  // a - b
+};
+
+struct Simplex {
+  SimplexVertex vertices[4];
+  float lambda[4] = {1.0f, 0.0f, 0.0f, 0.0f};  // barycentric coordinates of the closest point
+  int count = 0;
+};
+
+// The support of A - B in direction d: A's farthest point along d minus B's farthest along -d.
+inline SimplexVertex minkowskiSupport(const ConvexSupport& a, const ConvexSupport& b, const Vec3& d) {
+  SimplexVertex v;
+  v.a = a.supportCore(d);
+  v.b = b.supportCore(-d);
+  v.w = v.a - v.b;
+  return v;
+}
+
+struct GjkResult {
+  enum class Status : std::uint8_t {
+    Separated,    // distance > 0, closest points valid
+    Overlapping,  // the cores touch or overlap; `simplex` encloses the origin (within tolerance)
+    BeyondBound,  // proven farther apart than the caller's bound; nothing else is valid
+  };
+  Status status = Status::Separated;
+  float distance = 0.0f;  // between the cores
+  Vec3 pointOnA{0.0f};    // on A's core
+  Vec3 pointOnB{0.0f};    // on B's core
+  Simplex simplex;
+  int iterations = 0;
+};
+
+// The closest points of the cores of A and B (their radii are ignored). Stops early with
+// BeyondBound as soon as the distance is proven larger than `bound`.
+GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound = 1e30f);
+
+// Reduces the simplex to the smallest sub-simplex whose hull holds its point closest to the origin,
+// sets the barycentric coordinates and returns that point. Returns false when the origin lies
+// inside a tetrahedron (then the simplex is unchanged and the point is the origin).
+bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest);
+
+// Barycentric coordinates (u, v, w) of the point of triangle abc closest to p. Degenerate
+// triangles fall back to their edges.
+Vec3 closestBarycentricOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p);
+
+}  // namespace collide::detail

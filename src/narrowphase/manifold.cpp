@@ -1,0 +1,136 @@
+// Building manifolds: reducing many candidate contacts to four, and one contact from a distance.
+#include <algorithm>
+#include <vector>
+
+#include "narrowphase/pair_functions.h"
+
+namespace collide::detail {
+
+void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal, Manifold& out) {
+  const int count = static_cast<int>(candidates.size());
+  if (count <= Manifold::kMaxPoints) {
+    for (int i = 0; i < count; ++i) out.points[i] = candidates[i];
+    out.count = count;
+    return;
+  }
+  // Work on the midpoints projected into the contact plane.
+  auto position = [&](int i) {
+    const Vec3 p = candidates[i].midpoint();
+    return p - glm::dot(p, normal) * normal;
+  };
+  // 1. The deepest point: the solver needs it most.
+  int first = 0;
+  for (int i = 1; i < count; ++i) {
+    if (candidates[i].depth > candidates[first].depth) first = i;
+  }
+  // 2. The point farthest from it.
+  int second = -1;
+  float best = -1.0f;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 d = position(i) - position(first);
+    const float distance = glm::dot(d, d);
+    if (i != first && distance > best) {
+      best = distance;
+      second = i;
+    }
+  }
+  // 3. The point making the largest triangle with them, on either side.
+  const Vec3 p0 = position(first), p1 = position(second);
+  int third = -1;
+  float thirdArea = 0.0f;
+  best = -1.0f;
+  for (int i = 0; i < count; ++i) {
+    if (i == first || i == second) continue;
+    const float area = glm::dot(glm::cross(p1 - p0, position(i) - p0), normal);
+    if (std::abs(area) > best) {
+      best = std::abs(area);
+      third = i;
+      thirdArea = area;
+    }
+  }
+  // 4. The point adding the largest triangle on the other side of the first edge, else the one
+  // farthest from the triangle's corners.
+  int fourth = -1;
+  best = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    if (i == first || i == second || i == third) continue;
+    const float area = glm::dot(glm::cross(p1 - p0, position(i) - p0), normal);
+    if (area * thirdArea < 0.0f && std::abs(area) > best) {
+      best = std::abs(area);
+      fourth = i;
+    }
+  }
+  if (fourth < 0) {
+    best = -1.0f;
+    const Vec3 p2 = position(third);
+    for (int i = 0; i < count; ++i) {
+      if (i == first || i == second || i == third) continue;
+      const Vec3 q = position(i);
+      const float nearest =
+          std::min({glm::dot(q - p0, q - p0), glm::dot(q - p1, q - p1), glm::dot(q - p2, q - p2)});
+      if (nearest > best) {
+        best = nearest;
+        fourth = i;
+      }
+    }
+  }
+  out.points[0] = candidates[first];
+  out.points[1] = candidates[second];
+  out.points[2] = candidates[third];
+  out.points[3] = candidates[fourth];
+  out.count = 4;
+}
+
+bool manifoldFromDistance(const DistanceResult& distance, std::uint32_t featureId, float margin,
+                          Manifold& out) {
+  if (distance.distance > margin) {
+    out.count = 0;
+    return false;
+  }
+  out.normal = distance.normal;
+  out.points[0].pointOnA = distance.pointOnA;
+  out.points[0].pointOnB = distance.pointOnB;
+  out.points[0].depth = -distance.distance;
+  out.points[0].featureId = featureId;
+  out.count = 1;
+  return true;
+}
+
+}  // namespace collide::detail
+
+namespace collide::detail {
+
+bool mergeContacts(std::span<const NormalContact> contacts, float margin, Manifold& out) {
+  out.count = 0;
+  if (contacts.empty()) return false;
+  std::size_t deepest = 0;
+  for (std::size_t i = 1; i < contacts.size(); ++i) {
+    if (contacts[i].point.depth > contacts[deepest].point.depth) deepest = i;
+  }
+  const Vec3 normal = contacts[deepest].normal;
+  // cos 25°: contacts of nearly coplanar triangles or of children resting on the same surface.
+  constexpr float kSameDirection = 0.906f;
+  ContactPoint kept[64];
+  std::vector<ContactPoint> overflow;
+  std::size_t count = 0;
+  for (const NormalContact& contact : contacts) {
+    if (glm::dot(contact.normal, normal) < kSameDirection) continue;
+    ContactPoint point = contact.point;
+    point.depth = glm::dot(point.pointOnA - point.pointOnB, normal);
+    if (point.depth < -margin) continue;
+    if (count < 64) {
+      kept[count] = point;
+    } else {
+      if (overflow.empty()) overflow.assign(kept, kept + 64);
+      overflow.push_back(point);
+    }
+    ++count;
+  }
+  out.normal = normal;
+  const std::span<const ContactPoint> candidates =
+      overflow.empty() ? std::span<const ContactPoint>(kept, count) : std::span<const ContactPoint>(overflow);
+  reduceContacts(candidates, normal, out);
+  return out.count > 0;
+}
+
+}  // namespace collide::detail

@@ -1,0 +1,94 @@
+// The collide functions of the pair table (dispatch.cpp), one per specialised pair, and the small
+// tools they share. Every function has the same signature: it fills `out` (normal from A to B, up to
+// four points) for contacts whose separation is at most `margin`, and returns out.count > 0.
+// Transforms are already validated. A function for (X, Y) serves (Y, X) through the mirroring
+// wrapper of dispatch.cpp, so each pair is written once.
+#pragma once
+
+#include <collide/narrowphase.h>
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+namespace collide::detail {
+
+using CollideFunction = bool (*)(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
+                                 const Transform& transformB, float margin, Manifold& out);
+using OverlapFunction = bool (*)(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
+                                 const Transform& transformB);
+
+// Recursion for compounds and meshes: the table's answer for any pair, without validation.
+bool collidePair(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
+                 const Transform& transformB, float margin, Manifold& out);
+
+// ---- Feature ids: A's feature in the low 16 bits, B's in the high 16 (narrowphase.h). ----
+constexpr std::uint32_t featurePair(std::uint32_t featureA, std::uint32_t featureB) {
+  return (featureA & 0xffffu) | (featureB << 16);
+}
+constexpr std::uint32_t swapFeatures(std::uint32_t id) { return (id >> 16) | (id << 16); }
+// Capsule features: its two ends (the bottom -halfHeight end is 0) and the side between them.
+constexpr std::uint32_t kCapsuleEnd0 = 0;
+constexpr std::uint32_t kCapsuleEnd1 = 1;
+constexpr std::uint32_t kCapsuleSide = 2;
+// A box feature is three ternary digits, one per local axis: 0 at the -extent face, 2 at the
+// +extent face, 1 in between. Vertices have no 1 digit, faces two; the interior 13 is unused.
+constexpr std::uint32_t boxFeature(int digitX, int digitY, int digitZ) {
+  return static_cast<std::uint32_t>(digitX + 3 * digitY + 9 * digitZ);
+}
+
+// ---- Manifold building ----
+// Reduces candidate contacts (sharing `normal`) to at most four: the deepest, then the ones
+// spanning the largest area, the usual choice for stable stacking (Gregorius, "Robust Contact
+// Creation for Physics Simulations", GDC 2015). Writes out.points and out.count; not out.normal.
+void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal, Manifold& out);
+// A contact carrying its own normal, before it joins a manifold.
+struct NormalContact {
+  ContactPoint point;
+  Vec3 normal{0.0f};
+};
+// One manifold from contacts of several sub-shapes (compound children, mesh triangles), whose
+// normals differ: the deepest contact's normal, and the contacts whose normal is within ~25 degrees
+// of it re-measured along it, reduced to four. Returns out.count > 0.
+bool mergeContacts(std::span<const NormalContact> contacts, float margin, Manifold& out);
+// One contact from a signed-distance answer, if it is within the margin.
+bool manifoldFromDistance(const DistanceResult& distance, std::uint32_t featureId, float margin,
+                          Manifold& out);
+
+// ---- Generic and analytic pairs ----
+bool collideConvexGeneric(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+
+bool collideSphereSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collideSphereCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collideSphereBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collideCapsuleCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collideCapsuleBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+
+bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collidePlaneCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collidePlaneBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collidePlanePolytope(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collidePlaneCylinder(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collidePlaneConvex(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collidePlaneMesh(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+
+bool collideMeshConvex(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collideMeshMesh(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+bool collideCompoundAny(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+
+// The bodies of the mesh and compound entries, open to tests without building a mesh or compound:
+// triangles given in the frame of `trianglesTransform` (each tested), children of a compound
+// placed by `compoundTransform` (the compound is A).
+bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
+                            const Transform& trianglesTransform, const Shape& convex,
+                            const Transform& convexTransform, float margin, Manifold& out);
+bool collideChildrenAny(std::span<const Compound::Child> children, const Transform& compoundTransform,
+                        const Shape& other, const Transform& otherTransform, float margin, Manifold& out);
+
+// Throws Error naming the query and the shape ("A" or "B") for an invalid transform.
+void requireValidTransform(const Transform& transform, const char* query, const char* which);
+
+// The plane of a plane shape in world space.
+Plane worldPlane(const Plane& plane, const Transform& transform);
+
+}  // namespace collide::detail

@@ -1,0 +1,158 @@
+// The pair table: every cell filled, mirrored pairs consistent, bad input rejected, the
+// bounding-volume test conservative with respect to the collider test.
+#include <collide/narrowphase.h>
+#include <gtest/gtest.h>
+
+#include "narrowphase/test_helpers.h"
+
+using namespace collide;
+using namespace collide::test;
+
+namespace {
+constexpr ShapeType kAll[] = {
+    ShapeType::Sphere,    ShapeType::Capsule,  ShapeType::Plane,      ShapeType::Box,  ShapeType::Kdop,
+    ShapeType::Ellipsoid, ShapeType::Cylinder, ShapeType::ConvexHull, ShapeType::Mesh, ShapeType::Compound};
+constexpr ShapeType kPrimitives[] = {ShapeType::Sphere, ShapeType::Capsule, ShapeType::Box,
+                                     ShapeType::Ellipsoid, ShapeType::Cylinder};
+}  // namespace
+
+TEST(PairTable, EveryCellIsFilledAndOnlyPlanePlaneIsUnsupported) {
+  for (const ShapeType a : kAll) {
+    for (const ShapeType b : kAll) {
+      const PairInfo info = pairInfo(a, b);
+      EXPECT_FALSE(info.description.empty()) << toString(a) << " x " << toString(b);
+      EXPECT_EQ(info.algorithm, pairInfo(b, a).algorithm) << toString(a) << " x " << toString(b);
+      const bool planePlane = a == ShapeType::Plane && b == ShapeType::Plane;
+      EXPECT_EQ(info.algorithm == PairAlgorithm::NotSupported, planePlane)
+          << toString(a) << " x " << toString(b);
+    }
+  }
+  EXPECT_EQ(pairInfo(ShapeType::Sphere, ShapeType::Sphere).algorithm, PairAlgorithm::Analytic);
+  EXPECT_EQ(pairInfo(ShapeType::Box, ShapeType::Plane).algorithm, PairAlgorithm::Analytic);
+  EXPECT_EQ(pairInfo(ShapeType::Ellipsoid, ShapeType::Cylinder).algorithm, PairAlgorithm::GjkEpa);
+  EXPECT_EQ(pairInfo(ShapeType::Mesh, ShapeType::Box).algorithm, PairAlgorithm::Mesh);
+  EXPECT_EQ(pairInfo(ShapeType::Plane, ShapeType::Compound).algorithm, PairAlgorithm::Compound);
+  const std::string table = describePairTable();
+  EXPECT_NE(table.find("sphere x sphere: analytic"), std::string::npos);
+  EXPECT_NE(table.find("plane x plane: not supported"), std::string::npos);
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), kShapeTypeCount * kShapeTypeCount);
+}
+
+TEST(PairTable, PlanePlaneThrowsWithTheReason) {
+  Manifold m;
+  try {
+    collide::collide(Plane{}, Transform::identity(), Plane{}, Transform::identity(), m);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("plane–plane"), std::string::npos);
+  }
+  EXPECT_THROW(collide::distance(Plane{}, Transform::identity(), Plane{}, Transform::identity()), Error);
+}
+
+TEST(PairTable, InvalidTransformsAndMarginsAreRejected) {
+  Manifold m;
+  const Transform good = Transform::identity();
+  Transform nanPosition = good;
+  nanPosition.position.x = std::nanf("");
+  Transform infinite = good;
+  infinite.position.y = INFINITY;
+  Transform notUnit = good;
+  notUnit.rotation = Quat(2.0f, 0.0f, 0.0f, 0.0f);
+  Transform zeroScale = good;
+  zeroScale.scale = 0.0f;
+  Transform hugeButFinite = good;
+  hugeButFinite.position = Vec3(3e38f, 3e38f, 0.0f);  // the cheap probe overflows; still valid
+  for (const Transform& bad : {nanPosition, infinite, notUnit, zeroScale}) {
+    EXPECT_THROW(collide::collide(Sphere{1.0f}, bad, Sphere{1.0f}, good, m), Error);
+    EXPECT_THROW(collide::collide(Sphere{1.0f}, good, Box{}, bad, m), Error);
+    EXPECT_THROW(overlap(Sphere{1.0f}, bad, Sphere{1.0f}, good), Error);
+    EXPECT_THROW(collide::distance(Sphere{1.0f}, good, Capsule{}, bad), Error);
+  }
+  EXPECT_NO_THROW(collide::collide(Sphere{1.0f}, hugeButFinite, Sphere{1.0f}, good, m));
+  EXPECT_THROW(collide::collide(Sphere{1.0f}, good, Sphere{1.0f}, good, m, -0.1f), Error);
+  EXPECT_THROW(collide::collide(Sphere{1.0f}, good, Sphere{1.0f}, good, m, std::nanf("")), Error);
+  try {
+    collide::collide(Sphere{1.0f}, good, Sphere{1.0f}, zeroScale, m);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("shape B"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("scale 0"), std::string::npos);
+  }
+}
+
+TEST(PairTable, CollideOfBAndAMirrorsCollideOfAAndB) {
+  // Same depths, opposite normals, swapped points, for every ordered pair of primitives and planes.
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  int compared = 0;
+  for (const ShapeType ta : kPrimitives) {
+    for (const ShapeType tb : kPrimitives) {
+      for (int i = 0; i < 200; ++i) {
+        const Shape a = randomPrimitive(ta, rng);
+        const Shape b = randomPrimitive(tb, rng);
+        const Transform pa = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+        const Transform pb = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+        Manifold ab, ba;
+        const bool hitAB = collide::collide(a, pa, b, pb, ab);
+        const bool hitBA = collide::collide(b, pb, a, pa, ba);
+        ASSERT_EQ(hitAB, hitBA);
+        if (!hitAB) continue;
+        ++compared;
+        ASSERT_EQ(ab.count, ba.count);
+        EXPECT_NEAR(glm::dot(ab.normal, ba.normal), -1.0f, 1e-4f) << toString(ta) << " x " << toString(tb);
+        const std::vector<float> da = sortedDepths(ab), db = sortedDepths(ba);
+        for (std::size_t k = 0; k < da.size(); ++k)
+          EXPECT_NEAR(da[k], db[k], 1e-4f + 1e-3f * std::abs(da[k]));
+      }
+    }
+  }
+  EXPECT_GT(compared, 1000);
+  // A plane against each primitive, both orders.
+  const Plane ground{{0.0f, 1.0f, 0.0f}, 0.0f};
+  for (const ShapeType tb : kPrimitives) {
+    const Shape b = randomPrimitive(tb, rng);
+    const Transform pb = at(Vec3(0.0f, 0.3f, 0.0f), randomRotation(rng));
+    Manifold ab, ba;
+    ASSERT_TRUE(collide::collide(ground, Transform::identity(), b, pb, ab));
+    ASSERT_TRUE(collide::collide(b, pb, ground, Transform::identity(), ba));
+    EXPECT_EQ(ab.count, ba.count);
+    EXPECT_NEAR(glm::dot(ab.normal, ba.normal), -1.0f, 1e-6f);
+    for (int k = 0; k < ab.count; ++k) {
+      EXPECT_NEAR(ab.points[k].depth, ba.points[k].depth, 1e-6f);
+      EXPECT_EQ(ab.points[k].pointOnA, ba.points[k].pointOnB);
+    }
+  }
+}
+
+TEST(PairTable, OverlapIsConservativeForEveryCollidingPair) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(-1.5f, 1.5f);
+  int colliding = 0, rejected = 0;
+  for (const ShapeType ta : kPrimitives) {
+    for (const ShapeType tb : kPrimitives) {
+      for (int i = 0; i < 200; ++i) {
+        const Shape a = randomPrimitive(ta, rng);
+        const Shape b = randomPrimitive(tb, rng);
+        const Transform pa = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+        const Transform pb = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+        Manifold m;
+        const bool hit = collide::collide(a, pa, b, pb, m);
+        const bool maybe = overlap(a, pa, b, pb);
+        if (hit) {
+          ++colliding;
+          EXPECT_TRUE(maybe) << toString(ta) << " x " << toString(tb);
+        }
+        if (!maybe) ++rejected;
+      }
+    }
+  }
+  EXPECT_GT(colliding, 500);
+  EXPECT_GT(rejected, 500);  // and it does reject: an early out, not a constant true
+  // Half-spaces: facing apart they do not meet, facing the same way they always do.
+  const Plane up{{0.0f, 1.0f, 0.0f}, 0.0f};
+  const Plane downBelow{{0.0f, -1.0f, 0.0f}, 1.0f};   // solid above y = -1
+  const Plane downAbove{{0.0f, -1.0f, 0.0f}, -1.0f};  // solid above y = 1
+  EXPECT_TRUE(overlap(up, Transform::identity(), downBelow, Transform::identity()));
+  EXPECT_FALSE(overlap(up, Transform::identity(), downAbove, Transform::identity()));
+  EXPECT_FALSE(overlap(up, Transform::identity(), Sphere{0.5f}, at({0.0f, 0.6f, 0.0f})));
+  EXPECT_TRUE(overlap(Sphere{0.5f}, at({0.0f, 0.4f, 0.0f}), up, Transform::identity()));
+}

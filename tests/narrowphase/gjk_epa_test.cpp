@@ -1,0 +1,150 @@
+// GJK distances and EPA depths against closed forms: spheres, capsules and boxes whose answers can
+// be written down, and a brute-force minimisation for capsule–box.
+#include <collide/narrowphase.h>
+#include <gtest/gtest.h>
+
+#include "geometry/closest_points.h"
+#include "narrowphase/convex_distance.h"
+#include "narrowphase/pair_functions.h"
+#include "narrowphase/test_helpers.h"
+
+using namespace collide;
+using namespace collide::test;
+
+namespace {
+
+DistanceResult generic(const Shape& a, const Transform& ta, const Shape& b, const Transform& tb) {
+  DistanceResult result;
+  EXPECT_TRUE(detail::convexSignedDistance(detail::makeConvexSupport(a, ta), detail::makeConvexSupport(b, tb),
+                                           1e30f, result));
+  return result;
+}
+
+// Distance from a point to a placed box (negative inside), through the box's own closest point.
+float pointBoxDistance(const Vec3& p, const Box& box, const Transform& t) {
+  return closestPoint(box, t, p).signedDistance;
+}
+
+}  // namespace
+
+TEST(Gjk, SphereAndCapsuleDistancesMatchClosedForms) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-2.0f, 2.0f);
+  for (int i = 0; i < 500; ++i) {
+    const Sphere sa{0.3f + 0.5f * std::abs(unit(rng))};
+    const Capsule cb{0.2f + 0.4f * std::abs(unit(rng)), 0.3f + 0.5f * std::abs(unit(rng))};
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)));
+    const Transform tb = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+    const Vec3 e0 = tb.applyToPoint(Vec3(0, -cb.halfHeight, 0)),
+               e1 = tb.applyToPoint(Vec3(0, cb.halfHeight, 0));
+    const float t = detail::closestParameterOnSegment(ta.position, e0, e1);
+    const float expected = glm::length(ta.position - (e0 + t * (e1 - e0))) - sa.radius - cb.radius;
+    EXPECT_NEAR(generic(sa, ta, cb, tb).distance, expected, 1e-5f);
+    // Capsule–capsule: the segments' closest points.
+    const Capsule ca{sa.radius, 0.4f};
+    const Transform tc = at(ta.position, randomRotation(rng));
+    const Vec3 c0 = tc.applyToPoint(Vec3(0, -0.4f, 0)), c1 = tc.applyToPoint(Vec3(0, 0.4f, 0));
+    const detail::SegmentPair pair = detail::closestPointsSegmentSegment(c0, c1, e0, e1);
+    const float expectedCapsules = std::sqrt(pair.distanceSquared) - ca.radius - cb.radius;
+    const DistanceResult d = generic(ca, tc, cb, tb);
+    EXPECT_NEAR(d.distance, expectedCapsules, 2e-5f);
+  }
+}
+
+TEST(Gjk, SphereBoxDistanceMatchesTheBoxsClosestPoint) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> unit(-2.5f, 2.5f);
+  for (int i = 0; i < 500; ++i) {
+    const Box box{Vec3(0.3f, 0.6f, 0.9f)};
+    const Transform tb = at(Vec3(0.1f, -0.2f, 0.3f), randomRotation(rng));
+    const Vec3 center(unit(rng), unit(rng), unit(rng));
+    const float radius = 0.25f;
+    const float expected = pointBoxDistance(center, box, tb) - radius;
+    const DistanceResult d = generic(Sphere{radius}, at(center), box, tb);
+    // Inside the box the closed form is the nearest face; EPA must find the same depth.
+    EXPECT_NEAR(d.distance, expected, 1e-5f) << i;
+    EXPECT_EQ(d.overlapping, expected < 0.0f);
+    // The closest point on B lies on the box's surface.
+    EXPECT_NEAR(pointBoxDistance(d.pointOnB, box, tb), 0.0f, 1e-5f);
+  }
+}
+
+TEST(Gjk, CapsuleBoxDistanceMatchesBruteForceAlongTheSegment) {
+  // The distance from a segment's point to a convex box is convex along the segment: a ternary
+  // search over the segment finds the minimum.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> unit(-2.5f, 2.5f);
+  int separated = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Box box{Vec3(0.5f, 0.3f, 0.7f)};
+    const Capsule capsule{0.2f, 0.6f};
+    const Transform tb = at(Vec3(0.0f), randomRotation(rng));
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+    const Vec3 e0 = ta.applyToPoint(Vec3(0, -0.6f, 0)), e1 = ta.applyToPoint(Vec3(0, 0.6f, 0));
+    double lo = 0.0, hi = 1.0;
+    auto f = [&](double t) { return pointBoxDistance(e0 + float(t) * (e1 - e0), box, tb); };
+    for (int k = 0; k < 100; ++k) {
+      const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+      (f(m1) < f(m2) ? hi : lo) = (f(m1) < f(m2) ? m2 : m1);
+    }
+    const float coreDistance = f(0.5 * (lo + hi));
+    if (coreDistance <= 0.0f) continue;  // the segment enters the box: not a distance query
+    ++separated;
+    EXPECT_NEAR(generic(capsule, ta, box, tb).distance, coreDistance - capsule.radius, 2e-5f);
+  }
+  EXPECT_GT(separated, 200);
+}
+
+TEST(Epa, DeepSphereInBoxAndBoxInSlabMatchClosedForms) {
+  // Sphere whose centre is inside a box: depth = radius + gap to the nearest face.
+  const Box box{Vec3(1.0f, 2.0f, 3.0f)};
+  const DistanceResult d = generic(Sphere{0.5f}, at({0.2f, 1.5f, -0.4f}), box, Transform::identity());
+  EXPECT_NEAR(-d.distance, 0.5f + 0.5f, 1e-5f);
+  EXPECT_NEAR(d.normal.y, -1.0f, 1e-5f);
+  // A tilted box sunk into a wide slab (a stand-in for a ground plane): the depth is the slab's top
+  // minus the box's lowest vertex.
+  std::mt19937 rng(21);
+  for (int i = 0; i < 100; ++i) {
+    const Quat rotation = randomRotation(rng);
+    const Box cube{Vec3(0.5f, 0.4f, 0.3f)};
+    const Transform placed = at(Vec3(0.0f, 0.2f, 0.0f), rotation);
+    float lowest = 1e30f;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner((c & 1) ? 0.5f : -0.5f, (c & 2) ? 0.4f : -0.4f, (c & 4) ? 0.3f : -0.3f);
+      lowest = std::min(lowest, placed.applyToPoint(corner).y);
+    }
+    const Box slab{Vec3(50.0f, 1.0f, 50.0f)};
+    const DistanceResult r = generic(slab, at({0.0f, -1.0f, 0.0f}), cube, placed);
+    ASSERT_TRUE(r.overlapping);
+    EXPECT_NEAR(-r.distance, 0.0f - lowest, 2e-5f) << i;
+    EXPECT_NEAR(r.normal.y, 1.0f, 1e-4f);
+  }
+}
+
+TEST(Epa, AxisAlignedBoxesPenetrateByTheirSmallestOverlap) {
+  // For axis-aligned boxes A - B is a box too: the depth is the smallest overlap along an axis.
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<float> unit(0.2f, 1.0f), offset(-0.8f, 0.8f);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 ha(unit(rng), unit(rng), unit(rng)), hb(unit(rng), unit(rng), unit(rng));
+    const Vec3 d(offset(rng), offset(rng), offset(rng));
+    const Vec3 overlapPerAxis = ha + hb - glm::abs(d);
+    if (glm::min(overlapPerAxis.x, glm::min(overlapPerAxis.y, overlapPerAxis.z)) <= 1e-3f) continue;
+    const float expected = glm::min(overlapPerAxis.x, glm::min(overlapPerAxis.y, overlapPerAxis.z));
+    const DistanceResult r = generic(Box{ha}, Transform::identity(), Box{hb}, at(d));
+    EXPECT_NEAR(-r.distance, expected, 2e-5f) << i;
+  }
+}
+
+TEST(Distance, PlaneAndConvexAndRejectedShapes) {
+  const Plane ground{{0.0f, 1.0f, 0.0f}, 0.0f};
+  const DistanceResult above = collide::distance(ground, Transform::identity(), Sphere{0.5f}, at({1, 2, 3}));
+  EXPECT_NEAR(above.distance, 1.5f, 1e-6f);
+  EXPECT_FALSE(above.overlapping);
+  EXPECT_NEAR(above.pointOnA.y, 0.0f, 1e-6f);
+  const DistanceResult mirrored =
+      collide::distance(Box{Vec3(0.5f)}, at({0, 0.2f, 0}), ground, Transform::identity());
+  EXPECT_NEAR(mirrored.distance, -0.3f, 1e-6f);
+  EXPECT_TRUE(mirrored.overlapping);
+  EXPECT_NEAR(mirrored.normal.y, -1.0f, 1e-6f);
+}
