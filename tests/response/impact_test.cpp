@@ -104,6 +104,19 @@ TEST(Impact, StaticWallElasticFlipsNormalComponent) {
   }
 }
 
+TEST(Impact, KinematicWallElasticReflectsTheRelativeVelocity) {
+  // In the wall's frame it is the static case: a wall rising at 1 hit by a ball falling at 3 meets it
+  // at -4 and sends it off at +4 relative, i.e. 5 upwards; the wall's motion is not changed.
+  BodyCase wall = makeStatic(Vec3(0.0f));
+  wall.body.linearVelocity = Vec3(0, 1, 0);
+  const BodyCase ball = makeParticle(1.0f, Vec3(0, 1, 0), Vec3(0.5f, -3, 0));
+  for (ImpactModel model : kModels) {
+    const Outcome out = run(model, wall.body, ball.body, Vec3(0, 0.5f, 0), Vec3(0, 1, 0), 1.0f);
+    expectVecNear(out.b.linearVelocity, Vec3(0.5f, 5, 0), kTight);
+    expectVecNear(out.a.linearVelocity, Vec3(0, 1, 0), 0.0f);
+  }
+}
+
 TEST(Impact, InelasticEqualMassesTakeTheAverage) {
   // Slide 32: fully inelastic, equal masses: both leave with the average velocity (3D).
   const BodyCase a = makeParticle(1.5f, Vec3(0.0f), Vec3(3, 1, -2));
