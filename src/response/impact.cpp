@@ -1,0 +1,184 @@
+#include "response/impact.h"
+
+#include <collide/error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace collide::detail {
+
+namespace {
+
+using DVec3 = glm::dvec3;
+using DMat3 = glm::dmat3;
+
+void validateBounciness(float bounciness, const char* context) {
+  if (!std::isfinite(bounciness) || bounciness < 0.0f || bounciness > 1.0f) {
+    throw Error(std::string(context) + ": bounciness must be in [0, 1], got " + std::to_string(bounciness));
+  }
+}
+
+void validateImpact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal,
+                    float bounciness, const char* context) {
+  validateImpactBody(a, context, "A");
+  validateImpactBody(b, context, "B");
+  validateContact(point, normal, context);
+  validateBounciness(bounciness, context);
+}
+
+// The inertia tensor from the inverse one, in double: the glued body needs inertias, which add,
+// while the bodies store inverses, which do not. A particle has no rotational inertia of its own.
+DMat3 inertiaOf(const ImpactBody& body, const char* name) {
+  if (isParticle(body)) return DMat3(0.0);
+  const DMat3 inverseInertia(body.inverseInertia);
+  const double det = glm::determinant(inverseInertia);
+  const DMat3 inertia = glm::inverse(inverseInertia);
+  if (det == 0.0 || !std::isfinite(det) || !isFinite(Vec3(inertia[0])) || !isFinite(Vec3(inertia[1])) ||
+      !isFinite(Vec3(inertia[2]))) {
+    throw Error(std::string("impact: body ") + name +
+                " inverse inertia must be zero (a particle) or invertible, got determinant " +
+                std::to_string(det));
+  }
+  return inertia;
+}
+
+// Parallel-axis theorem: inertia about a point at `offset` from the centre of mass.
+DMat3 shifted(const DMat3& inertiaAtCom, double mass, const DVec3& offset) {
+  return inertiaAtCom + mass * (glm::dot(offset, offset) * DMat3(1.0) - glm::outerProduct(offset, offset));
+}
+
+// The mover glued to an infinite mass follows that body's velocity field (slide 33: against a static
+// body it "stops dead"; against a kinematic one it is carried along).
+void glueToInfiniteMass(ImpactBody& mover, const ImpactBody& anchor) {
+  mover.linearVelocity = velocityAt(anchor, mover.centerOfMass);
+  if (!isParticle(mover)) mover.angularVelocity = anchor.angularVelocity;
+}
+
+void glueTwoWay(ImpactBody& a, ImpactBody& b) {
+  const double massA = 1.0 / a.inverseMass;
+  const double massB = 1.0 / b.inverseMass;
+  const double mass = massA + massB;
+  const DVec3 centre = (massA * DVec3(a.centerOfMass) + massB * DVec3(b.centerOfMass)) / mass;
+  const DVec3 momentum = massA * DVec3(a.linearVelocity) + massB * DVec3(b.linearVelocity);
+  const DVec3 velocity = momentum / mass;
+  if (isParticle(a) && isParticle(b)) {
+    // Slide 21: two particles glued together share one velocity; the total momentum fixes it.
+    a.linearVelocity = Vec3(velocity);
+    b.linearVelocity = Vec3(velocity);
+    return;
+  }
+  // One rigid body made of the two: total angular momentum about the common centre (each body's
+  // spin I w plus the orbital r x m v) over the combined inertia about that centre.
+  const DVec3 ra = DVec3(a.centerOfMass) - centre;
+  const DVec3 rb = DVec3(b.centerOfMass) - centre;
+  const DMat3 inertiaA = inertiaOf(a, "A");
+  const DMat3 inertiaB = inertiaOf(b, "B");
+  const DVec3 angularMomentum =
+      inertiaA * DVec3(a.angularVelocity) + glm::cross(ra, massA * DVec3(a.linearVelocity)) +
+      inertiaB * DVec3(b.angularVelocity) + glm::cross(rb, massB * DVec3(b.linearVelocity));
+  const DMat3 inertia = shifted(inertiaA, massA, ra) + shifted(inertiaB, massB, rb);
+  // Invertible: at least one body has an invertible inertia, the shifts are semidefinite.
+  const DVec3 omega = glm::inverse(inertia) * angularMomentum;
+  a.linearVelocity = Vec3(velocity + glm::cross(omega, ra));
+  b.linearVelocity = Vec3(velocity + glm::cross(omega, rb));
+  if (!isParticle(a)) a.angularVelocity = Vec3(omega);
+  if (!isParticle(b)) b.angularVelocity = Vec3(omega);
+}
+
+void glueUnchecked(ImpactBody& a, ImpactBody& b) {
+  if (hasInfiniteMass(a) && hasInfiniteMass(b)) return;
+  if (hasInfiniteMass(a)) {
+    glueToInfiniteMass(b, a);
+  } else if (hasInfiniteMass(b)) {
+    glueToInfiniteMass(a, b);
+  } else {
+    glueTwoWay(a, b);
+  }
+}
+
+float newtonUnchecked(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normal, float bounciness) {
+  if (hasInfiniteMass(a) && hasInfiniteMass(b)) return 0.0f;
+  const float approach = glm::dot(velocityAt(b, point) - velocityAt(a, point), normal);
+  if (!(approach < 0.0f)) return 0.0f;
+  // The normal impulse j that turns the normal relative velocity u into -e u: K_nn j = -(1 + e) u.
+  // For particles K_nn = 1/mA + 1/mB, and with e = 1 this is the slide-27 formula.
+  const float inverseEffectiveMass = glm::dot(normal, contactInverseMassMatrix(a, b, point) * normal);
+  const float impulse = -(1.0f + bounciness) * approach / inverseEffectiveMass;
+  applyImpulseAt(b, impulse * normal, point);
+  applyImpulseAt(a, -impulse * normal, point);
+  return impulse;
+}
+
+}  // namespace
+
+float combineMaterial(CombineRuleKind rule, float a, float b) {
+  if (!std::isfinite(a) || a < 0.0f || !std::isfinite(b) || b < 0.0f) {
+    throw Error("combineMaterial: values must be finite and >= 0, got " + std::to_string(a) + " and " +
+                std::to_string(b));
+  }
+  switch (rule) {
+    case CombineRuleKind::Average:
+      return 0.5f * (a + b);
+    case CombineRuleKind::Min:
+      return std::min(a, b);
+    case CombineRuleKind::Max:
+      return std::max(a, b);
+    case CombineRuleKind::Multiply:
+      return a * b;
+  }
+  throw Error("combineMaterial: unknown combine rule " + std::to_string(static_cast<int>(rule)));
+}
+
+float resolveImpactNewton(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
+                          float bounciness) {
+  validateImpact(a, b, point, normalAToB, bounciness, "resolveImpactNewton");
+  return newtonUnchecked(a, b, point, normalAToB, bounciness);
+}
+
+Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
+                               float bounciness) {
+  validateImpact(a, b, point, normalAToB, bounciness, "resolveImpactInterpolated");
+  if (hasInfiniteMass(a) && hasInfiniteMass(b)) return Vec3(0.0f);
+  if (!(glm::dot(velocityAt(b, point) - velocityAt(a, point), normalAToB) < 0.0f)) return Vec3(0.0f);
+
+  // Slide 20: "solve for both cases, interpolate resulting velocities; the weight of the
+  // interpolation = the bounciness". Slide 34: the angular velocities too. Both pure outcomes keep
+  // linear and angular momentum, and these are linear in the velocities, so the mix keeps them as
+  // well; kinetic energy is convex in the velocities, so the mix never gains energy.
+  ImpactBody elasticA = a, elasticB = b;
+  newtonUnchecked(elasticA, elasticB, point, normalAToB, 1.0f);
+  ImpactBody inelasticA = a, inelasticB = b;
+  glueUnchecked(inelasticA, inelasticB);
+
+  const Vec3 oldVelocityA = a.linearVelocity;
+  const Vec3 oldVelocityB = b.linearVelocity;
+  const float e = bounciness;
+  a.linearVelocity = glm::mix(inelasticA.linearVelocity, elasticA.linearVelocity, e);
+  a.angularVelocity = glm::mix(inelasticA.angularVelocity, elasticA.angularVelocity, e);
+  b.linearVelocity = glm::mix(inelasticB.linearVelocity, elasticB.linearVelocity, e);
+  b.angularVelocity = glm::mix(inelasticB.angularVelocity, elasticB.angularVelocity, e);
+  if (!hasInfiniteMass(b)) return (b.linearVelocity - oldVelocityB) / b.inverseMass;
+  return -(a.linearVelocity - oldVelocityA) / a.inverseMass;
+}
+
+void resolveImpact(ImpactModel model, ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
+                   float bounciness) {
+  switch (model) {
+    case ImpactModel::Newton:
+      resolveImpactNewton(a, b, point, normalAToB, bounciness);
+      return;
+    case ImpactModel::Interpolated:
+      resolveImpactInterpolated(a, b, point, normalAToB, bounciness);
+      return;
+  }
+  throw Error("resolveImpact: unknown impact model " + std::to_string(static_cast<int>(model)));
+}
+
+void glueVelocities(ImpactBody& a, ImpactBody& b) {
+  validateImpactBody(a, "glueVelocities", "A");
+  validateImpactBody(b, "glueVelocities", "B");
+  glueUnchecked(a, b);
+}
+
+}  // namespace collide::detail
