@@ -7,6 +7,7 @@
 #include <collide/math.h>
 #include <collide/narrowphase.h>
 #include <collide/shapes.h>
+#include <collide/world.h>
 
 namespace collide {
 inline constexpr const char* kVersion = "0.1.0";

@@ -1,0 +1,187 @@
+// The world: rigid bodies, their contacts and the collision response (lecture: "collision handling").
+// One step runs broad phase -> narrow phase -> contact persistence -> solver -> events; see
+// docs/architecture.md ("World and solver") for the walk through the code.
+//
+// Bodies are created from a BodyDef and named by a BodyId (slot index + generation, as Box2D v3),
+// so a stale id is reported with collide::Error instead of aliasing a new body.
+#pragma once
+
+#include <collide/broadphase.h>
+#include <collide/error.h>
+#include <collide/math.h>
+#include <collide/narrowphase.h>
+#include <collide/shapes.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace collide {
+
+// How the two bodies' bounciness (or friction) make the pair's value.
+enum class CombineRule : std::uint8_t { Average, Min, Max, Multiply };
+// Newton: restitution on the normal relative velocity, friction handles the tangent.
+// Interpolated: the lecture's blend of the elastic and the inelastic impact (src/response/).
+enum class ImpactModel : std::uint8_t { Newton, Interpolated };
+enum class FrictionModel : std::uint8_t { Coulomb, Viscous, Damping, None };
+// Project: push bodies apart (mass-weighted, by the soft contact). Revert: put a penetrating body
+// back where it was at the start of the step.
+enum class PenetrationResponse : std::uint8_t { Project, Revert };
+
+// Scene-file names ("average", "newton", ...); parse functions throw Error on unknown names.
+std::string_view toString(CombineRule rule);
+std::string_view toString(ImpactModel model);
+std::string_view toString(FrictionModel model);
+std::string_view toString(PenetrationResponse response);
+CombineRule parseCombineRule(std::string_view name);
+ImpactModel parseImpactModel(std::string_view name);
+FrictionModel parseFrictionModel(std::string_view name);
+PenetrationResponse parsePenetrationResponse(std::string_view name);
+
+// The contact constraint's tuning (Catto, "Solver2D" 2024 / Box2D v3 soft step). Defaults as Box2D.
+struct ContactTuning {
+  float hertz = 30.0f;         // stiffness of the soft contact, capped at a quarter of the substep rate
+  float dampingRatio = 10.0f;  // heavily over-damped: penetration is removed without bounce
+  float pushOutSpeed = 3.0f;   // m/s, the most the position correction may add
+  float restitutionThreshold = 1.0f;  // m/s: slower impacts do not bounce (resting contacts stay quiet)
+  float linearSlop = 0.005f;          // m: the penetration allowed (and the "touching" tolerance of events)
+  float speculativeDistance = 0.02f;  // m: contacts are created this far apart (plus the step's motion)
+};
+
+struct WorldDef {
+  Vec3 gravity{0.0f, -9.81f, 0.0f};
+  int substeps = 4;
+  BroadPhaseSettings broadPhase{};
+  CombineRule bouncinessCombine = CombineRule::Max;
+  CombineRule frictionCombine = CombineRule::Average;
+  ImpactModel impactModel = ImpactModel::Newton;
+  FrictionModel frictionModel = FrictionModel::Coulomb;
+  PenetrationResponse penetrationResponse = PenetrationResponse::Project;
+  bool sleeping = false;  // not implemented yet: true is rejected
+  ContactTuning contact{};
+};
+
+enum class BodyType : std::uint8_t { Static, Kinematic, Dynamic };
+std::string_view toString(BodyType type);
+
+struct BodyDef {
+  BodyType type = BodyType::Dynamic;
+  Shape shape{Sphere{0.5f}};
+  Vec3 position{0.0f};
+  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  float scale = 1.0f;
+  Vec3 linearVelocity{0.0f};   // world frame, of the centre of mass
+  Vec3 angularVelocity{0.0f};  // world frame, rad/s
+  // Dynamic bodies: mass > 0 if given (inertia scaled from the shape's), else density > 0.
+  std::optional<float> mass;
+  float density = 1000.0f;
+  float bounciness = 0.0f;          // [0, 1]
+  float friction = 0.5f;            // >= 0
+  std::uint32_t layer = 1;          // the body's bits
+  std::uint32_t mask = kAllLayers;  // the layers it collides with; both must agree
+  bool sensor = false;              // reports overlap events, takes no response
+  std::uint64_t userData = 0;
+  std::string name;
+};
+
+struct BodyId {
+  static constexpr std::uint32_t kNullIndex = 0xFFFFFFFFu;
+  std::uint32_t index = kNullIndex;
+  std::uint32_t generation = 0;
+  bool isNull() const { return index == kNullIndex; }
+  friend bool operator==(const BodyId&, const BodyId&) = default;
+};
+
+// A touching contact that began or ended this step. For begin events, point/normal are the
+// deepest point and the normal (from a to b), impulse the total normal impulse of the step, and
+// speed the normal approach speed before the solve (>= 0). End events carry the last known values.
+struct ContactEvent {
+  enum class Type : std::uint8_t { Begin, End };
+  Type type = Type::Begin;
+  BodyId a;
+  BodyId b;
+  Vec3 point{0.0f};
+  Vec3 normal{0.0f, 1.0f, 0.0f};
+  float impulse = 0.0f;
+  float speed = 0.0f;
+};
+
+struct SensorEvent {
+  enum class Type : std::uint8_t { Begin, End };
+  Type type = Type::Begin;
+  BodyId sensor;
+  BodyId visitor;
+};
+
+// Called for each contact before the solve (normal from a to b); return false to disable it for
+// this step (one-way platforms).
+using PreSolveCallback = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
+
+class World {
+ public:
+  // Throws Error on invalid settings (substeps < 1, non-finite gravity, bad tuning) and on
+  // settings not implemented yet.
+  explicit World(const WorldDef& def = {});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+
+  const WorldDef& def() const;
+
+  // Throws Error naming the field for a bad definition.
+  BodyId createBody(const BodyDef& def);
+  void destroyBody(BodyId id);
+  bool isValid(BodyId id) const;
+  std::size_t bodyCount() const;
+
+  // ---- Between steps. Stale ids throw Error. ----
+  BodyType type(BodyId id) const;
+  Transform transform(BodyId id) const;
+  void setTransform(BodyId id, const Vec3& position, const Quat& rotation);
+  Vec3 linearVelocity(BodyId id) const;
+  Vec3 angularVelocity(BodyId id) const;
+  void setLinearVelocity(BodyId id, const Vec3& velocity);
+  void setAngularVelocity(BodyId id, const Vec3& velocity);
+  // At a world point; changes the velocity immediately (dynamic bodies only).
+  void applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint);
+  // Accumulated until the next step, then cleared (dynamic bodies only).
+  void applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint);
+  void applyTorque(BodyId id, const Vec3& torque);
+  float mass(BodyId id) const;         // 0 for static and kinematic bodies
+  Vec3 centerOfMass(BodyId id) const;  // world frame
+  const Shape& shape(BodyId id) const;
+  std::uint64_t userData(BodyId id) const;
+  const std::string& name(BodyId id) const;
+
+  void setPreSolveCallback(PreSolveCallback callback);
+
+  // Advances by dt > 0 (finite); throws Error otherwise.
+  void step(float dt);
+
+  // The funnel of the last step: the broad phase's counters plus narrow-phase tests and pairs in
+  // contact. Totals sum them over all steps.
+  const BroadPhaseStats& lastStats() const;
+  const BroadPhaseStats& totalStats() const;
+  // Events of the last step, in a deterministic order.
+  std::span<const ContactEvent> contactEvents() const;
+  std::span<const SensorEvent> sensorEvents() const;
+  // The number of touching (non-sensor) contact pairs after the last step.
+  std::size_t touchingContactCount() const;
+
+  // Sum over dynamic bodies.
+  Vec3 linearMomentum() const;
+  float kineticEnergy() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace collide

@@ -1,0 +1,54 @@
+// Contacts kept across steps (lecture: new vs prolonged contacts; Box2D v3's contact array and
+// Jolt's contact cache). One Contact per broad-phase pair that the narrow phase tested, keyed by the
+// two proxy indices (a << 32 | b), in key order: the broad phase hands pairs sorted, so matching last
+// step's contacts is a merge of two sorted arrays — no hash map, no allocation after warm-up, and a
+// deterministic order for the solver and the events.
+//
+// Each point of a new manifold is matched with last step's point of the same featureId (ties:
+// the nearest one). A matched point is "prolonged" and inherits its accumulated impulses for warm
+// starting; an unmatched one is new and starts from zero.
+#pragma once
+
+#include <collide/narrowphase.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace collide::detail {
+
+struct ContactPointState {
+  float normalImpulse = 0.0f;  // per substep, accumulated (warm start)
+  std::array<float, 2> tangentImpulse{0.0f, 0.0f};
+  float totalNormalImpulse = 0.0f;  // everything applied this step (events)
+  float maxNormalImpulse = 0.0f;    // did the point act this step (restitution)
+  float relativeVelocity = 0.0f;    // normal relative velocity before the solve (restitution, events)
+  bool prolonged = false;           // matched a point of last step's manifold
+};
+
+struct Contact {
+  std::uint64_t key = 0;  // proxy a index << 32 | proxy b index
+  std::uint32_t bodyA = 0;
+  std::uint32_t bodyB = 0;
+  std::uint32_t generationA = 0;
+  std::uint32_t generationB = 0;
+  Manifold manifold;
+  std::array<ContactPointState, Manifold::kMaxPoints> points{};
+  float friction = 0.0f;
+  float restitution = 0.0f;
+  bool sensor = false;       // overlap only, no response
+  bool enabled = true;       // the pre-solve callback may disable it for this step
+  bool touching = false;     // after this step's narrow phase
+  bool wasTouching = false;  // after last step's
+  int consecutiveSteps = 0;  // steps in a row with points (lecture: friction from the second step)
+};
+
+// Copies the accumulated impulses of `previous`'s points onto `current`'s matching points and marks
+// them prolonged. current.manifold must already hold the new points.
+void matchContactPoints(const Contact& previous, Contact& current);
+
+inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
+  return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;
+}
+
+}  // namespace collide::detail

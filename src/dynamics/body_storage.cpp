@@ -1,0 +1,34 @@
+#include "dynamics/body_storage.h"
+
+namespace collide::detail {
+
+std::uint32_t BodyStorage::allocate() {
+  std::uint32_t index;
+  if (!freeSlots_.empty()) {
+    index = freeSlots_.back();
+    freeSlots_.pop_back();
+  } else {
+    index = static_cast<std::uint32_t>(records.size());
+    records.emplace_back();
+    states.emplace_back();
+  }
+  const std::uint32_t generation = records[index].generation;
+  records[index] = BodyRecord{};
+  records[index].generation = generation;
+  records[index].alive = true;
+  states[index] = BodyState{};
+  ++aliveCount;
+  return index;
+}
+
+void BodyStorage::free(std::uint32_t index) {
+  BodyRecord& record = records[index];
+  record.alive = false;
+  record.shape = Shape(Sphere{});  // release shared polyhedra now
+  ++record.generation;             // stale ids to this slot are detected from now on
+  states[index] = BodyState{};
+  freeSlots_.push_back(index);
+  --aliveCount;
+}
+
+}  // namespace collide::detail

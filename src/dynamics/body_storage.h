@@ -1,0 +1,85 @@
+// Body storage: two contiguous arrays indexed by the body's slot. BodyState holds what the solver
+// touches every substep (Box2D v3's b2BodyState / b2BodySim split: hot data walked linearly);
+// BodyRecord holds the rest. Static and kinematic bodies have zero inverse mass and inertia, so the
+// solver treats every pair the same way and the infinite-mass partner of a one-way pair never moves.
+#pragma once
+
+#include <collide/broadphase.h>
+#include <collide/shapes.h>
+#include <collide/world.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace collide::detail {
+
+struct BodyState {
+  Vec3 centerOfMass{0.0f};  // world
+  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  Vec3 linearVelocity{0.0f};
+  Vec3 angularVelocity{0.0f};
+  Mat3 inverseInertiaWorld{0.0f};  // R I^-1 R^T, refreshed after every position update
+  float inverseMass = 0.0f;
+  // Where the step started: the solver measures current separations from these (Catto's
+  // "relative positions": anchors move with the body's change of pose, not re-queried).
+  Vec3 centerOfMass0{0.0f};
+  Quat rotation0{1.0f, 0.0f, 0.0f, 0.0f};
+};
+
+struct BodyRecord {
+  Shape shape{Sphere{}};
+  std::string name;
+  std::uint64_t userData = 0;
+  BodyType type = BodyType::Dynamic;
+  float scale = 1.0f;
+  Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
+  Mat3 inverseInertiaLocal{0.0f};
+  float mass = 0.0f;
+  float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
+  float bounciness = 0.0f;
+  float friction = 0.5f;
+  std::uint32_t layer = 1;
+  std::uint32_t mask = kAllLayers;
+  bool sensor = false;
+  bool alive = false;
+  std::uint32_t generation = 1;
+  ProxyId proxy;
+  Vec3 force{0.0f};
+  Vec3 torque{0.0f};
+};
+
+class BodyStorage {
+ public:
+  std::uint32_t allocate();  // a free slot (reused first), record marked alive
+  void free(std::uint32_t index);
+
+  std::vector<BodyRecord> records;
+  std::vector<BodyState> states;
+  std::size_t aliveCount = 0;
+
+ private:
+  std::vector<std::uint32_t> freeSlots_;
+};
+
+// The body origin (what the user places) from the centre of mass and rotation.
+inline Vec3 bodyOrigin(const BodyRecord& record, const BodyState& state) {
+  return state.centerOfMass - state.rotation * record.localCenterOfMass;
+}
+
+inline Transform bodyTransform(const BodyRecord& record, const BodyState& state) {
+  return {bodyOrigin(record, state), state.rotation, record.scale};
+}
+
+inline Mat3 worldInverseInertia(const Mat3& inverseInertiaLocal, const Quat& rotation) {
+  const Mat3 r = glm::mat3_cast(rotation);
+  return r * inverseInertiaLocal * glm::transpose(r);
+}
+
+// Velocity step of one substep: gravity and the accumulated force/torque (dynamic bodies only).
+void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h);
+// Position step of one substep: centre of mass by v, rotation by the quaternion derivative
+// q' = 1/2 (0, w) q, renormalised; dynamic and kinematic bodies.
+void integratePositions(BodyStorage& bodies, float h);
+
+}  // namespace collide::detail

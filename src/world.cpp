@@ -1,0 +1,552 @@
+// The step: broad phase -> narrow phase -> persist -> solve -> (revert) -> events.
+//   1. proxies: every movable body's box, grown by the speculative distance and the step's motion;
+//   2. broad phase (src/broadphase/): sorted pairs, static-static never produced;
+//   3. narrow phase (src/narrowphase/) per pair that can respond: kinematic/static partners of a
+//      kinematic body are skipped, layers filtered, then collide() with a speculative margin;
+//   4. persist (src/contacts/): last step's contacts merged by pair key, points matched by feature
+//      id for warm starting; the pre-solve callback may disable a contact;
+//   5. solve (src/dynamics/): the soft step over all bodies and enabled contacts;
+//   6. revert (PenetrationResponse::Revert): bodies still penetrating go back to the step's start;
+//   7. events: begin/end contacts and sensor overlaps, in pair order.
+#include <collide/world.h>
+
+#include "contacts/contact_cache.h"
+#include "dynamics/body_storage.h"
+#include "dynamics/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace collide {
+
+using detail::BodyRecord;
+using detail::BodyState;
+using detail::Contact;
+
+namespace {
+
+std::string formatVec(const Vec3& v) {
+  std::ostringstream out;
+  out << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return out.str();
+}
+
+std::string formatFloat(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+float combine(CombineRule rule, float a, float b) {
+  switch (rule) {
+    case CombineRule::Average:
+      return 0.5f * (a + b);
+    case CombineRule::Min:
+      return std::min(a, b);
+    case CombineRule::Max:
+      return std::max(a, b);
+    case CombineRule::Multiply:
+      return a * b;
+  }
+  return a;
+}
+
+}  // namespace
+
+struct World::Impl {
+  WorldDef def;
+  detail::BodyStorage bodies;
+  std::unique_ptr<BroadPhase> broadPhase;
+  std::vector<ProxyPair> pairs;
+  std::vector<Contact> contacts;
+  std::vector<Contact> previousContacts;
+  std::vector<detail::ContactConstraint> constraints;
+  std::vector<ContactEvent> contactEvents;
+  std::vector<SensorEvent> sensorEvents;
+  BroadPhaseStats lastStats;
+  BroadPhaseStats totalStats;
+  PreSolveCallback preSolve;
+  std::size_t touchingCount = 0;
+
+  std::uint32_t resolve(BodyId id, const char* operation) const {
+    if (id.index >= bodies.records.size() || !bodies.records[id.index].alive ||
+        bodies.records[id.index].generation != id.generation) {
+      throw Error(std::string("world: ") + operation + ": invalid or stale body id (index " +
+                  std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")");
+    }
+    return id.index;
+  }
+
+  BodyId idOf(std::uint32_t index) const { return {index, bodies.records[index].generation}; }
+
+  Aabb proxyBounds(std::uint32_t index, float dt) const {
+    const BodyRecord& r = bodies.records[index];
+    const BodyState& s = bodies.states[index];
+    Aabb box = worldBounds(r.shape, detail::bodyTransform(r, s));
+    if (r.type == BodyType::Static) return box;
+    // Speculative contacts need the pair before the bodies meet: grow by the step's motion.
+    const Vec3 motion = dt * s.linearVelocity;
+    box.min = glm::min(box.min, box.min + motion);
+    box.max = glm::max(box.max, box.max + motion);
+    const float turn = dt * glm::length(s.angularVelocity) * r.boundingRadius;
+    return box.expanded(def.contact.speculativeDistance + turn);
+  }
+
+  void step(float dt);
+  void narrowPhase(float dt);
+  void revertPenetrating();
+  void emitEvents();
+  ContactEvent makeEvent(const Contact& c, ContactEvent::Type type) const;
+};
+
+World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
+  if (!isFinite(def.gravity)) throw Error("world: gravity must be finite, got " + formatVec(def.gravity));
+  if (def.substeps < 1) throw Error("world: substeps must be >= 1, got " + std::to_string(def.substeps));
+  const ContactTuning& t = def.contact;
+  const auto check = [](float value, bool ok, const char* field) {
+    if (!isFinite(value) || !ok)
+      throw Error(std::string("world: contact.") + field + " out of range, got " + formatFloat(value));
+  };
+  check(t.hertz, t.hertz > 0.0f, "hertz (must be > 0)");
+  check(t.dampingRatio, t.dampingRatio >= 0.0f, "dampingRatio (must be >= 0)");
+  check(t.pushOutSpeed, t.pushOutSpeed > 0.0f, "pushOutSpeed (must be > 0)");
+  check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
+  check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
+  check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
+  // Honest refusals until src/response/ (the lecture's impact and friction models) is wired in.
+  if (def.impactModel == ImpactModel::Interpolated) {
+    throw Error("world: impact_model \"interpolated\" is not implemented yet");
+  }
+  if (def.frictionModel == FrictionModel::Viscous || def.frictionModel == FrictionModel::Damping) {
+    throw Error("world: friction_model \"" + std::string(toString(def.frictionModel)) +
+                "\" is not implemented yet");
+  }
+  if (def.sleeping) throw Error("world: sleeping is not implemented yet");
+  impl_->def = def;
+  impl_->broadPhase = createBroadPhase(def.broadPhase);
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+const WorldDef& World::def() const { return impl_->def; }
+
+BodyId World::createBody(const BodyDef& def) {
+  const std::string who = def.name.empty() ? std::string("body") : "body \"" + def.name + "\"";
+  const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
+  if (static_cast<int>(def.type) > static_cast<int>(BodyType::Dynamic)) fail("type: unknown body type");
+  if (!isFinite(def.position)) fail("position must be finite, got " + formatVec(def.position));
+  if (!isFinite(def.rotation) || std::abs(glm::length(def.rotation) - 1.0f) > 1e-3f) {
+    fail("rotation must be a finite unit quaternion, got length " + formatFloat(glm::length(def.rotation)));
+  }
+  if (!isFinite(def.scale) || def.scale <= 0.0f)
+    fail("scale must be finite and > 0, got " + formatFloat(def.scale));
+  if (!isFinite(def.linearVelocity))
+    fail("linearVelocity must be finite, got " + formatVec(def.linearVelocity));
+  if (!isFinite(def.angularVelocity)) {
+    fail("angularVelocity must be finite, got " + formatVec(def.angularVelocity));
+  }
+  if (!isFinite(def.bounciness) || def.bounciness < 0.0f || def.bounciness > 1.0f) {
+    fail("bounciness must be in [0, 1], got " + formatFloat(def.bounciness));
+  }
+  if (!isFinite(def.friction) || def.friction < 0.0f)
+    fail("friction must be finite and >= 0, got " + formatFloat(def.friction));
+  if (def.shape.type() == ShapeType::Plane && def.type != BodyType::Static) {
+    fail("shape: a plane is an infinite half-space and can only be on a static body");
+  }
+  if (def.type != BodyType::Static && def.sensor == false && def.shape.type() == ShapeType::Mesh &&
+      def.type == BodyType::Dynamic && !def.shape.mesh().isClosed()) {
+    fail("shape: an open triangle mesh has no mass; make the body static or kinematic");
+  }
+  if (def.type == BodyType::Dynamic) {
+    if (def.mass && (!isFinite(*def.mass) || *def.mass <= 0.0f)) {
+      fail("mass must be finite and > 0, got " + formatFloat(*def.mass));
+    }
+    if (!def.mass && (!isFinite(def.density) || def.density <= 0.0f)) {
+      fail("density must be finite and > 0, got " + formatFloat(def.density));
+    }
+  }
+
+  Impl& w = *impl_;
+  const std::uint32_t index = w.bodies.allocate();
+  BodyRecord& r = w.bodies.records[index];
+  BodyState& s = w.bodies.states[index];
+  r.shape = def.shape;
+  r.name = def.name;
+  r.userData = def.userData;
+  r.type = def.type;
+  r.scale = def.scale;
+  r.bounciness = def.bounciness;
+  r.friction = def.friction;
+  r.layer = def.layer;
+  r.mask = def.mask;
+  r.sensor = def.sensor;
+  try {
+    if (def.type == BodyType::Dynamic) {
+      MassProperties props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
+      float massScale = 1.0f;
+      if (def.mass) massScale = *def.mass / props.mass;
+      r.mass = props.mass * massScale;
+      r.localCenterOfMass = props.centerOfMass;
+      r.inverseInertiaLocal = glm::inverse(props.inertia * massScale);
+      s.inverseMass = 1.0f / r.mass;
+    }
+    if (def.type != BodyType::Static) {
+      const BoundingSphere sphere = localBoundingSphere(def.shape);
+      r.boundingRadius =
+          glm::length(sphere.center * def.scale - r.localCenterOfMass) + sphere.radius * def.scale;
+    }
+  } catch (const Error& e) {
+    w.bodies.free(index);
+    fail(std::string("shape: ") + e.what());
+  }
+  s.rotation = glm::normalize(def.rotation);
+  s.centerOfMass = def.position + s.rotation * r.localCenterOfMass;
+  s.centerOfMass0 = s.centerOfMass;
+  s.rotation0 = s.rotation;
+  if (def.type != BodyType::Static) {
+    s.linearVelocity = def.linearVelocity;
+    s.angularVelocity = def.angularVelocity;
+  }
+  s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
+
+  ProxyDef proxy;
+  proxy.bounds = w.proxyBounds(index, 0.0f);
+  proxy.motion = def.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
+  proxy.userValue = index;
+  proxy.layer = def.layer;
+  r.proxy = w.broadPhase->add(proxy);
+  return w.idOf(index);
+}
+
+void World::destroyBody(BodyId id) {
+  Impl& w = *impl_;
+  const std::uint32_t index = w.resolve(id, "destroyBody");
+  w.broadPhase->remove(w.bodies.records[index].proxy);
+  // Its contacts go with it (no end event); the generation check in the merge drops them.
+  std::erase_if(w.contacts, [&](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
+  w.bodies.free(index);
+}
+
+bool World::isValid(BodyId id) const {
+  return id.index < impl_->bodies.records.size() && impl_->bodies.records[id.index].alive &&
+         impl_->bodies.records[id.index].generation == id.generation;
+}
+std::size_t World::bodyCount() const { return impl_->bodies.aliveCount; }
+
+BodyType World::type(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "type")].type; }
+
+Transform World::transform(BodyId id) const {
+  const std::uint32_t i = impl_->resolve(id, "transform");
+  return detail::bodyTransform(impl_->bodies.records[i], impl_->bodies.states[i]);
+}
+
+void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "setTransform");
+  if (!isFinite(position))
+    throw Error("world: setTransform: position must be finite, got " + formatVec(position));
+  if (!isFinite(rotation) || std::abs(glm::length(rotation) - 1.0f) > 1e-3f) {
+    throw Error("world: setTransform: rotation must be a finite unit quaternion");
+  }
+  BodyRecord& r = w.bodies.records[i];
+  BodyState& s = w.bodies.states[i];
+  s.rotation = glm::normalize(rotation);
+  s.centerOfMass = position + s.rotation * r.localCenterOfMass;
+  s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
+  w.broadPhase->update(r.proxy, w.proxyBounds(i, 0.0f));
+}
+
+Vec3 World::linearVelocity(BodyId id) const {
+  return impl_->bodies.states[impl_->resolve(id, "linearVelocity")].linearVelocity;
+}
+Vec3 World::angularVelocity(BodyId id) const {
+  return impl_->bodies.states[impl_->resolve(id, "angularVelocity")].angularVelocity;
+}
+
+void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
+  const std::uint32_t i = impl_->resolve(id, "setLinearVelocity");
+  if (!isFinite(velocity))
+    throw Error("world: setLinearVelocity: velocity must be finite, got " + formatVec(velocity));
+  if (impl_->bodies.records[i].type == BodyType::Static) return;  // static bodies never move
+  impl_->bodies.states[i].linearVelocity = velocity;
+}
+
+void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
+  const std::uint32_t i = impl_->resolve(id, "setAngularVelocity");
+  if (!isFinite(velocity))
+    throw Error("world: setAngularVelocity: velocity must be finite, got " + formatVec(velocity));
+  if (impl_->bodies.records[i].type == BodyType::Static) return;
+  impl_->bodies.states[i].angularVelocity = velocity;
+}
+
+void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint) {
+  const std::uint32_t i = impl_->resolve(id, "applyImpulse");
+  if (!isFinite(impulse) || !isFinite(worldPoint))
+    throw Error("world: applyImpulse: impulse and point must be finite");
+  if (impl_->bodies.records[i].type != BodyType::Dynamic) return;
+  BodyState& s = impl_->bodies.states[i];
+  s.linearVelocity += s.inverseMass * impulse;
+  s.angularVelocity += s.inverseInertiaWorld * glm::cross(worldPoint - s.centerOfMass, impulse);
+}
+
+void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
+  const std::uint32_t i = impl_->resolve(id, "applyForce");
+  if (!isFinite(force) || !isFinite(worldPoint))
+    throw Error("world: applyForce: force and point must be finite");
+  BodyRecord& r = impl_->bodies.records[i];
+  if (r.type != BodyType::Dynamic) return;
+  r.force += force;
+  r.torque += glm::cross(worldPoint - impl_->bodies.states[i].centerOfMass, force);
+}
+
+void World::applyTorque(BodyId id, const Vec3& torque) {
+  const std::uint32_t i = impl_->resolve(id, "applyTorque");
+  if (!isFinite(torque)) throw Error("world: applyTorque: torque must be finite, got " + formatVec(torque));
+  if (impl_->bodies.records[i].type != BodyType::Dynamic) return;
+  impl_->bodies.records[i].torque += torque;
+}
+
+float World::mass(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "mass")].mass; }
+Vec3 World::centerOfMass(BodyId id) const {
+  return impl_->bodies.states[impl_->resolve(id, "centerOfMass")].centerOfMass;
+}
+const Shape& World::shape(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "shape")].shape;
+}
+std::uint64_t World::userData(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "userData")].userData;
+}
+const std::string& World::name(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "name")].name;
+}
+
+void World::setPreSolveCallback(PreSolveCallback callback) { impl_->preSolve = std::move(callback); }
+
+void World::step(float dt) {
+  if (!isFinite(dt) || dt <= 0.0f)
+    throw Error("world: step: dt must be finite and > 0, got " + formatFloat(dt));
+  impl_->step(dt);
+}
+
+void World::Impl::step(float dt) {
+  contactEvents.clear();
+  sensorEvents.clear();
+  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
+    const BodyRecord& r = bodies.records[i];
+    if (r.alive && r.type != BodyType::Static) broadPhase->update(r.proxy, proxyBounds(i, dt));
+  }
+  broadPhase->findPairs(pairs);
+  narrowPhase(dt);
+
+  detail::SolverSettings settings;
+  settings.gravity = def.gravity;
+  settings.substeps = def.substeps;
+  settings.tuning = def.contact;
+  settings.friction = def.frictionModel != FrictionModel::None;
+  detail::solveStep(bodies, contacts, constraints, settings, dt);
+  for (BodyRecord& r : bodies.records) {
+    r.force = Vec3(0.0f);
+    r.torque = Vec3(0.0f);
+  }
+  if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
+  emitEvents();
+
+  totalStats.proxies = lastStats.proxies;
+  totalStats.potentialPairs += lastStats.potentialPairs;
+  totalStats.keptPairs += lastStats.keptPairs;
+  totalStats.boxTests += lastStats.boxTests;
+  totalStats.narrowPhaseTests += lastStats.narrowPhaseTests;
+  totalStats.contactPairs += lastStats.contactPairs;
+}
+
+ContactEvent World::Impl::makeEvent(const Contact& c, ContactEvent::Type type) const {
+  ContactEvent e;
+  e.type = type;
+  e.a = idOf(c.bodyA);
+  e.b = idOf(c.bodyB);
+  e.normal = c.manifold.normal;
+  int deepest = 0;
+  for (int i = 0; i < c.manifold.count; ++i) {
+    if (c.manifold.points[i].depth > c.manifold.points[deepest].depth) deepest = i;
+    e.impulse += c.points[i].totalNormalImpulse;
+    e.speed = std::max(e.speed, -c.points[i].relativeVelocity);
+  }
+  if (c.manifold.count > 0) e.point = c.manifold.points[deepest].midpoint();
+  if (type == ContactEvent::Type::End) e.impulse = 0.0f;
+  return e;
+}
+
+void World::Impl::narrowPhase(float dt) {
+  std::swap(contacts, previousContacts);
+  contacts.clear();
+  lastStats = broadPhase->lastStats();
+  std::uint64_t tests = 0;
+  std::size_t j = 0;
+  const auto endVanished = [&](const Contact& old) {
+    // Contacts of destroyed bodies were erased; a generation mismatch means the slot was reused.
+    if (!old.touching || !bodies.records[old.bodyA].alive || !bodies.records[old.bodyB].alive) return;
+    if (bodies.records[old.bodyA].generation != old.generationA ||
+        bodies.records[old.bodyB].generation != old.generationB)
+      return;
+    if (old.sensor) {
+      const bool aIsSensor = bodies.records[old.bodyA].sensor;
+      sensorEvents.push_back({SensorEvent::Type::End, idOf(aIsSensor ? old.bodyA : old.bodyB),
+                              idOf(aIsSensor ? old.bodyB : old.bodyA)});
+    } else {
+      contactEvents.push_back(makeEvent(old, ContactEvent::Type::End));
+    }
+  };
+
+  for (const ProxyPair& pair : pairs) {
+    const std::uint64_t key = detail::pairKey(pair.a.index, pair.b.index);
+    while (j < previousContacts.size() && previousContacts[j].key < key) endVanished(previousContacts[j++]);
+    const Contact* previous = nullptr;
+
+    const auto ia = static_cast<std::uint32_t>(broadPhase->records()[pair.a.index].userValue);
+    const auto ib = static_cast<std::uint32_t>(broadPhase->records()[pair.b.index].userValue);
+    const BodyRecord& ra = bodies.records[ia];
+    const BodyRecord& rb = bodies.records[ib];
+    if (j < previousContacts.size() && previousContacts[j].key == key) {
+      const Contact& old = previousContacts[j++];
+      if (old.bodyA == ia && old.bodyB == ib && old.generationA == ra.generation &&
+          old.generationB == rb.generation)
+        previous = &old;
+    }
+    // Only a dynamic body responds: kinematic-kinematic and kinematic-static pairs are never tested
+    // (static-static never reaches us: the broad phase does not produce them).
+    const bool sensor = ra.sensor || rb.sensor;
+    if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) continue;
+    if ((ra.sensor && rb.sensor) || (ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) {
+      if (previous) endVanished(*previous);
+      continue;
+    }
+
+    const BodyState& sa = bodies.states[ia];
+    const BodyState& sb = bodies.states[ib];
+    float margin = 0.0f;
+    if (!sensor) {
+      // Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).
+      const float approach = glm::length(sb.linearVelocity - sa.linearVelocity) +
+                             glm::length(sa.angularVelocity) * ra.boundingRadius +
+                             glm::length(sb.angularVelocity) * rb.boundingRadius;
+      margin = def.contact.speculativeDistance + dt * approach;
+    }
+    Contact& c = contacts.emplace_back();
+    ++tests;
+    collide::collide(ra.shape, detail::bodyTransform(ra, sa), rb.shape, detail::bodyTransform(rb, sb),
+                     c.manifold, margin);
+    if (c.manifold.count == 0) {
+      contacts.pop_back();
+      if (previous) endVanished(*previous);
+      continue;
+    }
+    c.key = key;
+    c.bodyA = ia;
+    c.bodyB = ib;
+    c.generationA = ra.generation;
+    c.generationB = rb.generation;
+    c.sensor = sensor;
+    c.friction = combine(def.frictionCombine, ra.friction, rb.friction);
+    c.restitution = combine(def.bouncinessCombine, ra.bounciness, rb.bounciness);
+    c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;
+    c.wasTouching = previous ? previous->touching : false;
+    if (previous) {
+      detail::matchContactPoints(*previous, c);
+    } else {
+      c.points = {};
+    }
+    c.enabled = true;
+    if (!sensor && preSolve) c.enabled = preSolve(idOf(ia), idOf(ib), c.manifold);
+    const float deepest = c.manifold.maxDepth();
+    c.touching = c.enabled && (sensor ? deepest >= 0.0f : deepest >= -def.contact.linearSlop);
+    if (!c.enabled) c.points = {};
+  }
+  while (j < previousContacts.size()) endVanished(previousContacts[j++]);
+  lastStats.narrowPhaseTests = tests;
+}
+
+void World::Impl::revertPenetrating() {
+  // Simple version of the lecture's "revert": one re-test per solved contact at the new poses.
+  for (const detail::ContactConstraint& k : constraints) {
+    const Contact& c = contacts[k.contactIndex];
+    BodyRecord& ra = bodies.records[c.bodyA];
+    BodyRecord& rb = bodies.records[c.bodyB];
+    BodyState& sa = bodies.states[c.bodyA];
+    BodyState& sb = bodies.states[c.bodyB];
+    Manifold now;
+    if (!collide::collide(ra.shape, detail::bodyTransform(ra, sa), rb.shape, detail::bodyTransform(rb, sb),
+                          now))
+      continue;
+    if (now.maxDepth() <= def.contact.linearSlop) continue;
+    const Vec3 n = now.normal;
+    if (ra.type == BodyType::Dynamic) {
+      sa.centerOfMass = sa.centerOfMass0;
+      sa.rotation = sa.rotation0;
+      sa.inverseInertiaWorld = detail::worldInverseInertia(ra.inverseInertiaLocal, sa.rotation);
+      sa.linearVelocity -= std::max(0.0f, glm::dot(sa.linearVelocity, n)) * n;  // A moving into B
+    }
+    if (rb.type == BodyType::Dynamic) {
+      sb.centerOfMass = sb.centerOfMass0;
+      sb.rotation = sb.rotation0;
+      sb.inverseInertiaWorld = detail::worldInverseInertia(rb.inverseInertiaLocal, sb.rotation);
+      sb.linearVelocity -= std::min(0.0f, glm::dot(sb.linearVelocity, n)) * n;  // B moving into A
+    }
+  }
+}
+
+void World::Impl::emitEvents() {
+  touchingCount = 0;
+  for (Contact& c : contacts) {
+    // A speculative contact that stopped the bodies this step touched them, though it was still
+    // apart before the solve: count it, so the begin event carries the impact speed and impulse.
+    if (!c.sensor && c.enabled && !c.touching) {
+      for (int i = 0; i < c.manifold.count; ++i)
+        c.touching = c.touching || c.points[i].maxNormalImpulse > 0.0f;
+    }
+    if (c.sensor) {
+      if (c.touching != c.wasTouching) {
+        const bool aIsSensor = bodies.records[c.bodyA].sensor;
+        sensorEvents.push_back({c.touching ? SensorEvent::Type::Begin : SensorEvent::Type::End,
+                                idOf(aIsSensor ? c.bodyA : c.bodyB), idOf(aIsSensor ? c.bodyB : c.bodyA)});
+      }
+      continue;
+    }
+    if (c.touching) ++touchingCount;
+    if (c.touching && !c.wasTouching) contactEvents.push_back(makeEvent(c, ContactEvent::Type::Begin));
+    if (!c.touching && c.wasTouching) contactEvents.push_back(makeEvent(c, ContactEvent::Type::End));
+  }
+  lastStats.contactPairs = touchingCount;
+}
+
+const BroadPhaseStats& World::lastStats() const { return impl_->lastStats; }
+const BroadPhaseStats& World::totalStats() const { return impl_->totalStats; }
+std::span<const ContactEvent> World::contactEvents() const { return impl_->contactEvents; }
+std::span<const SensorEvent> World::sensorEvents() const { return impl_->sensorEvents; }
+std::size_t World::touchingContactCount() const { return impl_->touchingCount; }
+
+Vec3 World::linearMomentum() const {
+  Vec3 p(0.0f);
+  for (std::size_t i = 0; i < impl_->bodies.records.size(); ++i) {
+    const BodyRecord& r = impl_->bodies.records[i];
+    if (r.alive && r.type == BodyType::Dynamic) p += r.mass * impl_->bodies.states[i].linearVelocity;
+  }
+  return p;
+}
+
+float World::kineticEnergy() const {
+  float energy = 0.0f;
+  for (std::size_t i = 0; i < impl_->bodies.records.size(); ++i) {
+    const BodyRecord& r = impl_->bodies.records[i];
+    if (!r.alive || r.type != BodyType::Dynamic) continue;
+    const BodyState& s = impl_->bodies.states[i];
+    const Mat3 inertiaWorld = glm::inverse(s.inverseInertiaWorld);
+    energy += 0.5f * r.mass * glm::dot(s.linearVelocity, s.linearVelocity) +
+              0.5f * glm::dot(s.angularVelocity, inertiaWorld * s.angularVelocity);
+  }
+  return energy;
+}
+
+}  // namespace collide

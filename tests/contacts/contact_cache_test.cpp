@@ -1,0 +1,56 @@
+// Matching a new manifold's points with last step's by feature id (new vs prolonged contacts).
+#include "contacts/contact_cache.h"
+
+#include <gtest/gtest.h>
+
+namespace collide::detail {
+namespace {
+
+ContactPoint pointAt(float x, std::uint32_t id) {
+  ContactPoint p;
+  p.pointOnA = p.pointOnB = Vec3(x, 0.0f, 0.0f);
+  p.featureId = id;
+  return p;
+}
+
+TEST(ContactCache, PointsMatchByFeatureIdAndInheritImpulses) {
+  Contact previous;
+  previous.manifold.count = 3;
+  previous.manifold.points[0] = pointAt(0.0f, 7);
+  previous.manifold.points[1] = pointAt(1.0f, 9);
+  previous.manifold.points[2] = pointAt(2.0f, 11);
+  previous.points[0].normalImpulse = 1.0f;
+  previous.points[1].normalImpulse = 2.0f;
+  previous.points[1].tangentImpulse = {0.5f, -0.5f};
+  previous.points[2].normalImpulse = 3.0f;
+
+  Contact current;
+  current.manifold.count = 2;
+  current.manifold.points[0] = pointAt(1.1f, 9);   // same feature, moved a little
+  current.manifold.points[1] = pointAt(0.0f, 42);  // a new feature at an old position
+  matchContactPoints(previous, current);
+  EXPECT_TRUE(current.points[0].prolonged);
+  EXPECT_EQ(current.points[0].normalImpulse, 2.0f);
+  EXPECT_EQ(current.points[0].tangentImpulse[1], -0.5f);
+  EXPECT_FALSE(current.points[1].prolonged);
+  EXPECT_EQ(current.points[1].normalImpulse, 0.0f);
+}
+
+TEST(ContactCache, SharedIdsMatchTheNearestOldPointOnce) {
+  Contact previous;
+  previous.manifold.count = 2;
+  previous.manifold.points[0] = pointAt(0.0f, 0);
+  previous.manifold.points[1] = pointAt(1.0f, 0);
+  previous.points[0].normalImpulse = 1.0f;
+  previous.points[1].normalImpulse = 2.0f;
+  Contact current;
+  current.manifold.count = 2;
+  current.manifold.points[0] = pointAt(0.9f, 0);
+  current.manifold.points[1] = pointAt(0.8f, 0);
+  matchContactPoints(previous, current);
+  EXPECT_EQ(current.points[0].normalImpulse, 2.0f);  // nearest is the old point at 1.0
+  EXPECT_EQ(current.points[1].normalImpulse, 1.0f);  // which is taken: the other one
+}
+
+}  // namespace
+}  // namespace collide::detail

@@ -1,0 +1,47 @@
+// Small scene builders shared by the world and dynamics tests.
+#pragma once
+
+#include <collide/world.h>
+
+namespace collide::test {
+
+inline WorldDef zeroGravityWorld() {
+  WorldDef def;
+  def.gravity = Vec3(0.0f);
+  return def;
+}
+
+inline BodyDef sphereBody(const Vec3& position, float radius, float mass, const Vec3& velocity = Vec3(0.0f)) {
+  BodyDef def;
+  def.shape = Shape(Sphere{radius});
+  def.position = position;
+  def.mass = mass;
+  def.linearVelocity = velocity;
+  return def;
+}
+
+inline BodyDef boxBody(const Vec3& position, const Vec3& halfExtents, float mass) {
+  BodyDef def;
+  def.shape = Shape(Box{halfExtents});
+  def.position = position;
+  def.mass = mass;
+  return def;
+}
+
+// A static ground whose top face is y = 0 (the reference scenes' 200 x 200 box).
+inline BodyDef groundBox() {
+  BodyDef def;
+  def.type = BodyType::Static;
+  def.shape = Shape(Box{Vec3(100.0f, 0.5f, 100.0f)});
+  def.position = Vec3(0.0f, -0.5f, 0.0f);
+  return def;
+}
+
+inline BodyDef groundPlane() {
+  BodyDef def;
+  def.type = BodyType::Static;
+  def.shape = Shape(Plane{Vec3(0.0f, 1.0f, 0.0f), 0.0f});
+  return def;
+}
+
+}  // namespace collide::test

@@ -1,0 +1,276 @@
+// The World's API: ids, validation, counters, events, sensors, the pre-solve callback, determinism
+// and the penetration responses.
+#include "world/world_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+namespace collide {
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
+  try {
+    f();
+    FAIL() << "no Error thrown (expected one naming \"" << word << "\")";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  }
+}
+
+TEST(World, StaleBodyIdIsAnError) {
+  World world;
+  const BodyId a = world.createBody(test::sphereBody(Vec3(0.0f), 0.5f, 1.0f));
+  world.destroyBody(a);
+  EXPECT_FALSE(world.isValid(a));
+  EXPECT_THROW(world.transform(a), Error);
+  EXPECT_THROW(world.destroyBody(a), Error);
+  const BodyId b = world.createBody(test::sphereBody(Vec3(0.0f), 0.5f, 1.0f));
+  EXPECT_EQ(b.index, a.index);  // the slot is reused with a new generation
+  EXPECT_NE(b.generation, a.generation);
+  EXPECT_THROW(world.setLinearVelocity(a, Vec3(1.0f)), Error);
+  EXPECT_NO_THROW(world.transform(b));
+  EXPECT_THROW(world.transform(BodyId{}), Error);
+}
+
+TEST(World, BadBodyDefsNameTheField) {
+  World world;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  BodyDef def = test::sphereBody(Vec3(nan, 0.0f, 0.0f), 0.5f, 1.0f);
+  expectErrorMentions([&] { world.createBody(def); }, "position");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 0.0f);
+  expectErrorMentions([&] { world.createBody(def); }, "mass");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.shape = Shape(Plane{});
+  expectErrorMentions([&] { world.createBody(def); }, "plane");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.bounciness = 1.5f;
+  expectErrorMentions([&] { world.createBody(def); }, "bounciness");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.friction = -1.0f;
+  expectErrorMentions([&] { world.createBody(def); }, "friction");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.rotation = Quat(2.0f, 0.0f, 0.0f, 0.0f);
+  expectErrorMentions([&] { world.createBody(def); }, "rotation");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.mass.reset();
+  def.density = -3.0f;
+  expectErrorMentions([&] { world.createBody(def); }, "density");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.linearVelocity = Vec3(0.0f, std::numeric_limits<float>::infinity(), 0.0f);
+  expectErrorMentions([&] { world.createBody(def); }, "linearVelocity");
+  EXPECT_EQ(world.bodyCount(), 0u);
+  expectErrorMentions([&] { world.step(0.0f); }, "dt");
+}
+
+TEST(World, BadWorldDefsAndUnimplementedSettingsAreErrors) {
+  WorldDef def;
+  def.substeps = 0;
+  expectErrorMentions([&] { World w(def); }, "substeps");
+  def = WorldDef{};
+  def.gravity.y = std::numeric_limits<float>::quiet_NaN();
+  expectErrorMentions([&] { World w(def); }, "gravity");
+  def = WorldDef{};
+  def.impactModel = ImpactModel::Interpolated;
+  expectErrorMentions([&] { World w(def); }, "not implemented");
+  def = WorldDef{};
+  def.frictionModel = FrictionModel::Viscous;
+  expectErrorMentions([&] { World w(def); }, "not implemented");
+  EXPECT_EQ(parseCombineRule("multiply"), CombineRule::Multiply);
+  EXPECT_EQ(parsePenetrationResponse("revert"), PenetrationResponse::Revert);
+  expectErrorMentions([] { parseFrictionModel("sticky"); }, "sticky");
+}
+
+TEST(World, MassAndDensity) {
+  World world;
+  BodyDef def = test::boxBody(Vec3(0.0f), Vec3(0.5f), 2.5f);
+  EXPECT_FLOAT_EQ(world.mass(world.createBody(def)), 2.5f);
+  def.mass.reset();
+  def.density = 1000.0f;
+  EXPECT_NEAR(world.mass(world.createBody(def)), 1000.0f, 1e-2f);
+  EXPECT_EQ(world.mass(world.createBody(test::groundPlane())), 0.0f);
+}
+
+TEST(World, StaticStaticAndKinematicStaticPairsAreNeverTested) {
+  World world;
+  BodyDef wall = test::boxBody(Vec3(0.0f), Vec3(1.0f), 1.0f);
+  wall.type = BodyType::Static;
+  world.createBody(wall);
+  wall.position = Vec3(0.5f, 0.0f, 0.0f);
+  world.createBody(wall);  // overlaps the first
+  BodyDef mover = wall;
+  mover.type = BodyType::Kinematic;
+  mover.position = Vec3(0.0f, 0.5f, 0.0f);  // overlaps both
+  mover.linearVelocity = Vec3(0.1f, 0.0f, 0.0f);
+  world.createBody(mover);
+  world.createBody(test::sphereBody(Vec3(50.0f, 0.0f, 0.0f), 0.5f, 1.0f));
+  world.step(kDt);
+  EXPECT_EQ(world.lastStats().potentialPairs, 6u);
+  EXPECT_EQ(world.lastStats().keptPairs, 2u);  // kinematic vs each static; static-static excluded
+  EXPECT_EQ(world.lastStats().narrowPhaseTests, 0u);
+  EXPECT_EQ(world.lastStats().contactPairs, 0u);
+}
+
+TEST(World, CountersFollowTheFunnel) {
+  World world;
+  world.createBody(test::groundPlane());
+  world.createBody(test::sphereBody(Vec3(0.0f, 0.5f, 0.0f), 0.5f, 1.0f));
+  world.createBody(test::sphereBody(Vec3(10.0f, 0.5f, 0.0f), 0.5f, 1.0f));
+  world.step(kDt);
+  EXPECT_EQ(world.lastStats().potentialPairs, 3u);
+  EXPECT_EQ(world.lastStats().narrowPhaseTests, 2u);  // each sphere against the plane
+  EXPECT_EQ(world.lastStats().contactPairs, 2u);
+  EXPECT_EQ(world.touchingContactCount(), 2u);
+  world.step(kDt);
+  EXPECT_EQ(world.totalStats().narrowPhaseTests, 4u);
+}
+
+TEST(World, ContactEventsBeginOnceWithTheImpactSpeed) {
+  World world;
+  const BodyId ground = world.createBody(test::groundPlane());
+  BodyDef ballDef = test::sphereBody(Vec3(0.0f, 1.5f, 0.0f), 0.5f, 1.0f);  // falls 1 m
+  const BodyId ball = world.createBody(ballDef);
+  int begins = 0;
+  ContactEvent first;
+  for (int i = 0; i < 120; ++i) {
+    world.step(kDt);
+    for (const ContactEvent& e : world.contactEvents()) {
+      EXPECT_EQ(e.type, ContactEvent::Type::Begin);
+      if (begins++ == 0) first = e;
+    }
+  }
+  ASSERT_EQ(begins, 1);
+  const bool groundFirst = first.a == ground;
+  EXPECT_TRUE(groundFirst || first.a == ball);
+  EXPECT_NEAR(std::abs(first.normal.y), 1.0f, 1e-5f);
+  // The begin event comes from the speculative manifold of the step that stops the ball: the
+  // point lies in the gap, which is less than one step of travel (v dt) wide.
+  const float impactSpeed = std::sqrt(2.0f * 9.81f);  // free fall from 1 m
+  EXPECT_NEAR(first.point.x, 0.0f, 1e-5f);
+  EXPECT_GE(first.point.y, 0.0f);
+  EXPECT_LE(first.point.y, 0.5f * impactSpeed * kDt);
+  // The speed is measured before that step, when the gap was at most the speculative margin
+  // (0.02 m + v dt): up to dt + 0.02 / v before the impact, i.e. g (dt + 0.02 / v) slower.
+  EXPECT_NEAR(first.speed, impactSpeed, 9.81f * (kDt + 0.02f / impactSpeed));
+  EXPECT_LE(first.speed, impactSpeed);
+  // The impulse stops the ball: about m v.
+  EXPECT_GT(first.impulse, 0.8f * std::sqrt(2.0f * 9.81f));
+}
+
+TEST(World, BouncingBallEndsItsContact) {
+  World world;
+  world.createBody(test::groundPlane());
+  BodyDef ballDef = test::sphereBody(Vec3(0.0f, 1.5f, 0.0f), 0.5f, 1.0f);
+  ballDef.bounciness = 0.8f;
+  world.createBody(ballDef);
+  int begins = 0, ends = 0;
+  for (int i = 0; i < 60; ++i) {
+    world.step(kDt);
+    for (const ContactEvent& e : world.contactEvents())
+      (e.type == ContactEvent::Type::Begin ? begins : ends)++;
+  }
+  EXPECT_GE(begins, 1);
+  EXPECT_GE(ends, 1);
+}
+
+TEST(World, SensorReportsOverlapAndTakesNoResponse) {
+  World world(test::zeroGravityWorld());
+  BodyDef sensorDef = test::boxBody(Vec3(0.0f), Vec3(1.0f), 1.0f);
+  sensorDef.type = BodyType::Static;
+  sensorDef.sensor = true;
+  const BodyId sensor = world.createBody(sensorDef);
+  const BodyId ball =
+      world.createBody(test::sphereBody(Vec3(-3.0f, 0.0f, 0.0f), 0.25f, 1.0f, Vec3(3.0f, 0.0f, 0.0f)));
+  int begins = 0, ends = 0;
+  for (int i = 0; i < 120; ++i) {
+    world.step(kDt);
+    for (const SensorEvent& e : world.sensorEvents()) {
+      EXPECT_EQ(e.sensor, sensor);
+      EXPECT_EQ(e.visitor, ball);
+      (e.type == SensorEvent::Type::Begin ? begins : ends)++;
+    }
+  }
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(ends, 1);
+  EXPECT_EQ(world.linearVelocity(ball), Vec3(3.0f, 0.0f, 0.0f));
+  EXPECT_TRUE(world.contactEvents().empty());
+}
+
+TEST(World, PreSolveCallbackMakesAOneWayPlatform) {
+  World world;
+  BodyDef platform = test::boxBody(Vec3(0.0f, 2.0f, 0.0f), Vec3(2.0f, 0.1f, 2.0f), 1.0f);
+  platform.type = BodyType::Static;
+  const BodyId platformId = world.createBody(platform);
+  // Launched upwards from below: rises to about 0.5 + 8^2 / (2 g) = 3.7 m, then falls back.
+  const BodyId ball =
+      world.createBody(test::sphereBody(Vec3(0.0f, 0.5f, 0.0f), 0.25f, 1.0f, Vec3(0.0f, 8.0f, 0.0f)));
+  world.setPreSolveCallback([&](BodyId a, BodyId b, const Manifold& m) {
+    // Solid only from above: the normal from the platform towards the ball points up.
+    const Vec3 up = a == platformId ? m.normal : -m.normal;
+    (void)b;
+    return up.y > 0.5f && world.transform(ball).position.y > 2.1f;
+  });
+  for (int i = 0; i < 180; ++i) world.step(kDt);
+  EXPECT_NEAR(world.transform(ball).position.y, 2.1f + 0.25f, 0.01f);
+  EXPECT_LT(glm::length(world.linearVelocity(ball)), 0.05f);
+}
+
+TEST(World, SameSceneTwiceGivesBitIdenticalStates) {
+  const auto run = [](std::vector<float>& out) {
+    World world;
+    world.createBody(test::groundPlane());
+    std::vector<BodyId> ids;
+    for (int i = 0; i < 12; ++i) {
+      BodyDef def = i % 2 ? test::boxBody(Vec3(0.3f * i, 1.0f + 0.9f * i, 0.1f * i), Vec3(0.3f), 1.0f)
+                          : test::sphereBody(Vec3(0.2f * i, 1.0f + 0.9f * i, -0.1f * i), 0.3f, 1.0f);
+      def.angularVelocity = Vec3(0.1f * i, 0.2f, -0.3f);
+      def.bounciness = 0.3f;
+      ids.push_back(world.createBody(def));
+    }
+    for (int s = 0; s < 120; ++s) world.step(kDt);
+    for (BodyId id : ids) {
+      const Transform t = world.transform(id);
+      const Vec3 v = world.linearVelocity(id);
+      const Vec3 w = world.angularVelocity(id);
+      out.insert(out.end(), {t.position.x, t.position.y, t.position.z, t.rotation.x, t.rotation.y,
+                             t.rotation.z, t.rotation.w, v.x, v.y, v.z, w.x, w.y, w.z});
+    }
+  };
+  std::vector<float> first, second;
+  run(first);
+  run(second);
+  ASSERT_EQ(first.size(), second.size());
+  EXPECT_EQ(std::memcmp(first.data(), second.data(), first.size() * sizeof(float)), 0);
+}
+
+// A sphere created half inside a static box: Project pushes it out; Revert puts it back where the
+// step began and removes its velocity into the box.
+TEST(World, PenetrationResponses) {
+  for (PenetrationResponse response : {PenetrationResponse::Project, PenetrationResponse::Revert}) {
+    WorldDef def = test::zeroGravityWorld();
+    def.penetrationResponse = response;
+    World world(def);
+    BodyDef block = test::boxBody(Vec3(0.0f, -1.0f, 0.0f), Vec3(1.0f), 1.0f);
+    block.type = BodyType::Static;
+    world.createBody(block);
+    const BodyId ball =
+        world.createBody(test::sphereBody(Vec3(0.0f, 0.2f, 0.0f), 0.5f, 1.0f, Vec3(1.0f, -1.0f, 0.0f)));
+    world.step(kDt);
+    const Vec3 p = world.transform(ball).position;
+    const Vec3 v = world.linearVelocity(ball);
+    if (response == PenetrationResponse::Project) {
+      EXPECT_GT(p.y, 0.2f);  // pushed up (capped at the push-out speed)
+    } else {
+      EXPECT_EQ(p, Vec3(0.0f, 0.2f, 0.0f));
+      EXPECT_GE(v.y, 0.0f);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace collide
