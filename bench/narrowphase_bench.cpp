@@ -39,7 +39,8 @@ std::vector<Placed> makePairs(const Shape& a, const Shape& b, float reach) {
   for (int i = 0; i < kPairs; ++i) {
     const Vec3 direction = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)) + Vec3(1e-3f));
     const Transform ta{Vec3(0.0f), randomRotation(rng), 1.0f};
-    const Transform tb{direction * reach * (0.8f + 0.4f * (0.5f + 0.5f * unit(rng))), randomRotation(rng), 1.0f};
+    const Transform tb{direction * reach * (0.8f + 0.4f * (0.5f + 0.5f * unit(rng))), randomRotation(rng),
+                       1.0f};
     pairs.push_back({a, b, ta, tb});
   }
   return pairs;
@@ -72,10 +73,53 @@ BENCHMARK(BM_SphereSphereKernel);
 void BM_CollideSphereSphere(benchmark::State& s) { runCollide(s, Sphere{0.5f}, Sphere{0.4f}, 0.9f); }
 void BM_CollideSphereCapsule(benchmark::State& s) { runCollide(s, Sphere{0.5f}, Capsule{0.3f, 0.5f}, 1.3f); }
 void BM_CollideSphereBox(benchmark::State& s) { runCollide(s, Sphere{0.5f}, Box{Vec3(0.4f)}, 1.1f); }
-void BM_CollideCapsuleCapsule(benchmark::State& s) { runCollide(s, Capsule{0.3f, 0.5f}, Capsule{0.3f, 0.5f}, 1.2f); }
+void BM_CollideCapsuleCapsule(benchmark::State& s) {
+  runCollide(s, Capsule{0.3f, 0.5f}, Capsule{0.3f, 0.5f}, 1.2f);
+}
 void BM_CollideCapsuleBox(benchmark::State& s) { runCollide(s, Capsule{0.3f, 0.5f}, Box{Vec3(0.4f)}, 1.3f); }
 void BM_CollidePlaneBox(benchmark::State& s) { runCollide(s, Plane{}, Box{Vec3(0.4f)}, 0.6f); }
-void BM_CollideBoxBoxGjkEpa(benchmark::State& s) { runCollide(s, Box{Vec3(0.4f)}, Box{Vec3(0.5f)}, 1.4f); }
+void BM_CollideBoxBoxSat(benchmark::State& s) { runCollide(s, Box{Vec3(0.4f)}, Box{Vec3(0.5f)}, 1.4f); }
+// The generic entry on the same pairs, for comparison with SAT.
+void BM_BoxBoxGjkEpaKernel(benchmark::State& state) {
+  const std::vector<Placed> pairs = makePairs(Box{Vec3(0.4f)}, Box{Vec3(0.5f)}, 1.4f);
+  Manifold m;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Placed& p = pairs[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(detail::collideConvexGeneric(p.a, p.ta, p.b, p.tb, 0.0f, m));
+    benchmark::ClobberMemory();
+  }
+}
+// A box resting face-down on a larger box, slightly wobbling: four clipped points.
+void BM_CollideBoxOnBoxResting(benchmark::State& state) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<Placed> pairs;
+  for (int i = 0; i < kPairs; ++i) {
+    const Quat wobble =
+        glm::angleAxis(glm::radians(0.5f * unit(rng)), glm::normalize(Vec3(unit(rng), 1e-3f, unit(rng))));
+    pairs.push_back({Box{Vec3(3.0f, 0.5f, 3.0f)}, Box{Vec3(0.5f)}, Transform{},
+                     Transform{Vec3(0.5f * unit(rng), 0.99f, 0.5f * unit(rng)), wobble, 1.0f}});
+  }
+  Manifold m;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Placed& p = pairs[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(collide::collide(p.a, p.ta, p.b, p.tb, m));
+    benchmark::ClobberMemory();
+  }
+}
+// Hulls of 24 random points on a sphere (about 14 faces each).
+void BM_CollideHullHullSat(benchmark::State& s) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  auto hull = [&] {
+    std::vector<Vec3> points(24);
+    for (Vec3& p : points) p = 0.5f * glm::normalize(Vec3(n(rng), n(rng), n(rng)));
+    return Shape(ConvexHull::fromPoints(points));
+  };
+  runCollide(s, hull(), hull(), 1.0f);
+}
 void BM_CollideEllipsoidCylinderGjkEpa(benchmark::State& s) {
   runCollide(s, Ellipsoid{Vec3(0.5f, 0.3f, 0.4f)}, Cylinder{0.4f, 0.5f}, 1.2f);
 }
@@ -85,7 +129,10 @@ BENCHMARK(BM_CollideSphereBox);
 BENCHMARK(BM_CollideCapsuleCapsule);
 BENCHMARK(BM_CollideCapsuleBox);
 BENCHMARK(BM_CollidePlaneBox);
-BENCHMARK(BM_CollideBoxBoxGjkEpa);
+BENCHMARK(BM_CollideBoxBoxSat);
+BENCHMARK(BM_BoxBoxGjkEpaKernel);
+BENCHMARK(BM_CollideBoxOnBoxResting);
+BENCHMARK(BM_CollideHullHullSat);
 BENCHMARK(BM_CollideEllipsoidCylinderGjkEpa);
 
 // ---- GJK on 32-vertex polytopes (random points on a sphere), separated pairs ----

@@ -5,6 +5,7 @@
 // override the generic one). A pair is written once, for one order; the mirroring wrapper serves
 // the other order by swapping A and B and flipping the normal.
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -186,6 +187,17 @@ constexpr PairTable buildPairTable() {
   b.add<collideCapsuleBox>(T::Capsule, T::Box, A::Analytic,
                            "GJK/EPA on the core segment, clipped to the box face when lying on it; up to two "
                            "points");
+
+  // Polyhedra: the separating-axis test with face clipping.
+  constexpr ShapeType kPolyhedra[] = {T::Box, T::Kdop, T::ConvexHull};
+  for (std::size_t i = 0; i < std::size(kPolyhedra); ++i) {
+    for (std::size_t j = i; j < std::size(kPolyhedra); ++j) {
+      b.add<collidePolyhedra>(kPolyhedra[i], kPolyhedra[j], A::Sat,
+                              "separating axes (faces, then edge pairs crossing on the Gauss map); face "
+                              "contact: incident face clipped to the reference face, up to four points; "
+                              "edge contact: one point");
+    }
+  }
 
   // 4. Triangle meshes: per triangle near the other shape, merged.
   for (const ShapeType c : kConvexTypes) {

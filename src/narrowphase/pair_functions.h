@@ -63,6 +63,16 @@ bool collideSphereCapsule(const Shape&, const Transform&, const Shape&, const Tr
 bool collideSphereBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collideCapsuleCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collideCapsuleBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+// Box, k-DOP and hull against each other: SAT with face clipping (sat_polyhedra.cpp).
+bool collidePolyhedra(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+// The separating-axis test alone, without the face preference: the largest separation over the
+// face normals and the Gauss-map-pruned edge pairs, and its axis (from A to B). For tests.
+struct SatAxis {
+  float separation = 0.0f;
+  Vec3 axis{0.0f};
+};
+SatAxis polyhedraSeparation(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
+                            const Transform& transformB);
 
 bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);

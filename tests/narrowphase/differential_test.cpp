@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "narrowphase/ccd_reference.h"
 #include "narrowphase/convex_support.h"
 #include "narrowphase/test_helpers.h"
 
@@ -42,29 +43,6 @@ constexpr float kBand = 1e-4f;
 
 constexpr ShapeType kTypes[] = {ShapeType::Sphere, ShapeType::Capsule, ShapeType::Box, ShapeType::Ellipsoid,
                                 ShapeType::Cylinder};
-
-// The full shape's support (core plus radius), as libccd wants it.
-Vec3 fullSupport(const detail::ConvexSupport& s, const Vec3& d) {
-  Vec3 p = s.supportCore(d);
-  if (s.radius > 0.0f) p += s.radius * glm::normalize(d);
-  return p;
-}
-
-void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
-  const auto& s = *static_cast<const detail::ConvexSupport*>(object);
-  const Vec3 p = fullSupport(s, Vec3(direction->v[0], direction->v[1], direction->v[2]));
-  for (int i = 0; i < 3; ++i) out->v[i] = p[i];
-}
-
-void ccdCenter(const void* object, ccd_vec3_t* out) {
-  const auto& s = *static_cast<const detail::ConvexSupport*>(object);
-  for (int i = 0; i < 3; ++i) out->v[i] = s.position[i];
-}
-
-// How far B must move along unit u to leave A: the support of A - B along u.
-float directionalDepth(const detail::ConvexSupport& a, const detail::ConvexSupport& b, const Vec3& u) {
-  return glm::dot(fullSupport(a, u) - fullSupport(b, -u), u);
-}
 
 float boundingRadius(const Shape& shape) { return localBoundingSphere(shape).radius; }
 
@@ -118,15 +96,7 @@ void note(Tally& tally, const std::string& text) {
 Tally runPairType(ShapeType typeA, ShapeType typeB, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = ccdSupport;
-  ccd.support2 = ccdSupport;
-  ccd.center1 = ccdCenter;
-  ccd.center2 = ccdCenter;
-  ccd.max_iterations = 1000;
-  ccd.epa_tolerance = 1e-7;
-  ccd.dist_tolerance = 1e-8;
+  ccd_t ccd = makeCcd();
   Tally tally;
   for (int i = 0; i < kPairsPerType; ++i) {
     const Shape shapeA = randomPrimitive(typeA, rng);
