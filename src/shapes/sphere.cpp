@@ -41,7 +41,9 @@ std::optional<RayHit> localRayCast(const Sphere& s, const Ray& ray) {
   const float t = -b - std::sqrt(discriminant);
   if (t > ray.maxDistance) return std::nullopt;
   const Vec3 point = ray.origin + t * ray.direction;
-  return RayHit{t, point, point / s.radius, 0};
+  // Normalised rather than divided by the radius: at grazing incidence the computed point can sit
+  // a few ulps off the sphere, and the normal must stay unit.
+  return RayHit{t, point, glm::normalize(point), 0};
 }
 
 }  // namespace collide::detail
