@@ -5,7 +5,9 @@
 //      kinematic body are skipped, layers filtered, then collide() with a speculative margin;
 //   4. persist (src/contacts/): last step's contacts merged by pair key, points matched by feature
 //      id for warm starting; the pre-solve callback may disable a contact;
-//   5. solve (src/dynamics/): the soft step over all bodies and enabled contacts;
+//   5. solve (src/dynamics/): the soft step over all bodies and enabled contacts; then the
+//      lecture's interpolated impact on new contacts and viscous/damping friction on prolonged ones
+//      (src/response/contact_response.h), when the WorldDef asks for them;
 //   6. revert (PenetrationResponse::Revert): bodies still penetrating go back to the step's start;
 //   7. events: begin/end contacts and sensor overlaps, in pair order.
 #include <collide/world.h>
@@ -13,6 +15,7 @@
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
 #include "dynamics/contact_solver.h"
+#include "response/contact_response.h"
 
 #include <algorithm>
 #include <cmath>
@@ -114,14 +117,6 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
   check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
   check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
-  // Honest refusals until src/response/ (the lecture's impact and friction models) is wired in.
-  if (def.impactModel == ImpactModel::Interpolated) {
-    throw Error("world: impact_model \"interpolated\" is not implemented yet");
-  }
-  if (def.frictionModel == FrictionModel::Viscous || def.frictionModel == FrictionModel::Damping) {
-    throw Error("world: friction_model \"" + std::string(toString(def.frictionModel)) +
-                "\" is not implemented yet");
-  }
   if (def.sleeping) throw Error("world: sleeping is not implemented yet");
   impl_->def = def;
   impl_->broadPhase = createBroadPhase(def.broadPhase);
@@ -345,8 +340,14 @@ void World::Impl::step(float dt) {
   settings.gravity = def.gravity;
   settings.substeps = def.substeps;
   settings.tuning = def.contact;
-  settings.friction = def.frictionModel != FrictionModel::None;
+  // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
+  settings.friction = def.frictionModel == FrictionModel::Coulomb;
   detail::solveStep(bodies, contacts, constraints, settings, dt);
+  if (def.impactModel == ImpactModel::Interpolated) {
+    detail::applyInterpolatedImpacts(bodies, contacts, constraints, def.contact.restitutionThreshold,
+                                     def.contact.linearSlop);
+  }
+  detail::applyProlongedFriction(bodies, contacts, constraints, def.frictionModel, dt);
   for (BodyRecord& r : bodies.records) {
     r.force = Vec3(0.0f);
     r.torque = Vec3(0.0f);
@@ -451,8 +452,16 @@ void World::Impl::narrowPhase(float dt) {
     c.sensor = sensor;
     c.friction = combine(def.frictionCombine, ra.friction, rb.friction);
     c.restitution = combine(def.bouncinessCombine, ra.bounciness, rb.bounciness);
+    c.impactBounciness = c.restitution;
     c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;
     c.wasTouching = previous ? previous->touching : false;
+    if (def.impactModel == ImpactModel::Interpolated) {
+      // The lecture's impact replaces the solver's restitution, and its glued (inelastic) part
+      // already handles the tangent, so the impact step gets no solver bounce and no Coulomb
+      // friction (friction is for prolonged contacts, lecture slide 12). See contact_response.h.
+      c.restitution = 0.0f;
+      if (!c.wasTouching) c.friction = 0.0f;
+    }
     if (previous) {
       detail::matchContactPoints(*previous, c);
     } else {

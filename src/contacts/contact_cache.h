@@ -35,12 +35,13 @@ struct Contact {
   Manifold manifold;
   std::array<ContactPointState, Manifold::kMaxPoints> points{};
   float friction = 0.0f;
-  float restitution = 0.0f;
-  bool sensor = false;       // overlap only, no response
-  bool enabled = true;       // the pre-solve callback may disable it for this step
-  bool touching = false;     // after this step's narrow phase
-  bool wasTouching = false;  // after last step's
-  int consecutiveSteps = 0;  // steps in a row with points (lecture: friction from the second step)
+  float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model
+  float impactBounciness = 0.0f;  // the combined bounciness, for the lecture's interpolated impact
+  bool sensor = false;            // overlap only, no response
+  bool enabled = true;            // the pre-solve callback may disable it for this step
+  bool touching = false;          // after this step's narrow phase
+  bool wasTouching = false;       // after last step's
+  int consecutiveSteps = 0;       // steps in a row with points (lecture: friction from the second step)
 };
 
 // Copies the accumulated impulses of `previous`'s points onto `current`'s matching points and marks

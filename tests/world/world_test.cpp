@@ -76,10 +76,7 @@ TEST(World, BadWorldDefsAndUnimplementedSettingsAreErrors) {
   def.gravity.y = std::numeric_limits<float>::quiet_NaN();
   expectErrorMentions([&] { World w(def); }, "gravity");
   def = WorldDef{};
-  def.impactModel = ImpactModel::Interpolated;
-  expectErrorMentions([&] { World w(def); }, "not implemented");
-  def = WorldDef{};
-  def.frictionModel = FrictionModel::Viscous;
+  def.sleeping = true;
   expectErrorMentions([&] { World w(def); }, "not implemented");
   EXPECT_EQ(parseCombineRule("multiply"), CombineRule::Multiply);
   EXPECT_EQ(parsePenetrationResponse("revert"), PenetrationResponse::Revert);

@@ -1,0 +1,106 @@
+#include "response/contact_response.h"
+
+#include "response/friction.h"
+#include "response/impact.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace collide::detail {
+
+namespace {
+
+ImpactBody impactBodyOf(const BodyState& s) {
+  // Static and kinematic bodies already carry zero inverse mass and inertia in the body storage.
+  ImpactBody body;
+  body.inverseMass = s.inverseMass;
+  body.inverseInertia = s.inverseMass == 0.0f ? Mat3(0.0f) : s.inverseInertiaWorld;
+  body.linearVelocity = s.linearVelocity;
+  body.angularVelocity = s.angularVelocity;
+  body.centerOfMass = s.centerOfMass;
+  return body;
+}
+
+// Only dynamic bodies take the result: a kinematic partner keeps its prescribed motion.
+void writeBack(const BodyRecord& record, BodyState& s, const ImpactBody& body) {
+  if (record.type != BodyType::Dynamic) return;
+  s.linearVelocity = body.linearVelocity;
+  s.angularVelocity = body.angularVelocity;
+}
+
+bool solverActed(const Contact& c) {
+  for (int i = 0; i < c.manifold.count; ++i)
+    if (c.points[i].maxNormalImpulse > 0.0f) return true;
+  return false;
+}
+
+Vec3 averagePoint(const Manifold& m, float minDepth) {
+  Vec3 sum(0.0f);
+  int n = 0;
+  for (int i = 0; i < m.count; ++i) {
+    if (m.points[i].depth < minDepth) continue;
+    sum += m.points[i].midpoint();
+    ++n;
+  }
+  return sum / static_cast<float>(std::max(n, 1));
+}
+
+}  // namespace
+
+void applyInterpolatedImpacts(BodyStorage& bodies, std::vector<Contact>& contacts,
+                              const std::vector<ContactConstraint>& constraints, float threshold,
+                              float slop) {
+  for (const ContactConstraint& k : constraints) {
+    Contact& c = contacts[k.contactIndex];
+    if (c.wasTouching || !solverActed(c)) continue;  // a prolonged contact, or no impact this step
+    float approach = 0.0f;
+    for (int i = 0; i < k.pointCount; ++i) approach = std::max(approach, -c.points[i].relativeVelocity);
+    // Slow impacts do not bounce (resting contacts stay quiet); the soft solver's result stands.
+    if (approach <= threshold) continue;
+
+    BodyState& sa = bodies.states[k.bodyA];
+    BodyState& sb = bodies.states[k.bodyB];
+    // Undo this contact's impulses: the soft solver has already made the impact perfectly inelastic
+    // along the normal, and the lecture's model needs the velocities before the impact. Exact for
+    // the linear part; the angular part uses the end-of-step inertia (exact for a central impact).
+    for (int i = 0; i < k.pointCount; ++i) {
+      const Vec3 impulse = c.points[i].totalNormalImpulse * k.normal;
+      sa.linearVelocity += sa.inverseMass * impulse;
+      sa.angularVelocity += sa.inverseInertiaWorld * glm::cross(k.points[i].anchorA, impulse);
+      sb.linearVelocity -= sb.inverseMass * impulse;
+      sb.angularVelocity -= sb.inverseInertiaWorld * glm::cross(k.points[i].anchorB, impulse);
+    }
+    ImpactBody a = impactBodyOf(sa);
+    ImpactBody b = impactBodyOf(sb);
+    // The points that touch first carry the impact: those within the slop of the deepest.
+    const Vec3 point = averagePoint(c.manifold, c.manifold.maxDepth() - slop);
+    resolveImpactInterpolated(a, b, point, k.normal, c.impactBounciness);
+    writeBack(bodies.records[k.bodyA], sa, a);
+    writeBack(bodies.records[k.bodyB], sb, b);
+  }
+}
+
+void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
+                            const std::vector<ContactConstraint>& constraints, FrictionModel model,
+                            float dt) {
+  if (model != FrictionModel::Viscous && model != FrictionModel::Damping) return;
+  for (const ContactConstraint& k : constraints) {
+    Contact& c = contacts[k.contactIndex];
+    // Lecture, slide 12: friction acts on a prolonged contact only, from its second step.
+    if (!c.wasTouching || !(c.touching || solverActed(c))) continue;
+    BodyState& sa = bodies.states[k.bodyA];
+    BodyState& sb = bodies.states[k.bodyB];
+    ImpactBody a = impactBodyOf(sa);
+    ImpactBody b = impactBodyOf(sb);
+    const Vec3 point = averagePoint(c.manifold, -std::numeric_limits<float>::infinity());
+    if (model == FrictionModel::Viscous) {
+      applyViscousFriction(a, b, point, k.normal, c.friction, dt);
+    } else {
+      applyDampingFriction(a, b, point, k.normal, std::clamp(c.friction, 0.0f, 1.0f));
+    }
+    writeBack(bodies.records[k.bodyA], sa, a);
+    writeBack(bodies.records[k.bodyB], sb, b);
+  }
+}
+
+}  // namespace collide::detail
