@@ -454,7 +454,7 @@ void World::Impl::narrowPhase(float dt) {
     c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;
     c.wasTouching = previous ? previous->touching : false;
     if (previous) {
-      detail::matchContactPoints(*previous, c);
+      detail::matchContactPoints(*previous, c, def.contact.linearSlop);
     } else {
       c.points = {};
     }
