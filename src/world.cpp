@@ -463,7 +463,7 @@ void World::Impl::narrowPhase(float dt) {
       if (!c.wasTouching) c.friction = 0.0f;
     }
     if (previous) {
-      detail::matchContactPoints(*previous, c);
+      detail::matchContactPoints(*previous, c, def.contact.linearSlop);
     } else {
       c.points = {};
     }

@@ -2,28 +2,59 @@
 
 namespace collide::detail {
 
-void matchContactPoints(const Contact& previous, Contact& current) {
+namespace {
+
+// The nearest untaken point of `previous` that passes `accept`, or -1.
+template <typename Accept>
+int nearestPrevious(const Contact& previous, const ContactPoint& point,
+                    const std::array<bool, Manifold::kMaxPoints>& taken, Accept accept) {
+  int best = -1;
+  float bestDistance2 = 0.0f;
+  for (int j = 0; j < previous.manifold.count; ++j) {
+    if (taken[j] || !accept(previous.manifold.points[j])) continue;
+    const Vec3 d = previous.manifold.points[j].midpoint() - point.midpoint();
+    const float distance2 = glm::dot(d, d);
+    if (best < 0 || distance2 < bestDistance2) {
+      best = j;
+      bestDistance2 = distance2;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void matchContactPoints(const Contact& previous, Contact& current, float matchDistance) {
   std::array<bool, Manifold::kMaxPoints> taken{};
+  std::array<int, Manifold::kMaxPoints> match{};
+  match.fill(-1);
+  // First by feature id (several old points may share an id, e.g. generic GJK contacts all use 0:
+  // the nearest wins).
   for (int i = 0; i < current.manifold.count; ++i) {
     const ContactPoint& point = current.manifold.points[i];
-    int best = -1;
-    float bestDistance2 = 0.0f;
-    for (int j = 0; j < previous.manifold.count; ++j) {
-      if (taken[j] || previous.manifold.points[j].featureId != point.featureId) continue;
-      // Several old points may share an id (generic GJK contacts all use 0): the nearest wins.
-      const Vec3 d = previous.manifold.points[j].midpoint() - point.midpoint();
-      const float distance2 = glm::dot(d, d);
-      if (best < 0 || distance2 < bestDistance2) {
-        best = j;
-        bestDistance2 = distance2;
-      }
-    }
+    match[i] = nearestPrevious(previous, point, taken,
+                               [&](const ContactPoint& old) { return old.featureId == point.featureId; });
+    if (match[i] >= 0) taken[match[i]] = true;
+  }
+  // Then by position: the same physical contact can change its name while it stays in place, e.g.
+  // when two equal faces trade the role of reference face. Losing its impulse would drop the warm
+  // start on exactly the resting contacts that need it.
+  const float limit2 = matchDistance * matchDistance;
+  for (int i = 0; i < current.manifold.count; ++i) {
+    if (match[i] >= 0) continue;
+    const ContactPoint& point = current.manifold.points[i];
+    match[i] = nearestPrevious(previous, point, taken, [&](const ContactPoint& old) {
+      const Vec3 d = old.midpoint() - point.midpoint();
+      return glm::dot(d, d) < limit2;
+    });
+    if (match[i] >= 0) taken[match[i]] = true;
+  }
+  for (int i = 0; i < current.manifold.count; ++i) {
     ContactPointState& state = current.points[i];
     state = ContactPointState{};
-    if (best >= 0) {
-      taken[best] = true;
-      state.normalImpulse = previous.points[best].normalImpulse;
-      state.tangentImpulse = previous.points[best].tangentImpulse;
+    if (match[i] >= 0) {
+      state.normalImpulse = previous.points[match[i]].normalImpulse;
+      state.tangentImpulse = previous.points[match[i]].tangentImpulse;
       state.prolonged = true;
     }
   }

@@ -5,8 +5,11 @@
 // deterministic order for the solver and the events.
 //
 // Each point of a new manifold is matched with last step's point of the same featureId (ties:
-// the nearest one). A matched point is "prolonged" and inherits its accumulated impulses for warm
-// starting; an unmatched one is new and starts from zero.
+// the nearest one); a point whose id finds no partner takes the nearest old point left within the
+// match distance (the world passes its linear slop), because the same physical contact can be renamed
+// while it stays in place: two equal boxes face to face trade the reference face between steps.
+// A matched point is "prolonged" and inherits its accumulated impulses for warm starting; an
+// unmatched one is new and starts from zero.
 #pragma once
 
 #include <collide/narrowphase.h>
@@ -45,8 +48,9 @@ struct Contact {
 };
 
 // Copies the accumulated impulses of `previous`'s points onto `current`'s matching points and marks
-// them prolonged. current.manifold must already hold the new points.
-void matchContactPoints(const Contact& previous, Contact& current);
+// them prolonged. current.manifold must already hold the new points. A point whose id finds no
+// partner takes the nearest unmatched old point within matchDistance (m), if any.
+void matchContactPoints(const Contact& previous, Contact& current, float matchDistance = 0.0f);
 
 inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
   return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;

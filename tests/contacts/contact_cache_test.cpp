@@ -52,5 +52,42 @@ TEST(ContactCache, SharedIdsMatchTheNearestOldPointOnce) {
   EXPECT_EQ(current.points[1].normalImpulse, 1.0f);  // which is taken: the other one
 }
 
+// Two equal boxes resting face to face may trade the reference face between steps: the same four
+// places then come with new ids, and must keep their impulses (else the stack loses its warm start).
+TEST(ContactCache, RenamedPointWithinMatchDistanceInheritsItsImpulse) {
+  Contact previous;
+  previous.manifold.count = 2;
+  previous.manifold.points[0] = pointAt(0.0f, 7);
+  previous.manifold.points[1] = pointAt(1.0f, 9);
+  previous.points[0].normalImpulse = 1.0f;
+  previous.points[0].tangentImpulse = {0.25f, 0.75f};
+  previous.points[1].normalImpulse = 2.0f;
+  Contact current;
+  current.manifold.count = 2;
+  current.manifold.points[0] = pointAt(0.003f, 70);  // renamed, 3 mm away
+  current.manifold.points[1] = pointAt(1.02f, 90);   // renamed, 2 cm away
+  matchContactPoints(previous, current, 0.005f);
+  EXPECT_TRUE(current.points[0].prolonged);
+  EXPECT_EQ(current.points[0].normalImpulse, 1.0f);
+  EXPECT_EQ(current.points[0].tangentImpulse[1], 0.75f);
+  EXPECT_FALSE(current.points[1].prolonged);  // beyond the match distance: a new contact
+  EXPECT_EQ(current.points[1].normalImpulse, 0.0f);
+}
+
+TEST(ContactCache, FeatureIdMatchesComeBeforePositionMatches) {
+  Contact previous;
+  previous.manifold.count = 1;
+  previous.manifold.points[0] = pointAt(0.0f, 7);
+  previous.points[0].normalImpulse = 1.0f;
+  Contact current;
+  current.manifold.count = 2;
+  current.manifold.points[0] = pointAt(0.0f, 8);    // renamed, at the old point's very place
+  current.manifold.points[1] = pointAt(0.004f, 7);  // the old point's id, a little further
+  matchContactPoints(previous, current, 0.005f);
+  EXPECT_FALSE(current.points[0].prolonged);  // the old point went to its id
+  EXPECT_TRUE(current.points[1].prolonged);
+  EXPECT_EQ(current.points[1].normalImpulse, 1.0f);
+}
+
 }  // namespace
 }  // namespace collide::detail

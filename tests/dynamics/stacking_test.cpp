@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
 namespace collide {
 namespace {
@@ -40,9 +42,64 @@ TEST(Stacking, BoxRestingOnGroundBoxDoesNotDrift) {
   expectRestingBoxStill(test::groundBox());
 }
 
-// Left out until they pass (no loosened thresholds): the 10-box stack and the R3 pyramid. Measured
-// with the SAT box-box manifold merged in, 600 steps: the 10-stack's top box ends 4.2 cm low and
-// 4.6 cm off in z; the pyramid's top cube 8.6 cm low and 4.9 cm off in z (limit: 1 cm per axis).
+// The top box of a scene that should stand still: how far it moved per axis after `steps` steps.
+struct StandingResult {
+  Vec3 topDisplacement{0.0f};
+  float largestFinalSpeed = 0.0f;
+};
+
+StandingResult runStanding(const std::vector<Vec3>& centres, int steps) {
+  World world;
+  world.createBody(test::groundBox());
+  std::vector<BodyId> boxes;
+  std::size_t top = 0;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    boxes.push_back(world.createBody(test::boxBody(centres[i], Vec3(0.5f), 1.0f)));
+    if (centres[i].y > centres[top].y) top = i;
+  }
+  for (int i = 0; i < steps; ++i) world.step(kDt);
+  StandingResult result;
+  result.topDisplacement = world.transform(boxes[top]).position - centres[top];
+  for (const BodyId id : boxes)
+    result.largestFinalSpeed = std::max(result.largestFinalSpeed, glm::length(world.linearVelocity(id)));
+  return result;
+}
+
+// Disabled until they pass (no loosened thresholds); run with --gtest_also_run_disabled_tests. Figures
+// after matching renamed contact points by position (Release, 600 steps of 1/60 s): the 10-stack's
+// top box ends (-0.21, -2.60, -0.37) cm off, the R3 pyramid's (0.09, -6.46, -0.54) cm (before: 4.2 cm
+// low and 4.6 cm off in z; 8.6 cm low and 4.9 cm off in z). The sag is the soft contact's spring: at
+// rest each contact is compressed by load / (effective mass * omega^2), which for the stack is
+// sum over contacts of 2 * 9.81 * k / (2 pi 30 Hz)^2, k = 1..9 boxes above = 2.5 cm.
+TEST(Stacking, DISABLED_TenBoxStackStandsForTenSeconds) {
+  if (!boxBoxHasFaceManifold()) GTEST_SKIP() << "box-box needs SAT with clipping";
+  std::vector<Vec3> centres;
+  for (int i = 0; i < 10; ++i) centres.emplace_back(0.0f, 0.5f + static_cast<float>(i), 0.0f);
+  const StandingResult r = runStanding(centres, 600);
+  std::printf("stack top displacement (%g, %g, %g) largest speed %g\n", r.topDisplacement.x,
+              r.topDisplacement.y, r.topDisplacement.z, r.largestFinalSpeed);
+  EXPECT_LT(std::abs(r.topDisplacement.x), 1e-2f);
+  EXPECT_LT(std::abs(r.topDisplacement.y), 1e-2f);
+  EXPECT_LT(std::abs(r.topDisplacement.z), 1e-2f);
+}
+
+// Reference scene R3 (/work/shared/reference-scenes.md): 465 unit cubes in rows of 30..1.
+TEST(Stacking, DISABLED_PyramidR3StandsForTenSeconds) {
+  if (!boxBoxHasFaceManifold()) GTEST_SKIP() << "box-box needs SAT with clipping";
+  std::vector<Vec3> centres;
+  for (int r = 0; r < 30; ++r) {
+    const int n = 30 - r;
+    for (int i = 0; i < n; ++i)
+      centres.emplace_back(static_cast<float>(i) - 0.5f * static_cast<float>(n - 1),
+                           0.5f + static_cast<float>(r), 0.0f);
+  }
+  const StandingResult r = runStanding(centres, 600);
+  std::printf("pyramid top displacement (%g, %g, %g) largest speed %g\n", r.topDisplacement.x,
+              r.topDisplacement.y, r.topDisplacement.z, r.largestFinalSpeed);
+  EXPECT_LT(std::abs(r.topDisplacement.x), 1e-2f);
+  EXPECT_LT(std::abs(r.topDisplacement.y), 1e-2f);
+  EXPECT_LT(std::abs(r.topDisplacement.z), 1e-2f);
+}
 
 }  // namespace
 }  // namespace collide
