@@ -78,6 +78,41 @@ struct BroadPhase::RayQuery {
   }
 };
 
+// Queries by a linear scan over every proxy: exact, and all that brute force has; sweep and prune
+// uses them too, since its lists are sorted only inside findPairs.
+class LinearScanBroadPhase : public BroadPhase {
+protected:
+  explicit LinearScanBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
+
+  void rayCastImpl(RayQuery& query) const override {
+    const auto count = static_cast<std::uint32_t>(proxies_.size());
+    for (std::uint32_t i = 0; i < count; ++i) {
+      if (proxies_[i].alive && !query.report(i)) return;
+    }
+  }
+  void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {
+    scan(mask, callback, [&](const Aabb& b) { return b.overlaps(box); });
+  }
+  void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
+                       const OverlapCallback& callback) const override {
+    scan(mask, callback, [&](const Aabb& b) { return sphereTouchesBox(sphere, b); });
+  }
+  void queryFrustumImpl(const Frustum& frustum, LayerMask mask,
+                        const OverlapCallback& callback) const override {
+    scan(mask, callback, [&](const Aabb& b) { return frustum.intersects(b); });
+  }
+
+private:
+  template <typename Test>
+  void scan(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
+    const auto count = static_cast<std::uint32_t>(proxies_.size());
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const ProxyRecord& p = proxies_[i];
+      if (p.alive && passesMask(p, mask) && test(p.bounds) && !callback(idOf(i))) return;
+    }
+  }
+};
+
 // Factories of the four algorithms (one file each).
 std::unique_ptr<BroadPhase> makeTreeBroadPhase(const BroadPhaseSettings& settings);
 std::unique_ptr<BroadPhase> makeSweepAndPruneBroadPhase(const BroadPhaseSettings& settings);

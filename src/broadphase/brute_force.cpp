@@ -6,9 +6,9 @@ namespace collide {
 
 namespace {
 
-class BruteForceBroadPhase final : public BroadPhase {
+class BruteForceBroadPhase final : public LinearScanBroadPhase {
  public:
-  explicit BruteForceBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
+  explicit BruteForceBroadPhase(const BroadPhaseSettings& settings) : LinearScanBroadPhase(settings) {}
 
  private:
   void onAdd(std::uint32_t) override {}
@@ -31,33 +31,6 @@ class BruteForceBroadPhase final : public BroadPhase {
     return true;  // generated in (a, b) order
   }
 
-  void rayCastImpl(RayQuery& query) const override {
-    const auto count = static_cast<std::uint32_t>(proxies_.size());
-    for (std::uint32_t i = 0; i < count; ++i) {
-      if (proxies_[i].alive && !query.report(i)) return;
-    }
-  }
-
-  template <typename Test>
-  void scan(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
-    const auto count = static_cast<std::uint32_t>(proxies_.size());
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const ProxyRecord& p = proxies_[i];
-      if (p.alive && passesMask(p, mask) && test(p.bounds) && !callback(idOf(i))) return;
-    }
-  }
-
-  void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {
-    scan(mask, callback, [&](const Aabb& b) { return b.overlaps(box); });
-  }
-  void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
-                       const OverlapCallback& callback) const override {
-    scan(mask, callback, [&](const Aabb& b) { return sphereTouchesBox(sphere, b); });
-  }
-  void queryFrustumImpl(const Frustum& frustum, LayerMask mask,
-                        const OverlapCallback& callback) const override {
-    scan(mask, callback, [&](const Aabb& b) { return frustum.intersects(b); });
-  }
 };
 
 }  // namespace

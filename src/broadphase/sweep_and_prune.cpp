@@ -17,9 +17,9 @@ namespace collide {
 
 namespace {
 
-class SweepAndPruneBroadPhase final : public BroadPhase {
+class SweepAndPruneBroadPhase final : public LinearScanBroadPhase {
  public:
-  explicit SweepAndPruneBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
+  explicit SweepAndPruneBroadPhase(const BroadPhaseSettings& settings) : LinearScanBroadPhase(settings) {}
 
  private:
   struct Entry {
@@ -168,35 +168,6 @@ class SweepAndPruneBroadPhase final : public BroadPhase {
     return false;
   }
 
-  // Queries: sweep and prune is a pair finder; its lists are only sorted inside findPairs, so
-  // queries scan the proxies linearly (they remain exact).
-  void rayCastImpl(RayQuery& query) const override {
-    const auto count = static_cast<std::uint32_t>(proxies_.size());
-    for (std::uint32_t i = 0; i < count; ++i) {
-      if (proxies_[i].alive && !query.report(i)) return;
-    }
-  }
-
-  template <typename Test>
-  void scan(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
-    const auto count = static_cast<std::uint32_t>(proxies_.size());
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const ProxyRecord& p = proxies_[i];
-      if (p.alive && passesMask(p, mask) && test(p.bounds) && !callback(idOf(i))) return;
-    }
-  }
-
-  void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {
-    scan(mask, callback, [&](const Aabb& b) { return b.overlaps(box); });
-  }
-  void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
-                       const OverlapCallback& callback) const override {
-    scan(mask, callback, [&](const Aabb& b) { return sphereTouchesBox(sphere, b); });
-  }
-  void queryFrustumImpl(const Frustum& frustum, LayerMask mask,
-                        const OverlapCallback& callback) const override {
-    scan(mask, callback, [&](const Aabb& b) { return frustum.intersects(b); });
-  }
 
   List movables_;
   List statics_;
