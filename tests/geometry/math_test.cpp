@@ -7,17 +7,14 @@
 
 #include <cmath>
 #include <random>
+#include "test_assertions.h"
 
 namespace collide {
 namespace {
 
 constexpr float kEps = 1e-5f;
 
-void expectVecNear(const Vec3& expected, const Vec3& actual, float tolerance = kEps) {
-  EXPECT_NEAR(expected.x, actual.x, tolerance);
-  EXPECT_NEAR(expected.y, actual.y, tolerance);
-  EXPECT_NEAR(expected.z, actual.z, tolerance);
-}
+using test::expectVecNear;
 
 Transform makeTransform(const Vec3& position, float angle, const Vec3& axis, float scale) {
   return {position, glm::angleAxis(angle, glm::normalize(axis)), scale};

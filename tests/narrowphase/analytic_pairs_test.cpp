@@ -7,6 +7,7 @@
 
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/test_helpers.h"
+#include "test_assertions.h"
 
 using namespace collide;
 using namespace collide::test;
@@ -17,11 +18,7 @@ namespace {
 
 constexpr float kTolerance = 1e-5f;
 
-void expectVecNear(const Vec3& actual, const Vec3& expected, float tolerance = kTolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using test::expectVecNear;
 
 // The manifold contract of narrowphase.h: unit normal, depth = (pA - pB)·n, at most four points.
 void expectContract(const Manifold& m) {

@@ -9,6 +9,7 @@
 
 #include "response/friction.h"
 #include "response_test_helpers.h"
+#include "test_assertions.h"
 
 using namespace collide;
 using namespace collide::detail;
@@ -16,11 +17,7 @@ using namespace collide::test;
 
 namespace {
 
-void expectVecNear(const Vec3& actual, const Vec3& expected, float tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using test::expectVecNear;
 
 Vec3 relativeAt(const ImpactBody& a, const ImpactBody& b, const Vec3& point) {
   return velocityAt(b, point) - velocityAt(a, point);

@@ -10,6 +10,7 @@
 
 #include "response/impact.h"
 #include "response_test_helpers.h"
+#include "test_assertions.h"
 
 using namespace collide;
 using namespace collide::detail;
@@ -19,11 +20,7 @@ namespace {
 
 constexpr float kTight = 1e-5f;  // closed-form answers in float, velocities of size ~1
 
-void expectVecNear(const Vec3& actual, const Vec3& expected, float tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using test::expectVecNear;
 
 // Runs one model on copies.
 struct Outcome {

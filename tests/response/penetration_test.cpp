@@ -7,6 +7,7 @@
 #include <random>
 
 #include "response/penetration.h"
+#include "test_assertions.h"
 #include "test_random.h"
 
 using namespace collide;
@@ -15,11 +16,7 @@ using namespace collide::test;
 
 namespace {
 
-void expectVecNear(const Vec3& actual, const Vec3& expected, float tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using test::expectVecNear;
 
 }  // namespace
 

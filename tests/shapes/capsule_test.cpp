@@ -4,17 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include "test_assertions.h"
 
 namespace collide {
 namespace {
 
 constexpr float kEps = 1e-5f;
 
-void expectVecNear(const Vec3& expected, const Vec3& actual, float tolerance = kEps) {
-  EXPECT_NEAR(expected.x, actual.x, tolerance);
-  EXPECT_NEAR(expected.y, actual.y, tolerance);
-  EXPECT_NEAR(expected.z, actual.z, tolerance);
-}
+using test::expectVecNear;
 
 // Second moments ∫x², ∫y², ∫z² of a capsule (radius r, half height h, axis y), in double, summed
 // part by part: the cylinder, and the two hemispheres written as a ball split at its equator and

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include "test_assertions.h"
 
 using namespace collide;
 
@@ -15,11 +16,6 @@ void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << "element " << c << "," << r;
   }
-}
-
-void expectVecNear(const Vec3& a, const Vec3& b, float tolerance) {
-  EXPECT_LT(glm::length(a - b), tolerance)
-      << "[" << a.x << " " << a.y << " " << a.z << "] vs [" << b.x << " " << b.y << " " << b.z << "]";
 }
 
 std::string errorOf(std::vector<Compound::Child> children) {
@@ -59,7 +55,7 @@ TEST(Compound, TwoDisjointBoxesSumByTheParallelAxisTheorem) {
   EXPECT_FLOAT_EQ(m.mass, 6.0f);
   EXPECT_FLOAT_EQ(m.volume, 3.0f);
   // Centre of mass (4 (2,0,0) + 2 (-1,1,0)) / 6 = (1, 1/3, 0).
-  expectVecNear(m.centerOfMass, Vec3(1.0f, 1.0f / 3.0f, 0.0f), 1e-6f);
+  test::expectVecWithin(m.centerOfMass, Vec3(1.0f, 1.0f / 3.0f, 0.0f), 1e-6f);
   // Own inertias, m/12 (b^2 + c^2): A = 4/12 (1+1, 4+1, 4+1) = (2/3, 5/3, 5/3); B = 2/12 * 2 = 1/3 each.
   // Offsets from the common centre: dA = (1, -1/3, 0), dB = (-2, 2/3, 0).
   // Parallel axis, m (|d|^2 - d_i^2) on the diagonal and -m d_i d_j off it:
@@ -86,7 +82,7 @@ TEST(Compound, OneChildHasTheMassPropertiesOfThatChildPlacedThere) {
     const MassProperties expected = massProperties(Shape(placed), 1.5f);
     const MassProperties actual = massProperties(Shape(compound), 1.5f);
     EXPECT_NEAR(actual.mass, expected.mass, 1e-4f * expected.mass);
-    expectVecNear(actual.centerOfMass, expected.centerOfMass, 1e-4f);
+    test::expectVecWithin(actual.centerOfMass, expected.centerOfMass, 1e-4f);
     expectMatNear(actual.inertia, expected.inertia, 1e-4f * expected.inertia[0][0] + 1e-4f);
   }
 }
@@ -102,7 +98,7 @@ TEST(Compound, NestedCompoundEqualsTheFlattenedOne) {
       {{Shape(Box{{0.5f, 1.0f, 0.2f}}), outer * t1}, {Shape(Sphere{0.4f}), outer * t2}}));
   const MassProperties a = massProperties(nested, 1.0f), b = massProperties(flat, 1.0f);
   EXPECT_NEAR(a.mass, b.mass, 1e-4f * b.mass);
-  expectVecNear(a.centerOfMass, b.centerOfMass, 1e-3f);
+  test::expectVecWithin(a.centerOfMass, b.centerOfMass, 1e-3f);
   expectMatNear(a.inertia, b.inertia, 1e-3f * b.inertia[0][0]);
   for (int i = 0; i < 200; ++i) {
     const Vec3 p = test::randomPoint(rng, -15.0f, 15.0f);
@@ -120,8 +116,8 @@ TEST(Compound, BoundsAreTheUnionOfTheChildren) {
     Aabb expected;
     for (const Compound::Child& c : children) expected.grow(worldBounds(c.shape, w * c.transform));
     const Aabb actual = trial == 0 ? localBounds(compound) : worldBounds(compound, w);
-    expectVecNear(actual.min, expected.min, 1e-4f);
-    expectVecNear(actual.max, expected.max, 1e-4f);
+    test::expectVecWithin(actual.min, expected.min, 1e-4f);
+    test::expectVecWithin(actual.max, expected.max, 1e-4f);
   }
 }
 
@@ -162,7 +158,7 @@ TEST(Compound, RayCastsMatchBruteForceOverChildren) {
     EXPECT_NEAR(actual->distance, best, 1e-4f * std::max(1.0f, best)) << "ray " << i;
     if (secondBest - best > 1e-3f) {  // the nearest child is unambiguous
       EXPECT_EQ(actual->subShape, bestChild) << "ray " << i;
-      expectVecNear(actual->normal, bestHit->normal, 1e-3f);
+      test::expectVecWithin(actual->normal, bestHit->normal, 1e-3f);
     }
   }
   EXPECT_GT(hits, 400);

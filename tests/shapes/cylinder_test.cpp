@@ -4,17 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include "test_assertions.h"
 
 namespace collide {
 namespace {
 
 constexpr float kEps = 1e-5f;
 
-void expectVecNear(const Vec3& expected, const Vec3& actual, float tolerance = kEps) {
-  EXPECT_NEAR(expected.x, actual.x, tolerance);
-  EXPECT_NEAR(expected.y, actual.y, tolerance);
-  EXPECT_NEAR(expected.z, actual.z, tolerance);
-}
+using test::expectVecNear;
 
 const Cylinder kCylinder{1.0f, 2.0f};
 

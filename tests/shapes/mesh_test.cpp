@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include "test_assertions.h"
 
 using namespace collide;
 
@@ -16,11 +17,6 @@ void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << "element " << c << "," << r;
   }
-}
-
-void expectVecNear(const Vec3& a, const Vec3& b, float tolerance) {
-  EXPECT_LT(glm::length(a - b), tolerance)
-      << "[" << a.x << " " << a.y << " " << a.z << "] vs [" << b.x << " " << b.y << " " << b.z << "]";
 }
 
 std::string errorOf(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
@@ -45,13 +41,13 @@ TEST(TriangleMesh, BoxMeshIsClosedAndHasTheBoxMassProperties) {
   EXPECT_TRUE(mesh.isClosed());
   EXPECT_EQ(mesh.triangles().size(), 12u);
   EXPECT_NEAR(mesh.volume(), 8.0f * h.x * h.y * h.z, 1e-5f);
-  expectVecNear(mesh.centroid(), offset, 1e-5f);
+  test::expectVecWithin(mesh.centroid(), offset, 1e-5f);
 
   const MassProperties fromMesh = massProperties(Shape(mesh), 3.0f, 2.0f);
   const MassProperties fromBox = massProperties(Box{h}, 3.0f, 2.0f);
   EXPECT_NEAR(fromMesh.mass, fromBox.mass, 1e-4f * fromBox.mass);
   EXPECT_NEAR(fromMesh.volume, fromBox.volume, 1e-4f * fromBox.volume);
-  expectVecNear(fromMesh.centerOfMass, 2.0f * offset, 1e-4f);  // scale 2 moves the centroid too
+  test::expectVecWithin(fromMesh.centerOfMass, 2.0f * offset, 1e-4f);  // scale 2 moves the centroid too
   expectMatNear(fromMesh.inertia, fromBox.inertia, 1e-4f * fromBox.inertia[0][0]);
 }
 
@@ -68,7 +64,7 @@ TEST(TriangleMesh, IcosphereVolumeConvergesToTheSphereFromBelow) {
     EXPECT_LT(previousError / error, 4.5f) << "level " << level;
     previousError = error;
     // Symmetric about the origin, and nearly isotropic inertia 2/5 m r^2 (unit density, r = 1).
-    expectVecNear(mesh.centroid(), Vec3(0.0f), 1e-5f);
+    test::expectVecWithin(mesh.centroid(), Vec3(0.0f), 1e-5f);
     const float expected = 0.4f * mesh.volume();
     for (int i = 0; i < 3; ++i) {
       EXPECT_NEAR(mesh.unitInertia()[i][i], expected, 2.0f * error / sphereVolume * expected);
@@ -118,7 +114,7 @@ TEST(TriangleMesh, InsideOutClosedMeshStillHasPositiveMassAndOutwardNormals) {
   expectMatNear(m.inertia, massProperties(Box{{1.0f, 2.0f, 3.0f}}, 1.0f).inertia, 1e-3f);
   EXPECT_TRUE(containsPoint(Shape(inverted), Transform{}, {0.5f, 0.5f, 0.5f}));
   const SurfacePoint inside = closestPoint(Shape(inverted), Transform{}, {0.9f, 0.0f, 0.0f});
-  expectVecNear(inside.normal, Vec3(1, 0, 0), 1e-6f);
+  test::expectVecWithin(inside.normal, Vec3(1, 0, 0), 1e-6f);
   EXPECT_NEAR(inside.signedDistance, -0.1f, 1e-5f);
 }
 
@@ -162,8 +158,8 @@ TEST(TriangleMesh, RayCastsOnABoxMeshAgreeWithTheBoxShape) {
     ++hits;
     if (expected->distance == 0.0f) ++inside;
     EXPECT_NEAR(actual->distance, expected->distance, 1e-4f) << "ray " << i;
-    expectVecNear(actual->normal, expected->normal, 1e-4f);
-    expectVecNear(actual->point, expected->point, 1e-4f);
+    test::expectVecWithin(actual->normal, expected->normal, 1e-4f);
+    test::expectVecWithin(actual->point, expected->point, 1e-4f);
   }
   EXPECT_GT(hits, 300);  // enough rays hit for the comparison to mean something
   EXPECT_GE(inside, 100);
@@ -228,7 +224,7 @@ TEST(TriangleMesh, ClosestPointsMatchBruteForce) {
     EXPECT_NEAR(actual.signedDistance, expected, 1e-5f * std::max(1.0f, expected)) << "point " << i;
     EXPECT_NEAR(glm::length(p - actual.point), expected, 1e-5f * std::max(1.0f, expected));
     // Open surface: the normal runs from the surface to the point.
-    if (expected > 1e-3f) expectVecNear(actual.normal, (p - actual.point) / expected, 1e-4f);
+    if (expected > 1e-3f) test::expectVecWithin(actual.normal, (p - actual.point) / expected, 1e-4f);
   }
 }
 
@@ -244,7 +240,7 @@ TEST(TriangleMesh, ClosestPointsOnABoxMeshAgreeWithTheBoxShape) {
     const SurfacePoint expected = closestPoint(box, t, t.applyToPoint(local));
     const SurfacePoint actual = closestPoint(mesh, t, t.applyToPoint(local));
     EXPECT_NEAR(actual.signedDistance, expected.signedDistance, 1e-4f) << "point " << i;
-    expectVecNear(actual.point, expected.point, 1e-4f);
+    test::expectVecWithin(actual.point, expected.point, 1e-4f);
     // The outward face normal matches the box's wherever one face is nearest: inside, and outside
     // in a face region (exactly one coordinate beyond the box).
     const int beyond =
@@ -255,7 +251,7 @@ TEST(TriangleMesh, ClosestPointsOnABoxMeshAgreeWithTheBoxShape) {
       const float smallest = std::min({sorted[0], sorted[1], sorted[2]});
       int ties = 0;
       for (float g : sorted) ties += int(g - smallest < 1e-3f);
-      if (ties == 1 || beyond == 1) expectVecNear(actual.normal, expected.normal, 1e-4f);
+      if (ties == 1 || beyond == 1) test::expectVecWithin(actual.normal, expected.normal, 1e-4f);
     }
     insideCount += int(expected.signedDistance < 0.0f);
   }
@@ -331,7 +327,7 @@ TEST(TriangleMesh, RayFromInsideAClosedMeshHitsAtZero) {
   const std::optional<RayHit> quadHit = rayCast(quad, Transform{}, {{0.5f, -1.0f, 0.5f}, {0, 1, 0}, 10.0f});
   ASSERT_TRUE(quadHit);
   EXPECT_FLOAT_EQ(quadHit->distance, 1.0f);
-  expectVecNear(quadHit->normal, Vec3(0, -1, 0), 1e-6f);
+  test::expectVecWithin(quadHit->normal, Vec3(0, -1, 0), 1e-6f);
 }
 
 // ---- Bad input ----

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include "test_assertions.h"
 
 namespace collide {
 namespace {
@@ -12,11 +13,7 @@ using ::testing::HasSubstr;
 
 constexpr float kEps = 1e-5f;
 
-void expectVecNear(const Vec3& expected, const Vec3& actual, float tolerance = kEps) {
-  EXPECT_NEAR(expected.x, actual.x, tolerance);
-  EXPECT_NEAR(expected.y, actual.y, tolerance);
-  EXPECT_NEAR(expected.z, actual.z, tolerance);
-}
+using test::expectVecNear;
 
 const Plane kGround{Vec3(0.0f, 1.0f, 0.0f), 2.0f};
 

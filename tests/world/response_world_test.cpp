@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include "test_assertions.h"
 
 namespace collide {
 namespace {
@@ -30,22 +31,18 @@ std::pair<Vec3, Vec3> headOn(float bounciness, const Vec3& vA, const Vec3& vB) {
   return {world.linearVelocity(ia), world.linearVelocity(ib)};
 }
 
-void expectNear(const Vec3& actual, const Vec3& expected, float tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using test::expectVecNear;
 
 TEST(WorldResponse, InterpolatedElasticHeadOnSwapsVelocities) {
   const auto [va, vb] = headOn(1.0f, Vec3(3.0f, 0.0f, 0.0f), Vec3(-1.0f, 0.0f, 0.0f));
-  expectNear(va, Vec3(-1.0f, 0.0f, 0.0f), 0.03f);  // 1% of the 3 m/s
-  expectNear(vb, Vec3(3.0f, 0.0f, 0.0f), 0.03f);
+  expectVecNear(va, Vec3(-1.0f, 0.0f, 0.0f), 0.03f);  // 1% of the 3 m/s
+  expectVecNear(vb, Vec3(3.0f, 0.0f, 0.0f), 0.03f);
 }
 
 TEST(WorldResponse, InterpolatedInelasticHeadOnLeavesWithTheAverage) {
   const auto [va, vb] = headOn(0.0f, Vec3(3.0f, 0.0f, 0.0f), Vec3(-1.0f, 0.0f, 0.0f));
-  expectNear(va, Vec3(1.0f, 0.0f, 0.0f), 0.03f);
-  expectNear(vb, Vec3(1.0f, 0.0f, 0.0f), 0.03f);
+  expectVecNear(va, Vec3(1.0f, 0.0f, 0.0f), 0.03f);
+  expectVecNear(vb, Vec3(1.0f, 0.0f, 0.0f), 0.03f);
 }
 
 // A static wall whose face is the plane x = 1.5, a sphere of radius 0.5 at the origin.
@@ -103,7 +100,7 @@ TEST(WorldResponse, InterpolatedTwoWayImpactConservesMomentum) {
     world.createBody(b);
     const Vec3 before = world.linearMomentum();
     for (int i = 0; i < 40; ++i) world.step(kDt);
-    expectNear(world.linearMomentum(), before, 0.01f * glm::length(before));
+    expectVecNear(world.linearMomentum(), before, 0.01f * glm::length(before));
     // The impact happened: A no longer moves at its initial velocity.
     EXPECT_GT(glm::length(world.linearVelocity(ia) - Vec3(3.0f, 0.0f, 0.0f)), 0.5f) << e;
   }

@@ -1,0 +1,23 @@
+// Assertions shared by the tests.
+#pragma once
+
+#include <collide/math.h>
+#include <gtest/gtest.h>
+
+namespace collide::test {
+
+// Component-wise |actual - expected| <= tolerance.
+inline void expectVecNear(const Vec3& actual, const Vec3& expected, float tolerance = 1e-5f) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+// Euclidean |actual - expected| < tolerance, printing both vectors.
+inline void expectVecWithin(const Vec3& actual, const Vec3& expected, float tolerance) {
+  EXPECT_LT(glm::length(actual - expected), tolerance)
+      << "[" << actual.x << " " << actual.y << " " << actual.z << "] vs [" << expected.x << " " << expected.y
+      << " " << expected.z << "]";
+}
+
+}  // namespace collide::test
