@@ -19,15 +19,7 @@ namespace collide {
 namespace {
 
 using DVec3 = glm::dvec3;
-
-// An orthonormal pair spanning the plane across a unit vector (Duff et al. 2017, in double).
-void basisAcross(const DVec3& n, DVec3& outU, DVec3& outV) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double b = n.x * n.y * a;
-  outU = DVec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  outV = DVec3(b, sign + n.y * n.y * a, -n.y);
-}
+using bounding::basisAcross;
 
 struct Candidate {
   glm::dmat3 axes{1.0};  // columns: box axes, right-handed

@@ -4,6 +4,7 @@
 #include <collide/error.h>
 #include <collide/math.h>
 
+#include <cmath>
 #include <span>
 #include <string>
 #include <string_view>
@@ -30,5 +31,15 @@ PrincipalAxes principalAxes(std::span<const Vec3> points);
 // A unit quaternion (float) for the rotation whose columns are the given right-handed orthonormal
 // axes.
 Quat rotationFromAxes(const glm::dmat3& axes);
+
+// An orthonormal pair spanning the plane across a unit vector (Duff et al. 2017, "Building an
+// orthonormal basis, revisited", in double).
+inline void basisAcross(const glm::dvec3& n, glm::dvec3& outU, glm::dvec3& outV) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  outU = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  outV = glm::dvec3(b, sign + n.y * n.y * a, -n.y);
+}
 
 }  // namespace collide::bounding
