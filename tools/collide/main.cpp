@@ -1,6 +1,7 @@
 // The collide command. Until `collide run` lands (the scene runner), it builds one proxy of every
 // type, places it, and prints what each proxy answers: mass properties, bounds, a ray cast and a
-// point test, so a new user sees the library work end to end.
+// point test, so a new user sees the library work end to end. `collide pairs` prints the narrow
+// phase's pair table.
 #include <collide/collide.h>
 
 #include <cstdio>
@@ -41,7 +42,17 @@ std::vector<std::pair<std::string, Shape>> everyProxy() {
 
 }  // namespace
 
-int main() try {
+int main(int argc, char** argv) try {
+  const std::string command = argc > 1 ? argv[1] : "";
+  if (command == "pairs") {
+    // The narrow phase's pair table: which algorithm answers each pair of proxy types.
+    std::printf("%s", describePairTable().c_str());
+    return 0;
+  }
+  if (!command.empty()) {
+    std::fprintf(stderr, "collide: unknown command '%s'\nusage: collide [pairs]\n", command.c_str());
+    return 2;
+  }
   // Every proxy sits at (0, 1, 0), turned 30 degrees about z; a ray comes down the y axis.
   const Transform placement{Vec3(0, 1, 0), glm::angleAxis(kPi / 6, Vec3(0, 0, 1))};
   const Ray ray{Vec3(0.05f, 10.0f, 0.02f), Vec3(0, -1, 0), 100.0f};
