@@ -39,6 +39,18 @@ void applyImpulse(BodyState& a, BodyState& b, const Vec3& rA, const Vec3& rB, co
   b.angularVelocity += b.inverseInertiaWorld * glm::cross(rB, impulse);
 }
 
+// Adds `impulse` to the point's accumulated normal impulse, clamped so the total never pulls
+// (contacts only push), records it, and applies the change to both bodies.
+void applyNormalImpulse(BodyState& a, BodyState& b, const ConstraintPoint& p, const Vec3& normal,
+                        float impulse, ContactPointState& state) {
+  const float newImpulse = std::max(state.normalImpulse + impulse, 0.0f);
+  impulse = newImpulse - state.normalImpulse;
+  state.normalImpulse = newImpulse;
+  state.maxNormalImpulse = std::max(state.maxNormalImpulse, impulse);
+  state.totalNormalImpulse += impulse;
+  applyImpulse(a, b, p.anchorA, p.anchorB, impulse * normal);
+}
+
 void prepare(BodyStorage& bodies, std::vector<Contact>& contacts, std::vector<ContactConstraint>& constraints,
              const SolverSettings& settings, float h) {
   // Stiffness is capped at a quarter of the substep rate so the spring stays resolvable (Box2D v3).
@@ -132,12 +144,7 @@ void solveContacts(BodyStorage& bodies, std::vector<Contact>& contacts,
       }
       const float vn = glm::dot(relativeVelocity(a, b, p.anchorA, p.anchorB), c.normal);
       float impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * state.normalImpulse;
-      const float newImpulse = std::max(state.normalImpulse + impulse, 0.0f);
-      impulse = newImpulse - state.normalImpulse;
-      state.normalImpulse = newImpulse;
-      state.maxNormalImpulse = std::max(state.maxNormalImpulse, impulse);
-      state.totalNormalImpulse += impulse;
-      applyImpulse(a, b, p.anchorA, p.anchorB, impulse * c.normal);
+      applyNormalImpulse(a, b, p, c.normal, impulse, state);
     }
 
     if (c.friction == 0.0f) continue;
@@ -179,12 +186,7 @@ void applyRestitution(BodyStorage& bodies, std::vector<Contact>& contacts,
       if (state.relativeVelocity > -threshold || state.maxNormalImpulse == 0.0f) continue;
       const float vn = glm::dot(relativeVelocity(a, b, p.anchorA, p.anchorB), c.normal);
       float impulse = -p.normalMass * (vn + c.restitution * state.relativeVelocity);
-      const float newImpulse = std::max(state.normalImpulse + impulse, 0.0f);
-      impulse = newImpulse - state.normalImpulse;
-      state.normalImpulse = newImpulse;
-      state.maxNormalImpulse = std::max(state.maxNormalImpulse, impulse);
-      state.totalNormalImpulse += impulse;
-      applyImpulse(a, b, p.anchorA, p.anchorB, impulse * c.normal);
+      applyNormalImpulse(a, b, p, c.normal, impulse, state);
     }
   }
 }
