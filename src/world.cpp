@@ -15,10 +15,12 @@
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
 #include "dynamics/contact_solver.h"
+#include "dynamics/joint_solver.h"
 #include "response/contact_response.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace collide {
@@ -26,6 +28,7 @@ namespace collide {
 using detail::BodyRecord;
 using detail::BodyState;
 using detail::Contact;
+using detail::DistanceJoint;
 
 namespace {
 
@@ -65,8 +68,16 @@ struct World::Impl {
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
   std::vector<detail::ContactConstraint> constraints;
+  std::vector<DistanceJoint> joints;
+  std::vector<std::uint32_t> freeJoints;
+  std::size_t jointCount = 0;
   std::vector<ContactEvent> contactEvents;
   std::vector<SensorEvent> sensorEvents;
+  // End events of destroyed bodies' contacts, handed out with the next step's events.
+  std::vector<ContactEvent> pendingContactEvents;
+  std::vector<SensorEvent> pendingSensorEvents;
+  std::vector<std::uint32_t> islandParent;  // union-find scratch (sleeping)
+  std::vector<float> islandSleepTime;
   BroadPhaseStats lastStats;
   BroadPhaseStats totalStats;
   PreSolveCallback preSolve;
@@ -81,7 +92,74 @@ struct World::Impl {
     return id.index;
   }
 
+  bool isAwakeDynamic(std::uint32_t index) const {
+    const BodyRecord& r = bodies.records[index];
+    return r.alive && r.type == BodyType::Dynamic && r.awake;
+  }
+  bool isSleeping(std::uint32_t index) const {
+    const BodyRecord& r = bodies.records[index];
+    return r.alive && r.type == BodyType::Dynamic && !r.awake;
+  }
+  bool isMovingKinematic(std::uint32_t index) const {
+    const BodyRecord& r = bodies.records[index];
+    const BodyState& s = bodies.states[index];
+    return r.type == BodyType::Kinematic &&
+           (s.linearVelocity != Vec3(0.0f) || s.angularVelocity != Vec3(0.0f));
+  }
+
+  // Wakes the island the body fell asleep with (all of it: an island sleeps and wakes as one, so
+  // a stack never has half its boxes frozen), and restarts an awake body's rest timer.
+  void wake(std::uint32_t index) {
+    BodyRecord& r = bodies.records[index];
+    if (!r.alive || r.type != BodyType::Dynamic) return;
+    r.sleepTime = 0.0f;
+    if (r.awake) return;
+    const std::uint32_t root = r.island;
+    for (BodyRecord& other : bodies.records) {
+      if (other.alive && other.type == BodyType::Dynamic && !other.awake && other.island == root) {
+        other.awake = true;
+        other.sleepTime = 0.0f;
+      }
+    }
+  }
+
+  std::uint32_t findRoot(std::uint32_t i) {
+    while (islandParent[i] != i) {
+      islandParent[i] = islandParent[islandParent[i]];  // path halving
+      i = islandParent[i];
+    }
+    return i;
+  }
+  // The smaller index becomes the root: the islands do not depend on the order of the unions.
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = findRoot(a);
+    b = findRoot(b);
+    if (a < b) islandParent[b] = a;
+    if (b < a) islandParent[a] = b;
+  }
+
   BodyId idOf(std::uint32_t index) const { return {index, bodies.records[index].generation}; }
+
+  std::uint32_t resolve(JointId id, const char* operation) const {
+    if (id.index >= joints.size() || !joints[id.index].alive ||
+        joints[id.index].generation != id.generation) {
+      throw Error(std::string("world: ") + operation + ": invalid or stale constraint id (index " +
+                  std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")");
+    }
+    return id.index;
+  }
+
+  void freeJoint(std::uint32_t index) {
+    joints[index].alive = false;
+    ++joints[index].generation;
+    freeJoints.push_back(index);
+    --jointCount;
+  }
+
+  Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const {
+    const BodyState& s = bodies.states[body];
+    return s.centerOfMass + s.rotation * localAnchor;
+  }
 
   Aabb proxyBounds(std::uint32_t index, float dt) const {
     const BodyRecord& r = bodies.records[index];
@@ -97,7 +175,11 @@ struct World::Impl {
   }
 
   void step(float dt);
+  void solve(float dt);
   void narrowPhase(float dt);
+  void wakeTouchedIslands(float dt);
+  void updateSleep(float dt);
+  float speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const;
   void revertPenetrating();
   void emitEvents();
   ContactEvent makeEvent(const Contact& c, ContactEvent::Type type) const;
@@ -117,7 +199,14 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
   check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
   check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
-  if (def.sleeping) throw Error("world: sleeping is not implemented yet");
+  const SleepTuning& sleep = def.sleep;
+  const auto checkSleep = [](float value, bool ok, const char* field) {
+    if (!isFinite(value) || !ok)
+      throw Error(std::string("world: sleep.") + field + " out of range, got " + formatFloat(value));
+  };
+  checkSleep(sleep.linearSpeed, sleep.linearSpeed >= 0.0f, "linearSpeed (must be >= 0)");
+  checkSleep(sleep.angularSpeed, sleep.angularSpeed >= 0.0f, "angularSpeed (must be >= 0)");
+  checkSleep(sleep.timeToSleep, sleep.timeToSleep > 0.0f, "timeToSleep (must be > 0)");
   impl_->def = def;
   impl_->broadPhase = createBroadPhase(def.broadPhase);
 }
@@ -155,6 +244,17 @@ BodyId World::createBody(const BodyDef& def) {
       def.type == BodyType::Dynamic && !def.shape.mesh().isClosed()) {
     fail("shape: an open triangle mesh has no mass; make the body static or kinematic");
   }
+  if (def.particle) {
+    if (def.type != BodyType::Dynamic)
+      fail("particle: a particle must be a dynamic body, got type " + std::string(toString(def.type)));
+    if (def.shape.type() != ShapeType::Sphere) {
+      fail("particle: a particle's shape must be a sphere, got " + std::string(toString(def.shape.type())));
+    }
+    if (def.angularVelocity != Vec3(0.0f)) {
+      fail("particle: a particle has no angular velocity, got angularVelocity " +
+           formatVec(def.angularVelocity));
+    }
+  }
   if (def.type == BodyType::Dynamic) {
     if (def.mass && (!isFinite(*def.mass) || *def.mass <= 0.0f)) {
       fail("mass must be finite and > 0, got " + formatFloat(*def.mass));
@@ -178,6 +278,7 @@ BodyId World::createBody(const BodyDef& def) {
   r.layer = def.layer;
   r.mask = def.mask;
   r.sensor = def.sensor;
+  r.particle = def.particle;
   try {
     if (def.type == BodyType::Dynamic) {
       MassProperties props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
@@ -185,7 +286,11 @@ BodyId World::createBody(const BodyDef& def) {
       if (def.mass) massScale = *def.mass / props.mass;
       r.mass = props.mass * massScale;
       r.localCenterOfMass = props.centerOfMass;
-      r.inverseInertiaLocal = glm::inverse(props.inertia * massScale);
+      // A particle is a point mass: zero inverse inertia, so no impulse ever turns it.
+      if (!def.particle) {
+        r.inertiaLocal = props.inertia * massScale;
+        r.inverseInertiaLocal = glm::inverse(r.inertiaLocal);
+      }
       s.inverseMass = 1.0f / r.mass;
     }
     if (def.type != BodyType::Static) {
@@ -220,7 +325,27 @@ void World::destroyBody(BodyId id) {
   Impl& w = *impl_;
   const std::uint32_t index = w.resolve(id, "destroyBody");
   w.broadPhase->remove(w.bodies.records[index].proxy);
-  // Its contacts go with it (no end event); the generation check in the merge drops them.
+  for (std::uint32_t j = 0; j < w.joints.size(); ++j) {
+    if (w.joints[j].alive && (w.joints[j].bodyA == index || w.joints[j].bodyB == index)) {
+      w.wake(w.joints[j].bodyA == index ? w.joints[j].bodyB : w.joints[j].bodyA);
+      w.freeJoint(j);
+    }
+  }
+  w.wake(index);
+  // Its contacts go with it: touching ones end now, reported with the next step's events (the
+  // step's event lists are "what happened in the last step", so they are not changed in between).
+  for (const Contact& c : w.contacts) {
+    if (c.bodyA != index && c.bodyB != index) continue;
+    w.wake(c.bodyA == index ? c.bodyB : c.bodyA);  // what rested on it must fall
+    if (!c.touching) continue;
+    if (c.sensor) {
+      const bool aIsSensor = w.bodies.records[c.bodyA].sensor;
+      w.pendingSensorEvents.push_back({SensorEvent::Type::End, w.idOf(aIsSensor ? c.bodyA : c.bodyB),
+                                       w.idOf(aIsSensor ? c.bodyB : c.bodyA)});
+    } else {
+      w.pendingContactEvents.push_back(w.makeEvent(c, ContactEvent::Type::End));
+    }
+  }
   std::erase_if(w.contacts, [&](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
   w.bodies.free(index);
 }
@@ -232,6 +357,9 @@ bool World::isValid(BodyId id) const {
 std::size_t World::bodyCount() const { return impl_->bodies.aliveCount; }
 
 BodyType World::type(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "type")].type; }
+bool World::isParticle(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "isParticle")].particle;
+}
 
 Transform World::transform(BodyId id) const {
   const std::uint32_t i = impl_->resolve(id, "transform");
@@ -252,6 +380,7 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) 
   s.centerOfMass = position + s.rotation * r.localCenterOfMass;
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
   w.broadPhase->update(r.proxy, w.proxyBounds(i, 0.0f));
+  w.wake(i);
 }
 
 Vec3 World::linearVelocity(BodyId id) const {
@@ -266,6 +395,7 @@ void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
   if (!isFinite(velocity))
     throw Error("world: setLinearVelocity: velocity must be finite, got " + formatVec(velocity));
   if (impl_->bodies.records[i].type == BodyType::Static) return;  // static bodies never move
+  impl_->wake(i);
   impl_->bodies.states[i].linearVelocity = velocity;
 }
 
@@ -274,6 +404,13 @@ void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
   if (!isFinite(velocity))
     throw Error("world: setAngularVelocity: velocity must be finite, got " + formatVec(velocity));
   if (impl_->bodies.records[i].type == BodyType::Static) return;
+  if (impl_->bodies.records[i].particle) {
+    if (velocity != Vec3(0.0f))
+      throw Error("world: setAngularVelocity: a particle has no angular velocity, got " +
+                  formatVec(velocity));
+    return;
+  }
+  impl_->wake(i);
   impl_->bodies.states[i].angularVelocity = velocity;
 }
 
@@ -282,6 +419,7 @@ void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint)
   if (!isFinite(impulse) || !isFinite(worldPoint))
     throw Error("world: applyImpulse: impulse and point must be finite");
   if (impl_->bodies.records[i].type != BodyType::Dynamic) return;
+  impl_->wake(i);
   BodyState& s = impl_->bodies.states[i];
   s.linearVelocity += s.inverseMass * impulse;
   s.angularVelocity += s.inverseInertiaWorld * glm::cross(worldPoint - s.centerOfMass, impulse);
@@ -293,16 +431,26 @@ void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
     throw Error("world: applyForce: force and point must be finite");
   BodyRecord& r = impl_->bodies.records[i];
   if (r.type != BodyType::Dynamic) return;
+  impl_->wake(i);
   r.force += force;
-  r.torque += glm::cross(worldPoint - impl_->bodies.states[i].centerOfMass, force);
+  if (!r.particle) r.torque += glm::cross(worldPoint - impl_->bodies.states[i].centerOfMass, force);
 }
 
 void World::applyTorque(BodyId id, const Vec3& torque) {
   const std::uint32_t i = impl_->resolve(id, "applyTorque");
   if (!isFinite(torque)) throw Error("world: applyTorque: torque must be finite, got " + formatVec(torque));
-  if (impl_->bodies.records[i].type != BodyType::Dynamic) return;
+  if (impl_->bodies.records[i].type != BodyType::Dynamic || impl_->bodies.records[i].particle) return;
+  impl_->wake(i);
   impl_->bodies.records[i].torque += torque;
 }
+
+bool World::isAwake(BodyId id) const {
+  const std::uint32_t i = impl_->resolve(id, "isAwake");
+  const BodyRecord& r = impl_->bodies.records[i];
+  return r.type != BodyType::Static && r.awake;
+}
+
+void World::wakeBody(BodyId id) { impl_->wake(impl_->resolve(id, "wakeBody")); }
 
 float World::mass(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "mass")].mass; }
 Vec3 World::centerOfMass(BodyId id) const {
@@ -318,6 +466,87 @@ const std::string& World::name(BodyId id) const {
   return impl_->bodies.records[impl_->resolve(id, "name")].name;
 }
 
+JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
+  Impl& w = *impl_;
+  const auto fail = [](const std::string& message) { throw Error("distance constraint: " + message); };
+  if (!isValid(def.a)) fail("a: invalid or stale body id (index " + std::to_string(def.a.index) + ")");
+  if (!isValid(def.b)) fail("b: invalid or stale body id (index " + std::to_string(def.b.index) + ")");
+  if (def.a == def.b) fail("a and b are the same body (index " + std::to_string(def.a.index) + ")");
+  const BodyRecord& ra = w.bodies.records[def.a.index];
+  const BodyRecord& rb = w.bodies.records[def.b.index];
+  if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) {
+    fail("a and b: at least one body must be dynamic, got " + std::string(toString(ra.type)) + " and " +
+         std::string(toString(rb.type)));
+  }
+  const auto localAnchor = [&](const std::optional<Vec3>& anchor, const BodyRecord& r, const char* field) {
+    if (!anchor) return Vec3(0.0f);
+    if (!isFinite(*anchor)) fail(std::string(field) + " must be finite, got " + formatVec(*anchor));
+    if (r.particle && *anchor != Vec3(0.0f)) {
+      fail(std::string(field) + ": a particle's anchor must be its centre (0, 0, 0), got " +
+           formatVec(*anchor));
+    }
+    return r.scale * *anchor - r.localCenterOfMass;
+  };
+  DistanceJoint joint;
+  joint.bodyA = def.a.index;
+  joint.bodyB = def.b.index;
+  joint.localAnchorA = localAnchor(def.localAnchorA, ra, "localAnchorA");
+  joint.localAnchorB = localAnchor(def.localAnchorB, rb, "localAnchorB");
+  const Vec3 d =
+      w.anchorWorld(joint.bodyB, joint.localAnchorB) - w.anchorWorld(joint.bodyA, joint.localAnchorA);
+  joint.length = glm::length(d);
+  if (def.length) {
+    if (!isFinite(*def.length) || *def.length < 0.0f)
+      fail("length must be finite and >= 0, got " + formatFloat(*def.length));
+    joint.length = *def.length;
+  }
+  if (!isFinite(def.compliance) || def.compliance < 0.0f)
+    fail("compliance must be finite and >= 0, got " + formatFloat(def.compliance));
+  if (!isFinite(def.dampingRatio) || def.dampingRatio < 0.0f)
+    fail("dampingRatio must be finite and >= 0, got " + formatFloat(def.dampingRatio));
+  joint.compliance = def.compliance;
+  joint.dampingRatio = def.dampingRatio;
+  if (glm::length(d) > 1e-6f) joint.axis = d / glm::length(d);
+  joint.alive = true;
+
+  std::uint32_t index;
+  if (!w.freeJoints.empty()) {
+    index = w.freeJoints.back();
+    w.freeJoints.pop_back();
+    joint.generation = w.joints[index].generation;
+    w.joints[index] = joint;
+  } else {
+    index = static_cast<std::uint32_t>(w.joints.size());
+    w.joints.push_back(joint);
+  }
+  ++w.jointCount;
+  w.wake(joint.bodyA);
+  w.wake(joint.bodyB);
+  return {index, w.joints[index].generation};
+}
+
+void World::destroyConstraint(JointId id) {
+  Impl& w = *impl_;
+  const std::uint32_t index = w.resolve(id, "destroyConstraint");
+  w.wake(w.joints[index].bodyA);
+  w.wake(w.joints[index].bodyB);
+  w.freeJoint(index);
+}
+
+bool World::isValid(JointId id) const {
+  return id.index < impl_->joints.size() && impl_->joints[id.index].alive &&
+         impl_->joints[id.index].generation == id.generation;
+}
+std::size_t World::constraintCount() const { return impl_->jointCount; }
+float World::constraintLength(JointId id) const {
+  return impl_->joints[impl_->resolve(id, "constraintLength")].length;
+}
+float World::constraintCurrentLength(JointId id) const {
+  const DistanceJoint& j = impl_->joints[impl_->resolve(id, "constraintCurrentLength")];
+  return glm::length(impl_->anchorWorld(j.bodyB, j.localAnchorB) -
+                     impl_->anchorWorld(j.bodyA, j.localAnchorA));
+}
+
 void World::setPreSolveCallback(PreSolveCallback callback) { impl_->preSolve = std::move(callback); }
 
 void World::step(float dt) {
@@ -327,22 +556,19 @@ void World::step(float dt) {
 }
 
 void World::Impl::step(float dt) {
-  contactEvents.clear();
-  sensorEvents.clear();
+  contactEvents.assign(pendingContactEvents.begin(), pendingContactEvents.end());
+  sensorEvents.assign(pendingSensorEvents.begin(), pendingSensorEvents.end());
+  pendingContactEvents.clear();
+  pendingSensorEvents.clear();
   for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
     const BodyRecord& r = bodies.records[i];
-    if (r.alive && r.type != BodyType::Static) broadPhase->update(r.proxy, proxyBounds(i, dt));
+    if (r.alive && r.type != BodyType::Static && r.awake) broadPhase->update(r.proxy, proxyBounds(i, dt));
   }
   broadPhase->findPairs(pairs);
+  if (def.sleeping) wakeTouchedIslands(dt);
   narrowPhase(dt);
 
-  detail::SolverSettings settings;
-  settings.gravity = def.gravity;
-  settings.substeps = def.substeps;
-  settings.tuning = def.contact;
-  // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
-  settings.friction = def.frictionModel == FrictionModel::Coulomb;
-  detail::solveStep(bodies, contacts, constraints, settings, dt);
+  solve(dt);
   if (def.impactModel == ImpactModel::Interpolated) {
     detail::applyInterpolatedImpacts(bodies, contacts, constraints, def.contact.restitutionThreshold,
                                      def.contact.linearSlop);
@@ -354,6 +580,7 @@ void World::Impl::step(float dt) {
   }
   if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
   emitEvents();
+  if (def.sleeping) updateSleep(dt);
 
   totalStats.proxies = lastStats.proxies;
   totalStats.potentialPairs += lastStats.potentialPairs;
@@ -361,6 +588,41 @@ void World::Impl::step(float dt) {
   totalStats.boxTests += lastStats.boxTests;
   totalStats.narrowPhaseTests += lastStats.narrowPhaseTests;
   totalStats.contactPairs += lastStats.contactPairs;
+}
+
+// The soft step (Catto, "Solver2D" 2024; Box2D v3's b2SolverStage order): per substep integrate
+// velocities, warm start, solve with the position bias, integrate positions, relax without it.
+// Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
+// last word on penetration.
+void World::Impl::solve(float dt) {
+  detail::SolverSettings settings;
+  settings.gravity = def.gravity;
+  settings.substeps = def.substeps;
+  settings.tuning = def.contact;
+  // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
+  settings.friction = def.frictionModel == FrictionModel::Coulomb;
+  const float h = dt / static_cast<float>(def.substeps);
+  for (BodyState& s : bodies.states) {
+    s.centerOfMass0 = s.centerOfMass;
+    s.rotation0 = s.rotation;
+  }
+  for (DistanceJoint& joint : joints) {
+    joint.active = joint.alive && (isAwakeDynamic(joint.bodyA) || isAwakeDynamic(joint.bodyB));
+  }
+  detail::prepareContacts(bodies, contacts, constraints, settings, h);
+  // Box2D v3: rigid joints correct at twice the (capped) contact stiffness.
+  const float rigidHertz = 2.0f * std::min(def.contact.hertz, 0.25f / h);
+  for (int i = 0; i < def.substeps; ++i) {
+    detail::integrateVelocities(bodies, settings.gravity, h);
+    detail::warmStartJoints(bodies, joints);
+    detail::warmStartContacts(bodies, contacts, constraints);
+    detail::solveJoints(bodies, joints, h, rigidHertz, true);
+    detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, true);
+    detail::integratePositions(bodies, h);
+    detail::solveJoints(bodies, joints, h, rigidHertz, false);
+    detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, false);
+  }
+  detail::applyRestitution(bodies, contacts, constraints, settings.tuning.restitutionThreshold);
 }
 
 ContactEvent World::Impl::makeEvent(const Contact& c, ContactEvent::Type type) const {
@@ -425,16 +687,19 @@ void World::Impl::narrowPhase(float dt) {
       continue;
     }
 
+    if (!isAwakeDynamic(ia) && !isAwakeDynamic(ib)) {
+      // Sleeping against static, sleeping or still kinematic: nothing moves, so last step's contact
+      // is kept as it was (touching state, impulses for the warm start on waking), unsolved.
+      if (previous) {
+        Contact& kept = contacts.emplace_back(*previous);
+        kept.asleep = true;
+        kept.wasTouching = kept.touching;
+      }
+      continue;
+    }
     const BodyState& sa = bodies.states[ia];
     const BodyState& sb = bodies.states[ib];
-    float margin = 0.0f;
-    if (!sensor) {
-      // Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).
-      const float approach = glm::length(sb.linearVelocity - sa.linearVelocity) +
-                             glm::length(sa.angularVelocity) * ra.boundingRadius +
-                             glm::length(sb.angularVelocity) * rb.boundingRadius;
-      margin = def.contact.speculativeDistance + dt * approach;
-    }
+    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
     Contact& c = contacts.emplace_back();
     ++tests;
     collide::collide(ra.shape, detail::bodyTransform(ra, sa), rb.shape, detail::bodyTransform(rb, sb),
@@ -475,6 +740,92 @@ void World::Impl::narrowPhase(float dt) {
   }
   while (j < previousContacts.size()) endVanished(previousContacts[j++]);
   lastStats.narrowPhaseTests = tests;
+}
+
+// Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).
+float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const {
+  const BodyState& sa = bodies.states[ia];
+  const BodyState& sb = bodies.states[ib];
+  const float approach = glm::length(sb.linearVelocity - sa.linearVelocity) +
+                         glm::length(sa.angularVelocity) * bodies.records[ia].boundingRadius +
+                         glm::length(sb.angularVelocity) * bodies.records[ib].boundingRadius;
+  return def.contact.speculativeDistance + dt * approach;
+}
+
+// Before the narrow phase: an awake dynamic or moving kinematic body that may reach a sleeping
+// one within this step (its speculative manifold has points) wakes the sleeper's island, so the
+// island takes part in this step's solve instead of being run into. Repeated until no island
+// wakes, because a woken island can reach the next one. Only pairs on the border of a sleeping
+// island are tested here.
+void World::Impl::wakeTouchedIslands(float dt) {
+  bool woke = true;
+  while (woke) {
+    woke = false;
+    for (const ProxyPair& pair : pairs) {
+      const auto ia = static_cast<std::uint32_t>(broadPhase->records()[pair.a.index].userValue);
+      const auto ib = static_cast<std::uint32_t>(broadPhase->records()[pair.b.index].userValue);
+      const bool sleepA = isSleeping(ia);
+      const bool sleepB = isSleeping(ib);
+      if (sleepA == sleepB) continue;
+      const std::uint32_t mover = sleepA ? ib : ia;
+      if (!isAwakeDynamic(mover) && !isMovingKinematic(mover)) continue;
+      const BodyRecord& ra = bodies.records[ia];
+      const BodyRecord& rb = bodies.records[ib];
+      if (ra.sensor || rb.sensor || (ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) continue;
+      Manifold manifold;
+      collide::collide(ra.shape, detail::bodyTransform(ra, bodies.states[ia]), rb.shape,
+                       detail::bodyTransform(rb, bodies.states[ib]), manifold, speculativeMargin(ia, ib, dt));
+      if (manifold.count == 0) continue;
+      wake(sleepA ? ia : ib);
+      woke = true;
+    }
+  }
+}
+
+// Islands (Box2D's union-find over touching contacts and joints) of the awake dynamic bodies, then
+// the rest timers: a body below both sleep speeds accumulates rest time, and an island whose every
+// body has rested for timeToSleep falls asleep as a whole, velocities zeroed. Static bodies do not
+// join islands (a floor would join every pile on it); a moving kinematic body keeps what it touches
+// awake.
+void World::Impl::updateSleep(float dt) {
+  const auto n = static_cast<std::uint32_t>(bodies.records.size());
+  islandParent.resize(n);
+  islandSleepTime.assign(n, std::numeric_limits<float>::infinity());
+  for (std::uint32_t i = 0; i < n; ++i) islandParent[i] = i;
+  const auto link = [&](std::uint32_t a, std::uint32_t b) {
+    if (isAwakeDynamic(a) && isAwakeDynamic(b)) unite(a, b);
+    // -dt: the timer below then restarts from 0 whatever the body's own speed.
+    if (isAwakeDynamic(a) && isMovingKinematic(b)) bodies.records[a].sleepTime = -dt;
+    if (isAwakeDynamic(b) && isMovingKinematic(a)) bodies.records[b].sleepTime = -dt;
+  };
+  for (const Contact& c : contacts) {
+    if (!c.sensor && c.touching && !c.asleep) link(c.bodyA, c.bodyB);
+  }
+  for (const DistanceJoint& joint : joints) {
+    if (joint.alive) link(joint.bodyA, joint.bodyB);
+  }
+  const SleepTuning& tuning = def.sleep;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!isAwakeDynamic(i)) continue;
+    BodyRecord& r = bodies.records[i];
+    const BodyState& s = bodies.states[i];
+    const bool resting = glm::length(s.linearVelocity) <= tuning.linearSpeed &&
+                         glm::length(s.angularVelocity) <= tuning.angularSpeed;
+    r.sleepTime = resting ? r.sleepTime + dt : 0.0f;
+    float& islandTime = islandSleepTime[findRoot(i)];
+    islandTime = std::min(islandTime, r.sleepTime);
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!isAwakeDynamic(i)) continue;
+    const std::uint32_t root = findRoot(i);
+    if (islandSleepTime[root] < tuning.timeToSleep) continue;
+    BodyRecord& r = bodies.records[i];
+    BodyState& s = bodies.states[i];
+    r.awake = false;
+    r.island = root;
+    s.linearVelocity = Vec3(0.0f);
+    s.angularVelocity = Vec3(0.0f);
+  }
 }
 
 void World::Impl::revertPenetrating() {
@@ -551,9 +902,10 @@ float World::kineticEnergy() const {
     const BodyRecord& r = impl_->bodies.records[i];
     if (!r.alive || r.type != BodyType::Dynamic) continue;
     const BodyState& s = impl_->bodies.states[i];
-    const Mat3 inertiaWorld = glm::inverse(s.inverseInertiaWorld);
+    // I_world w from the local inertia (a particle has none).
+    const Vec3 localOmega = glm::conjugate(s.rotation) * s.angularVelocity;
     energy += 0.5f * r.mass * glm::dot(s.linearVelocity, s.linearVelocity) +
-              0.5f * glm::dot(s.angularVelocity, inertiaWorld * s.angularVelocity);
+              0.5f * glm::dot(localOmega, r.inertiaLocal * localOmega);
   }
   return energy;
 }

@@ -52,6 +52,13 @@ struct ContactTuning {
   float speculativeDistance = 0.02f;  // m: contacts are created this far apart (plus the step's motion)
 };
 
+// When a body counts as resting (Box2D's sleep tolerances and time to sleep).
+struct SleepTuning {
+  float linearSpeed = 0.05f;   // m/s, of the centre of mass
+  float angularSpeed = 0.05f;  // rad/s
+  float timeToSleep = 0.5f;    // s every body of an island must rest before the island sleeps
+};
+
 struct WorldDef {
   Vec3 gravity{0.0f, -9.81f, 0.0f};
   int substeps = 4;
@@ -61,7 +68,9 @@ struct WorldDef {
   ImpactModel impactModel = ImpactModel::Newton;
   FrictionModel frictionModel = FrictionModel::Coulomb;
   PenetrationResponse penetrationResponse = PenetrationResponse::Project;
-  bool sleeping = false;  // not implemented yet: true is rejected
+  // Resting islands sleep (docs/architecture.md, "Islands and sleeping").
+  bool sleeping = false;
+  SleepTuning sleep{};
   ContactTuning contact{};
 };
 
@@ -84,6 +93,10 @@ struct BodyDef {
   std::uint32_t layer = 1;          // the body's bits
   std::uint32_t mask = kAllLayers;  // the layers it collides with; both must agree
   bool sensor = false;              // reports overlap events, takes no response
+  // A point mass: a dynamic body whose shape must be a Sphere (it collides as a sphere of that
+  // radius times scale) but that has no inertia, no angular velocity and a rotation that never
+  // changes. Cheap links for chains, ropes and cloth-like meshes of distance constraints.
+  bool particle = false;
   std::uint64_t userData = 0;
   std::string name;
 };
@@ -94,6 +107,30 @@ struct BodyId {
   std::uint32_t generation = 0;
   bool isNull() const { return index == kNullIndex; }
   friend bool operator==(const BodyId&, const BodyId&) = default;
+};
+
+struct JointId {
+  static constexpr std::uint32_t kNullIndex = 0xFFFFFFFFu;
+  std::uint32_t index = kNullIndex;
+  std::uint32_t generation = 0;
+  bool isNull() const { return index == kNullIndex; }
+  friend bool operator==(const JointId&, const JointId&) = default;
+};
+
+// Keeps an anchor on body a at `length` from an anchor on body b (a rope that also pushes: a rod).
+// Any two bodies, at least one dynamic. Anchors are points in each body's local frame (scaled with
+// the body, like its shape); unset, they are the centres of mass. A particle's anchor must be its
+// centre (it cannot turn, so an offset anchor would have no lever).
+struct DistanceConstraintDef {
+  BodyId a;
+  BodyId b;
+  std::optional<Vec3> localAnchorA;
+  std::optional<Vec3> localAnchorB;
+  std::optional<float> length;  // >= 0; unset: the anchors' distance at creation
+  // m/N, >= 0. 0 is rigid; otherwise a spring of stiffness 1/compliance (XPBD's compliance), see
+  // docs/architecture.md ("Distance constraints").
+  float compliance = 0.0f;
+  float dampingRatio = 0.0f;  // of the spring (compliance > 0), >= 0; 1 is critical
 };
 
 // A touching contact that began or ended this step. For begin events, point/normal are the
@@ -136,28 +173,47 @@ class World {
 
   // Throws Error naming the field for a bad definition.
   BodyId createBody(const BodyDef& def);
+  // Also destroys the body's constraints and wakes what it touched. Its touching contacts and
+  // sensor overlaps end: their End events (with the now stale id) open the next step's events.
   void destroyBody(BodyId id);
   bool isValid(BodyId id) const;
   std::size_t bodyCount() const;
 
   // ---- Between steps. Stale ids throw Error. ----
   BodyType type(BodyId id) const;
+  bool isParticle(BodyId id) const;
   Transform transform(BodyId id) const;
   void setTransform(BodyId id, const Vec3& position, const Quat& rotation);
   Vec3 linearVelocity(BodyId id) const;
   Vec3 angularVelocity(BodyId id) const;
   void setLinearVelocity(BodyId id, const Vec3& velocity);
+  // A particle has no angular velocity: a non-zero one is an Error.
   void setAngularVelocity(BodyId id, const Vec3& velocity);
-  // At a world point; changes the velocity immediately (dynamic bodies only).
+  // At a world point; changes the velocity immediately (dynamic bodies only; a particle takes the
+  // linear part only, as does applyForce, and ignores applyTorque).
   void applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint);
   // Accumulated until the next step, then cleared (dynamic bodies only).
   void applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint);
   void applyTorque(BodyId id, const Vec3& torque);
+  // The setters and applyImpulse/Force/Torque above wake the body's island (WorldDef::sleeping).
+  // Static bodies are never awake; kinematic bodies always are; with sleeping off every dynamic
+  // body is. wakeBody wakes the body's whole island (no effect on static bodies).
+  bool isAwake(BodyId id) const;
+  void wakeBody(BodyId id);
   float mass(BodyId id) const;         // 0 for static and kinematic bodies
   Vec3 centerOfMass(BodyId id) const;  // world frame
   const Shape& shape(BodyId id) const;
   std::uint64_t userData(BodyId id) const;
   const std::string& name(BodyId id) const;
+
+  // ---- Constraints. Stale ids throw Error; destroying a body destroys its constraints. ----
+  // Throws Error naming the field for a bad definition (stale body, a == b, no dynamic body, ...).
+  JointId createDistanceConstraint(const DistanceConstraintDef& def);
+  void destroyConstraint(JointId id);
+  bool isValid(JointId id) const;
+  std::size_t constraintCount() const;
+  float constraintLength(JointId id) const;         // the rest length
+  float constraintCurrentLength(JointId id) const;  // the anchors' distance now
 
   void setPreSolveCallback(PreSolveCallback callback);
 

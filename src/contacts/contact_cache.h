@@ -42,6 +42,7 @@ struct Contact {
   float impactBounciness = 0.0f;  // the combined bounciness, for the lecture's interpolated impact
   bool sensor = false;            // overlap only, no response
   bool enabled = true;            // the pre-solve callback may disable it for this step
+  bool asleep = false;            // no awake dynamic body: kept as it was, not solved (sleeping)
   bool touching = false;          // after this step's narrow phase
   bool wasTouching = false;       // after last step's
   int consecutiveSteps = 0;       // steps in a row with points (lecture: friction from the second step)

@@ -34,6 +34,7 @@ struct BodyRecord {
   BodyType type = BodyType::Dynamic;
   float scale = 1.0f;
   Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
+  Mat3 inertiaLocal{0.0f};       // about the centre of mass, body axes (zero for particles)
   Mat3 inverseInertiaLocal{0.0f};
   float mass = 0.0f;
   float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
@@ -42,6 +43,11 @@ struct BodyRecord {
   std::uint32_t layer = 1;
   std::uint32_t mask = kAllLayers;
   bool sensor = false;
+  bool particle = false;  // point mass: no inertia, the rotation never changes
+  // Sleeping (WorldDef::sleeping): a sleeping body is skipped by integration and the solver.
+  bool awake = true;
+  float sleepTime = 0.0f;    // s spent below the sleep thresholds
+  std::uint32_t island = 0;  // the island's root body when it fell asleep
   bool alive = false;
   std::uint32_t generation = 1;
   ProxyId proxy;
@@ -76,7 +82,11 @@ inline Mat3 worldInverseInertia(const Mat3& inverseInertiaLocal, const Quat& rot
   return r * inverseInertiaLocal * glm::transpose(r);
 }
 
-// Velocity step of one substep: gravity and the accumulated force/torque (dynamic bodies only).
+// One implicit-midpoint step of torque-free rotation in the body frame; returns the new body-frame
+// angular velocity (see integrate.cpp).
+Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& bodyOmega, float h);
+// Velocity step of one substep: gravity, the accumulated force/torque and the gyroscopic term
+// (awake dynamic bodies only).
 void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h);
 // Position step of one substep: centre of mass by v, rotation by the quaternion derivative
 // q' = 1/2 (0, w) q, renormalised; dynamic and kinematic bodies.

@@ -51,8 +51,10 @@ void applyNormalImpulse(BodyState& a, BodyState& b, const ConstraintPoint& p, co
   applyImpulse(a, b, p.anchorA, p.anchorB, impulse * normal);
 }
 
-void prepare(BodyStorage& bodies, std::vector<Contact>& contacts, std::vector<ContactConstraint>& constraints,
-             const SolverSettings& settings, float h) {
+}  // namespace
+
+void prepareContacts(BodyStorage& bodies, std::vector<Contact>& contacts,
+                     std::vector<ContactConstraint>& constraints, const SolverSettings& settings, float h) {
   // Stiffness is capped at a quarter of the substep rate so the spring stays resolvable (Box2D v3).
   const float hertz = std::min(settings.tuning.hertz, 0.25f / h);
   const Softness soft = makeSoftness(hertz, settings.tuning.dampingRatio, h);
@@ -62,7 +64,7 @@ void prepare(BodyStorage& bodies, std::vector<Contact>& contacts, std::vector<Co
   constraints.clear();
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
     Contact& contact = contacts[ci];
-    if (contact.sensor || !contact.enabled || contact.manifold.count == 0) continue;
+    if (contact.sensor || !contact.enabled || contact.asleep || contact.manifold.count == 0) continue;
     const BodyState& a = bodies.states[contact.bodyA];
     const BodyState& b = bodies.states[contact.bodyB];
     ContactConstraint& c = constraints.emplace_back();
@@ -94,8 +96,8 @@ void prepare(BodyStorage& bodies, std::vector<Contact>& contacts, std::vector<Co
   }
 }
 
-void warmStart(BodyStorage& bodies, std::vector<Contact>& contacts,
-               const std::vector<ContactConstraint>& constraints) {
+void warmStartContacts(BodyStorage& bodies, std::vector<Contact>& contacts,
+                       const std::vector<ContactConstraint>& constraints) {
   for (const ContactConstraint& c : constraints) {
     BodyState& a = bodies.states[c.bodyA];
     BodyState& b = bodies.states[c.bodyB];
@@ -189,28 +191,6 @@ void applyRestitution(BodyStorage& bodies, std::vector<Contact>& contacts,
       applyNormalImpulse(a, b, p, c.normal, impulse, state);
     }
   }
-}
-
-}  // namespace
-
-void solveStep(BodyStorage& bodies, std::vector<Contact>& contacts,
-               std::vector<ContactConstraint>& constraints, const SolverSettings& settings, float dt) {
-  const int substeps = settings.substeps;
-  const float h = dt / static_cast<float>(substeps);
-  for (BodyState& s : bodies.states) {
-    s.centerOfMass0 = s.centerOfMass;
-    s.rotation0 = s.rotation;
-  }
-  prepare(bodies, contacts, constraints, settings, h);
-  for (int i = 0; i < substeps; ++i) {
-    integrateVelocities(bodies, settings.gravity, h);
-    warmStart(bodies, contacts, constraints);
-    solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, true);
-    integratePositions(bodies, h);
-    // Relax: remove the velocity the position bias added, so that push-out does not become bounce.
-    solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, false);
-  }
-  applyRestitution(bodies, contacts, constraints, settings.tuning.restitutionThreshold);
 }
 
 }  // namespace collide::detail

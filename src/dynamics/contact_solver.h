@@ -49,10 +49,22 @@ struct SolverSettings {
   bool friction = true;
 };
 
-// One whole step of the bodies and the enabled, non-sensor contacts with points. The constraints
-// vector is reused across steps (no allocation after warm-up). Impulses are written back into the
-// contacts' point states for warm starting and events.
-void solveStep(BodyStorage& bodies, std::vector<Contact>& contacts,
-               std::vector<ContactConstraint>& constraints, const SolverSettings& settings, float dt);
+// The pieces of the soft step; the substep loop that calls them (with the joints in between) is
+// World::Impl::solve in src/world.cpp.
+// Once per step: the constraints of the enabled, awake, non-sensor contacts with points (the vector
+// is reused across steps: no allocation after warm-up), with the approach velocity before the solve.
+void prepareContacts(BodyStorage& bodies, std::vector<Contact>& contacts,
+                     std::vector<ContactConstraint>& constraints, const SolverSettings& settings, float h);
+// Per substep: apply last substep's accumulated impulses.
+void warmStartContacts(BodyStorage& bodies, std::vector<Contact>& contacts,
+                       const std::vector<ContactConstraint>& constraints);
+// Per substep: one pass over the contacts; useBias = false is the relax pass. Impulses are written
+// back into the contacts' point states for warm starting and events.
+void solveContacts(BodyStorage& bodies, std::vector<Contact>& contacts,
+                   const std::vector<ContactConstraint>& constraints, float h, float pushOutSpeed,
+                   bool useBias);
+// Once at the end: Newton's restitution from the approach velocity stored by prepareContacts.
+void applyRestitution(BodyStorage& bodies, std::vector<Contact>& contacts,
+                      const std::vector<ContactConstraint>& constraints, float threshold);
 
 }  // namespace collide::detail

@@ -68,7 +68,7 @@ TEST(World, BadBodyDefsNameTheField) {
   expectErrorMentions([&] { world.step(0.0f); }, "dt");
 }
 
-TEST(World, BadWorldDefsAndUnimplementedSettingsAreErrors) {
+TEST(World, BadWorldDefsAreErrors) {
   WorldDef def;
   def.substeps = 0;
   expectErrorMentions([&] { World w(def); }, "substeps");
@@ -77,7 +77,8 @@ TEST(World, BadWorldDefsAndUnimplementedSettingsAreErrors) {
   expectErrorMentions([&] { World w(def); }, "gravity");
   def = WorldDef{};
   def.sleeping = true;
-  expectErrorMentions([&] { World w(def); }, "not implemented");
+  def.sleep.timeToSleep = -1.0f;
+  expectErrorMentions([&] { World w(def); }, "timeToSleep");
   EXPECT_EQ(parseCombineRule("multiply"), CombineRule::Multiply);
   EXPECT_EQ(parsePenetrationResponse("revert"), PenetrationResponse::Revert);
   expectErrorMentions([] { parseFrictionModel("sticky"); }, "sticky");

@@ -1,0 +1,41 @@
+// Distance constraints in the soft step (Catto, "Solver2D" 2024 and GDC 2011 "Soft Constraints"),
+// solved in the same substep loop as the contacts (World::Impl::solve in src/world.cpp).
+//
+// C = |pB - pA| - length, along the unit axis n from anchor A to anchor B. A rigid constraint
+// (compliance 0) is a velocity constraint in the relax pass and, in the biased pass, a stiff soft
+// constraint (Box2D v3's joint softness: twice the contact hertz, damping ratio 2).
+// A compliant one is a spring of stiffness 1/compliance (N/m), the XPBD compliance of Macklin et
+// al. 2016: with effective mass m the spring has omega^2 = 1 / (compliance m) and is integrated
+// implicitly as a soft constraint in both passes (it is a physical force, not an error correction).
+#pragma once
+
+#include "dynamics/body_storage.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace collide::detail {
+
+struct DistanceJoint {
+  std::uint32_t bodyA = 0;
+  std::uint32_t bodyB = 0;
+  Vec3 localAnchorA{0.0f};  // from the centre of mass, body frame, scaled
+  Vec3 localAnchorB{0.0f};
+  float length = 0.0f;
+  float compliance = 0.0f;  // m/N; 0 = rigid
+  float dampingRatio = 0.0f;
+  float impulse = 0.0f;         // accumulated along the axis (warm start), N s
+  Vec3 axis{1.0f, 0.0f, 0.0f};  // the last axis, kept for coincident anchors
+  bool alive = false;
+  bool active = false;  // this step: at least one awake dynamic body
+  std::uint32_t generation = 1;
+};
+
+// Per substep, over the active joints: apply the accumulated impulse along the current axis.
+void warmStartJoints(BodyStorage& bodies, std::vector<DistanceJoint>& joints);
+// Per substep: one pass; useBias = false is the relax pass (rigid joints without position bias).
+// rigidHertz: the stiffness of the rigid joints' position correction (twice the contact hertz).
+void solveJoints(BodyStorage& bodies, std::vector<DistanceJoint>& joints, float h, float rigidHertz,
+                 bool useBias);
+
+}  // namespace collide::detail
