@@ -1,5 +1,5 @@
-// Numbers for the JSON outputs: floats written with the 9 significant digits that round-trip a
-// float, rather than the 17 of the double they are widened to.
+// Numbers for the JSON outputs: floats written with the fewest digits (at most 9) that round-trip
+// the float, rather than the 17 of the double they are widened to.
 #pragma once
 
 #include <collide/math.h>
@@ -12,8 +12,12 @@
 namespace collide::scene {
 
 inline nlohmann::json jsonNumber(float value) {
+  // The shortest of 6..9 significant digits that reads back as the same float (0.6f as 0.6).
   char text[32];
-  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
+  for (int digits = 6; digits <= 9; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+    if (std::strtof(text, nullptr) == value) break;
+  }
   return std::strtod(text, nullptr);
 }
 inline nlohmann::json jsonVec3(const Vec3& v) { return {jsonNumber(v.x), jsonNumber(v.y), jsonNumber(v.z)}; }

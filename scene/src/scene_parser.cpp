@@ -265,22 +265,107 @@ std::pair<std::size_t, std::size_t> lineColumn(std::string_view text, std::size_
   return {line, column};
 }
 
+// nlohmann's DOM builder behind a SAX handler that remembers where in the document it is, so that
+// a parse error (a syntax error, or a number such as 1e999 that overflows a double) can name its
+// line, column and, for a number, the field path.
+class PathTrackingSax {
+ public:
+  using DomParser = nlohmann::detail::json_sax_dom_parser<Json>;
+  explicit PathTrackingSax(Json& result) : dom_(result, false) {}
+
+  bool null() { return value(), dom_.null(); }
+  bool boolean(bool v) { return value(), dom_.boolean(v); }
+  bool number_integer(Json::number_integer_t v) { return value(), dom_.number_integer(v); }
+  bool number_unsigned(Json::number_unsigned_t v) { return value(), dom_.number_unsigned(v); }
+  bool number_float(Json::number_float_t v, const std::string& s) { return value(), dom_.number_float(v, s); }
+  bool string(std::string& v) { return value(), dom_.string(v); }
+  bool binary(Json::binary_t& v) { return value(), dom_.binary(v); }
+  bool start_object(std::size_t n) {
+    value();
+    frames_.push_back({false, 0, ""});
+    return dom_.start_object(n);
+  }
+  bool key(std::string& k) {
+    frames_.back().key = k;
+    return dom_.key(k);
+  }
+  bool end_object() {
+    frames_.pop_back();
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t n) {
+    value();
+    frames_.push_back({true, 0, ""});
+    return dom_.start_array(n);
+  }
+  bool end_array() {
+    frames_.pop_back();
+    return dom_.end_array();
+  }
+  bool parse_error(std::size_t position, const std::string& token, const Json::exception& e) {
+    position_ = position;
+    token_ = token;
+    what_ = e.what();
+    numberOverflow_ = e.id == 406;
+    return false;
+  }
+
+  // Where the pending value would go: the key just read, or the next array slot.
+  std::string path() const {
+    std::string out;
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      if (f.array) {
+        out += "[" + std::to_string(i + 1 == frames_.size() ? f.count : f.count - 1) + "]";
+      } else {
+        out += (out.empty() ? "" : ".") + f.key;
+      }
+    }
+    return out;
+  }
+  std::size_t position() const { return position_; }
+  const std::string& token() const { return token_; }
+  const std::string& what() const { return what_; }
+  bool numberOverflow() const { return numberOverflow_; }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t count;  // array elements started
+    std::string key;    // object: the last key
+  };
+  void value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
+  }
+  DomParser dom_;
+  std::vector<Frame> frames_;
+  std::size_t position_ = 0;
+  std::string token_, what_;
+  bool numberOverflow_ = false;
+};
+
+Json parseDocument(std::string_view text, const std::string& source) {
+  Json document;
+  PathTrackingSax sax(document);
+  if (Json::sax_parse(text, &sax)) return document;
+  // nlohmann's position is one past the offending character.
+  const auto [line, column] = lineColumn(text, sax.position() == 0 ? 0 : sax.position() - 1);
+  const std::string where = "line " + std::to_string(line) + ", column " + std::to_string(column);
+  if (sax.numberOverflow()) {
+    throw Error(source + ": " + sax.path() + ": must be a finite number within float range, got " +
+                sax.token() + " (" + where + ")");
+  }
+  const auto colon = sax.what().rfind(": ");
+  throw Error(source + ": malformed JSON at " + where +
+              (colon == std::string::npos ? "" : ": " + sax.what().substr(colon + 2)));
+}
+
 }  // namespace
 
 Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir) {
   Scene scene;
   scene.source = sourceName;
-  Json document;
-  try {
-    document = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    // nlohmann's byte is one past the offending character.
-    const auto [line, column] = lineColumn(text, e.byte == 0 ? 0 : e.byte - 1);
-    std::string what = e.what();
-    const auto colon = what.rfind(": ");
-    throw Error(scene.source + ": malformed JSON at line " + std::to_string(line) + ", column " +
-                std::to_string(column) + (colon == std::string::npos ? "" : ": " + what.substr(colon + 2)));
-  }
+  const Json document = parseDocument(text, scene.source);
   const JsonNode root(document, "", scene.source);
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
   root.expectObject({"format", "settings", "materials", "bodies", "constraints"});

@@ -220,9 +220,12 @@ TEST(SceneParserErrors, UnknownNames) {
 
 // JSON has no NaN or infinity: "1e999" parses to infinity, and 1e39 overflows a float.
 TEST(SceneParserErrors, HugeNumbersAreNotFinite) {
-  EXPECT_THAT(parseError(withBody(
-                  R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1e999}})")),
-              HasSubstr("bodies[0].shape.radius: must be a finite number within float range"));
+  EXPECT_THAT(
+      parseError(
+          withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1e999}})")),
+      HasSubstr("bodies[0].shape.radius: must be a finite number within float range, got 1e999 (line 1"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e999, 0]}})"),
+              HasSubstr("settings.gravity[1]: must be a finite number within float range, got -1e999"));
   EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e39, 0]}})"),
               HasSubstr("settings.gravity[1]: must be a finite number within float range, got -1e+39"));
   EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": "NaN"}})"),
