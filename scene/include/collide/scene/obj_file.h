@@ -1,0 +1,20 @@
+// Wavefront OBJ meshes (through tinyobjloader): the vertices and triangles of every shape in the
+// file, polygons triangulated. Used by mesh shapes with "file" and by `collide fit`.
+#pragma once
+
+#include <collide/shapes.h>
+
+#include <filesystem>
+#include <vector>
+
+namespace collide::scene {
+
+struct ObjMesh {
+  std::vector<Vec3> vertices;
+  std::vector<MeshTriangle> triangles;
+};
+
+// Throws collide::Error when the file cannot be read or parsed, or holds no triangles.
+ObjMesh readObjFile(const std::filesystem::path& path);
+
+}  // namespace collide::scene

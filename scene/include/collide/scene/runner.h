@@ -1,0 +1,54 @@
+// Runs a scene: steps its World and reports what `collide run` writes (docs/scene-format.md, "What
+// collide run writes"): the summary, a recording of frames, contact events as JSON Lines, and a hash
+// of the final state for determinism checks.
+//
+// Breakable bodies (our extension, the lecture's "ad-hoc effects" driven by collision events): each
+// contact begin event adds its impulse to the damage of the breakable bodies it involves; a body
+// whose damage exceeds its break_impulse is removed after the step.
+#pragma once
+
+#include <collide/scene/scene.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace collide::scene {
+
+struct RunOptions {
+  std::optional<int> steps;  // default: the scene's settings.steps
+  std::string recordPath;    // empty: no recording
+  int recordEvery = 1;
+  std::string eventsPath;  // empty: no events file
+  bool progress = false;   // a progress bar on stderr
+};
+
+struct RunSummary {
+  std::string scene;
+  int steps = 0;
+  float dt = 0.0f;
+  double wallSeconds = 0.0;
+  int staticBodies = 0;
+  int kinematicBodies = 0;
+  int dynamicBodies = 0;
+  int brokenBodies = 0;
+  BroadPhaseStats lastStep{};
+  BroadPhaseStats total{};
+  std::uint64_t contactEvents = 0;
+  Vec3 momentum{0.0f};
+  float kineticEnergy = 0.0f;
+  std::uint64_t stateHash = 0;
+};
+
+// Builds the scene's World and runs it. Throws collide::Error for a scene the World refuses, a
+// negative step count, recordEvery < 1, or an output file that cannot be written.
+RunSummary runScene(const Scene& scene, const RunOptions& options = {});
+
+// FNV-1a over the bit patterns of every live body's position, rotation and velocities, in scene
+// order: equal hashes mean bit-identical final states.
+std::uint64_t stateHash(const SceneWorld& world);
+
+std::string formatSummary(const RunSummary& summary);  // the table printed on stdout
+std::string summaryJson(const RunSummary& summary);    // the same as a JSON document
+
+}  // namespace collide::scene

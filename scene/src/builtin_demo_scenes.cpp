@@ -1,0 +1,129 @@
+// Demonstration scenes: every proxy type in one pile, the two penetration responses, and a wall
+// that breaks under contact impulses (the lecture's ad-hoc effects driven by collision events).
+#include "builtin_scene_parts.h"
+
+#include <cmath>
+
+namespace collide::scene::builtin {
+
+namespace {
+
+Json demoDocument() {
+  Json doc = referenceDocument();
+  doc["settings"]["steps"] = 300;
+  return doc;
+}
+
+Json groundPlane() {
+  return body("ground", "static", {{"type", "plane"}, {"normal", vec(0, 1, 0)}, {"distance", 0}},
+              vec(0, 0, 0));
+}
+
+// A quaternion [x, y, z, w] turning `angle` about a unit axis.
+Json turn(double angle, double ax, double ay, double az) {
+  const double s = std::sin(angle / 2);
+  return Json::array({num(ax * s), num(ay * s), num(az * s), num(std::cos(angle / 2))});
+}
+
+Json gemPoints() {
+  return Json::array({vec(0.35, 0, 0), vec(-0.35, 0, 0), vec(0, 0.45, 0), vec(0, -0.45, 0), vec(0, 0, 0.35),
+                      vec(0, 0, -0.35), vec(0.2, 0.2, 0.2), vec(-0.2, -0.2, 0.2)});
+}
+
+// One proxy of each droppable type (meshes stay static: scene-format.md).
+std::vector<std::pair<std::string, Json>> droppableShapes() {
+  return {
+      {"sphere", sphere(0.3)},
+      {"capsule", {{"type", "capsule"}, {"radius", num(0.2)}, {"half_height", num(0.3)}}},
+      {"box", box(0.3, 0.2, 0.25)},
+      {"cylinder", {{"type", "cylinder"}, {"radius", num(0.25)}, {"half_height", num(0.25)}}},
+      {"ellipsoid", {{"type", "ellipsoid"}, {"radii", vec(0.35, 0.25, 0.2)}}},
+      {"hull", {{"type", "convex_hull"}, {"points", gemPoints()}}},
+      {"kdop", {{"type", "kdop"}, {"k", 18}, {"points", gemPoints()}}},
+      {"compound",
+       {{"type", "compound"},
+        {"children",
+         {{{"shape", sphere(0.2)}, {"position", vec(-0.35, 0, 0)}},
+          {{"shape", {{"type", "capsule"}, {"radius", num(0.08)}, {"half_height", num(0.2)}}},
+           {"rotation", turn(M_PI / 2, 0, 0, 1)}},
+          {{"shape", box(0.15, 0.15, 0.15)}, {"position", vec(0.35, 0, 0)}}}}}},
+  };
+}
+
+}  // namespace
+
+// Three of every droppable proxy type in columns, falling onto a ground plane, a static mesh ramp
+// and each other.
+Json proxies() {
+  Json doc = demoDocument();
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundPlane());
+  // A static mesh: a ramp of two triangles rising towards -x, and its back.
+  Json ramp = body(
+      "ramp", "static",
+      {{"type", "mesh"},
+       {"vertices",
+        {vec(-6, 0, -3), vec(-6, 0, 3), vec(-3, 0, -3), vec(-3, 0, 3), vec(-6, 1.5, -3), vec(-6, 1.5, 3)}},
+       {"triangles", {{2, 4, 3}, {3, 4, 5}}}},
+      vec(0, 0, 0));
+  bodies.push_back(ramp);
+  const auto shapes = droppableShapes();
+  for (int layer = 0; layer < 3; ++layer) {
+    for (std::size_t s = 0; s < shapes.size(); ++s) {
+      const double x = -4.5 + 1.2 * double(s) + 0.15 * layer, z = 0.1 * layer;
+      Json b = body(shapes[s].first + "_" + std::to_string(layer), "dynamic", shapes[s].second,
+                    vec(x, 1.0 + 1.1 * layer, z));
+      b["rotation"] = turn(0.4 + 0.7 * layer + 0.3 * double(s), 0.6, 0.0, 0.8);
+      b["density"] = 500;
+      bodies.push_back(b);
+    }
+  }
+  return doc;
+}
+
+// The same drop with one penetration response: boxes and spheres falling fast into a heap, so that
+// bodies penetrate and the response shows (run `revert` and `revert-project` and compare).
+Json penetrationDrop(const char* response) {
+  Json doc = demoDocument();
+  doc["settings"]["penetration_response"] = response;
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundBox());
+  for (int i = 0; i < 12; ++i) {
+    const double x = 0.3 * (i % 3) - 0.3, z = 0.3 * ((i / 3) % 2), y = 1.0 + 0.7 * i;
+    Json b = i % 2 == 0 ? body("box_" + std::to_string(i), "dynamic", box(0.3, 0.3, 0.3), vec(x, y, z))
+                        : body("ball_" + std::to_string(i), "dynamic", sphere(0.3), vec(x, y, z));
+    b["velocity"] = vec(0, -8, 0);
+    b["rotation"] = turn(0.5 * i, 0, 0.6, 0.8);
+    bodies.push_back(b);
+  }
+  return doc;
+}
+
+// A wall of 6 rows of 8 and 7 bricks, each removed once the impulses of its contact begin events add up to
+// more than 45 N s; a heavy ball thrown at it breaks a hole. The weight the bottom bricks carry at rest
+// (under 10 N s in the first contact step) stays well under the threshold.
+Json breakable() {
+  Json doc = demoDocument();
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundBox());
+  constexpr double kHalfX = 0.2, kHalfY = 0.1, kHalfZ = 0.1;
+  for (int row = 0; row < 6; ++row) {
+    // Running bond: odd rows have 7 bricks over the joints below, so that no brick overhangs.
+    const int count = row % 2 == 0 ? 8 : 7;
+    for (int i = 0; i < count; ++i) {
+      Json b = body("brick_" + std::to_string(row) + "_" + std::to_string(i), "dynamic",
+                    box(kHalfX, kHalfY, kHalfZ),
+                    vec((i - (count - 1) / 2.0) * 2 * kHalfX, kHalfY + row * 2 * kHalfY, 0));
+      b["density"] = 1000;
+      b["break_impulse"] = 45;
+      bodies.push_back(b);
+    }
+  }
+  Json ball = body("wrecking_ball", "dynamic", sphere(0.25), vec(0, 0.5, -4));
+  ball["velocity"] = vec(0, 2, 14);
+  ball["mass"] = 60;
+  bodies.push_back(ball);
+  return doc;
+}
+
+}  // namespace collide::scene::builtin

@@ -1,0 +1,177 @@
+// The reference scenes of the benchmarks (reference-scenes.md), built exactly as specified there so
+// that collide and its peer run the same thing: B1 billiards, R1 pile, R2 rain, R3 pyramid and R4
+// terrain.
+#include "builtin_scene_parts.h"
+
+#include <cmath>
+#include <random>
+
+namespace collide::scene::builtin {
+
+// B1, the lecture's shot: 15 balls racked in a touching triangle, the cue ball sent at 6 m/s into
+// the apex, cushions as static boxes around a 2.54 x 1.27 table.
+Json billiards() {
+  constexpr double kRadius = 0.028575, kMass = 0.17, kLength = 2.54, kWidth = 1.27;
+  Json doc = referenceDocument();
+  // min: ball-ball bounce 0.95, ball-cushion 0.8, ball-cloth 0.
+  doc["settings"]["bounciness_combine"] = "min";
+  doc["materials"] = {{"ball", {{"bounciness", num(0.95)}, {"friction", num(0.2)}}},
+                      {"cloth", {{"bounciness", 0}, {"friction", num(0.2)}}},
+                      {"cushion", {{"bounciness", num(0.8)}, {"friction", num(0.2)}}}};
+  Json& bodies = doc["bodies"];
+  Json table =
+      body("table", "static", {{"type", "plane"}, {"normal", vec(0, 1, 0)}, {"distance", 0}}, vec(0, 0, 0));
+  table["material"] = "cloth";
+  bodies.push_back(table);
+  // Cushions: 5 cm square rails just outside the playing area.
+  constexpr double kRail = 0.05;
+  const auto cushion = [&](const std::string& name, Json shape, const Json& position) {
+    Json c = body(name, "static", std::move(shape), position);
+    c["material"] = "cushion";
+    bodies.push_back(c);
+  };
+  cushion("cushion_north", box(kLength / 2 + 2 * kRail, kRail, kRail), vec(0, kRail, kWidth / 2 + kRail));
+  cushion("cushion_south", box(kLength / 2 + 2 * kRail, kRail, kRail), vec(0, kRail, -kWidth / 2 - kRail));
+  cushion("cushion_east", box(kRail, kRail, kWidth / 2), vec(kLength / 2 + kRail, kRail, 0));
+  cushion("cushion_west", box(kRail, kRail, kWidth / 2), vec(-kLength / 2 - kRail, kRail, 0));
+  const auto ball = [&](const std::string& name, double x, double z) {
+    Json b = body(name, "dynamic", sphere(kRadius), vec(x, kRadius, z));
+    b["mass"] = num(kMass);
+    b["material"] = "ball";
+    return b;
+  };
+  Json cue = ball("cue", -kLength / 4, 0);
+  cue["velocity"] = vec(6, 0, 0);
+  bodies.push_back(cue);
+  // The rack: row r has r + 1 balls, rows sqrt(3) R apart, so neighbours touch.
+  int number = 1;
+  for (int row = 0; row < 5; ++row) {
+    for (int i = 0; i <= row; ++i) {
+      const double x = kLength / 4 + row * std::sqrt(3.0) * kRadius;
+      const double z = (i - row / 2.0) * 2.0 * kRadius;
+      bodies.push_back(ball("ball_" + std::to_string(number++), x, z));
+    }
+  }
+  return doc;
+}
+
+// R1: 4,096 unit cubes in a 16 x 16 x 16 lattice, spacing 1.1, lowest layer at y = 1.
+Json pile() {
+  Json doc = referenceDocument();
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundBox());
+  for (int y = 0; y < 16; ++y) {
+    for (int z = 0; z < 16; ++z) {
+      for (int x = 0; x < 16; ++x) {
+        Json b = body("box_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
+                      "dynamic", box(0.5, 0.5, 0.5), vec((x - 7.5) * 1.1, 1.0 + y * 1.1, (z - 7.5) * 1.1));
+        b["mass"] = 1;
+        b["friction"] = num(0.5);
+        bodies.push_back(b);
+      }
+    }
+  }
+  return doc;
+}
+
+// R2: 8,000 spheres (radius 0.25) in a 20 x 20 x 20 lattice, spacing 0.6, into an open container of
+// four static walls enclosing x, z in [-7, 7], 10 high, 0.5 thick.
+Json rain() {
+  Json doc = referenceDocument();
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundBox());
+  const auto wall = [&](const std::string& name, Json shape, const Json& position) {
+    Json w = body(name, "static", std::move(shape), position);
+    w["friction"] = num(0.5);
+    bodies.push_back(w);
+  };
+  wall("wall_east", box(0.25, 5, 7.5), vec(7.25, 5, 0));
+  wall("wall_west", box(0.25, 5, 7.5), vec(-7.25, 5, 0));
+  wall("wall_north", box(7.5, 5, 0.25), vec(0, 5, 7.25));
+  wall("wall_south", box(7.5, 5, 0.25), vec(0, 5, -7.25));
+  for (int y = 0; y < 20; ++y) {
+    for (int z = 0; z < 20; ++z) {
+      for (int x = 0; x < 20; ++x) {
+        Json b = body("sphere_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
+                      "dynamic", sphere(0.25), vec((x - 9.5) * 0.6, 1.0 + y * 0.6, (z - 9.5) * 0.6));
+        b["mass"] = 1;
+        b["friction"] = num(0.5);
+        bodies.push_back(b);
+      }
+    }
+  }
+  return doc;
+}
+
+// R3: 465 unit cubes in rows of 30, 29, ..., 1 in the x-y plane, exactly touching.
+Json pyramid() {
+  Json doc = referenceDocument();
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundBox());
+  for (int row = 0; row < 30; ++row) {
+    const int count = 30 - row;
+    for (int i = 0; i < count; ++i) {
+      Json b = body("cube_" + std::to_string(row) + "_" + std::to_string(i), "dynamic", box(0.5, 0.5, 0.5),
+                    vec(i - (count - 1) / 2.0, 0.5 + row, 0));
+      b["mass"] = 1;
+      b["friction"] = num(0.5);
+      bodies.push_back(b);
+    }
+  }
+  return doc;
+}
+
+// R4: 2,000 convex hulls on a static sine terrain. The hull points come from one std::mt19937
+// seeded 42, hull after hull in the lattice order below (x outermost, then y, then z), 12 points a
+// hull, each point three std::normal_distribution<float>(0, 1) draws in separate statements (x, y,
+// z), normalised to length 0.5.
+Json terrain() {
+  Json doc = referenceDocument();
+  Json& bodies = doc["bodies"];
+  constexpr int kQuads = 100;
+  Json vertices = Json::array(), triangles = Json::array();
+  for (int j = 0; j <= kQuads; ++j) {
+    for (int i = 0; i <= kQuads; ++i) {
+      const double x = i - kQuads / 2.0, z = j - kQuads / 2.0;
+      vertices.push_back(vec(x, 0.5 * std::sin(0.3 * x) * std::cos(0.3 * z), z));
+    }
+  }
+  const auto at = [&](int i, int j) { return j * (kQuads + 1) + i; };
+  for (int j = 0; j < kQuads; ++j) {
+    for (int i = 0; i < kQuads; ++i) {
+      // Counter-clockwise seen from above (+y): the front faces up.
+      triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j)});
+      triangles.push_back({at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)});
+    }
+  }
+  Json ground = body("terrain", "static",
+                     {{"type", "mesh"}, {"vertices", vertices}, {"triangles", triangles}}, vec(0, 0, 0));
+  ground["friction"] = num(0.5);
+  bodies.push_back(ground);
+
+  std::mt19937 rng(42);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  for (int x = 0; x < 20; ++x) {
+    for (int y = 0; y < 5; ++y) {
+      for (int z = 0; z < 20; ++z) {
+        Json points = Json::array();
+        for (int p = 0; p < 12; ++p) {
+          const float px = gauss(rng);
+          const float py = gauss(rng);
+          const float pz = gauss(rng);
+          const Vec3 point = 0.5f * glm::normalize(Vec3(px, py, pz));
+          points.push_back(jsonVec3(point));
+        }
+        Json b = body("hull_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
+                      "dynamic", {{"type", "convex_hull"}, {"points", points}},
+                      vec((x - 9.5) * 1.5, 3.0 + y * 1.5, (z - 9.5) * 1.5));
+        b["mass"] = 1;
+        b["friction"] = num(0.5);
+        bodies.push_back(b);
+      }
+    }
+  }
+  return doc;
+}
+
+}  // namespace collide::scene::builtin

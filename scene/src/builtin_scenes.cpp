@@ -1,0 +1,82 @@
+// The registry of built-in scenes. Each generator returns the scene as JSON; `collide run NAME`
+// parses its text with parseScene, the path a file takes.
+#include <collide/scene/builtin_scenes.h>
+
+#include "builtin_scene_parts.h"
+
+#include <functional>
+
+namespace collide::scene {
+
+namespace builtin {
+Json billiards();
+Json pile();
+Json rain();
+Json pyramid();
+Json terrain();
+Json proxies();
+Json penetrationDrop(const char* response);
+Json breakable();
+}  // namespace builtin
+
+namespace {
+
+struct Entry {
+  BuiltinScene scene;
+  std::function<nlohmann::json()> generate;
+};
+
+const std::vector<Entry>& registry() {
+  static const std::vector<Entry> entries = {
+      {{"billiards", "B1: the lecture's break shot, 16 balls on a table with cushions (the default)"},
+       builtin::billiards},
+      {{"pile", "R1: 4,096 unit cubes in a 16x16x16 lattice falling on the ground"}, builtin::pile},
+      {{"rain", "R2: 8,000 spheres falling into an open container"}, builtin::rain},
+      {{"pyramid", "R3: a 30-row pyramid of 465 touching unit cubes"}, builtin::pyramid},
+      {{"terrain", "R4: 2,000 convex hulls falling on a 100x100 sine-terrain mesh"}, builtin::terrain},
+      {{"proxies", "three of every droppable proxy type falling on a plane, a mesh ramp and each other"},
+       builtin::proxies},
+      {{"revert", "a fast drop of boxes and spheres, penetration response revert"},
+       [] { return builtin::penetrationDrop("revert"); }},
+      {{"revert-project", "the same drop as revert, penetration response project"},
+       [] { return builtin::penetrationDrop("project"); }},
+      {{"breakable", "a brick wall whose bricks break under contact impulses, hit by a heavy ball"},
+       builtin::breakable},
+      // tunneling (needs CCD, issue 7) and chain (needs particles and distance constraints) come
+      // with those features.
+  };
+  return entries;
+}
+
+const Entry& find(std::string_view name) {
+  for (const Entry& e : registry()) {
+    if (e.scene.name == name) return e;
+  }
+  std::string names;
+  for (const Entry& e : registry()) names += (names.empty() ? "" : ", ") + std::string(e.scene.name);
+  throw Error("unknown scene \"" + std::string(name) + "\": not a file and not a built-in scene (" + names +
+              ")");
+}
+
+}  // namespace
+
+std::vector<BuiltinScene> builtinScenes() {
+  std::vector<BuiltinScene> out;
+  for (const Entry& e : registry()) out.push_back(e.scene);
+  return out;
+}
+
+bool isBuiltinScene(std::string_view name) {
+  for (const Entry& e : registry()) {
+    if (e.scene.name == name) return true;
+  }
+  return false;
+}
+
+std::string builtinSceneJson(std::string_view name) { return find(name).generate().dump(1) + "\n"; }
+
+Scene loadBuiltinScene(std::string_view name) {
+  return parseScene(find(name).generate().dump(), "builtin:" + std::string(name));
+}
+
+}  // namespace collide::scene

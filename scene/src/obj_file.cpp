@@ -1,0 +1,41 @@
+#include <collide/scene/obj_file.h>
+
+#include <tiny_obj_loader.h>
+
+namespace collide::scene {
+
+ObjMesh readObjFile(const std::filesystem::path& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  config.mtl_search_path = path.parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path.string(), config)) {
+    std::string why = reader.Error();
+    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+    throw Error("OBJ file " + path.string() + ": " + (why.empty() ? "cannot be read" : why));
+  }
+  ObjMesh mesh;
+  const auto& coordinates = reader.GetAttrib().vertices;
+  for (std::size_t i = 0; i + 2 < coordinates.size(); i += 3) {
+    mesh.vertices.emplace_back(coordinates[i], coordinates[i + 1], coordinates[i + 2]);
+  }
+  for (const auto& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    for (std::size_t i = 0; i + 2 < indices.size(); i += 3) {
+      MeshTriangle t;
+      for (int k = 0; k < 3; ++k) {
+        const int v = indices[i + k].vertex_index;
+        if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size()) {
+          throw Error("OBJ file " + path.string() + ": vertex index " + std::to_string(v) + " out of range");
+        }
+        t.v[k] = static_cast<std::uint32_t>(v);
+      }
+      mesh.triangles.push_back(t);
+    }
+  }
+  if (mesh.triangles.empty()) throw Error("OBJ file " + path.string() + ": no triangles");
+  return mesh;
+}
+
+}  // namespace collide::scene

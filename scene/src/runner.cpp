@@ -1,0 +1,188 @@
+// The loop behind `collide run`: step the World, stream the recording and the contact events, apply
+// damage to breakable bodies from contact begin events, and gather the summary.
+#include "json_output.h"
+
+#include <collide/scene/runner.h>
+
+#include <unistd.h>
+
+#include <bit>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+namespace collide::scene {
+
+namespace {
+
+std::ofstream openOutput(const std::string& path, const char* what) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw Error(std::string(what) + " file " + path + ": cannot be written");
+  return out;
+}
+
+// Streams the recording: {"dt": ..., "frames": [ ... ]}, one frame at a time.
+class Recorder {
+ public:
+  Recorder(const std::string& path, float dt) : out_(openOutput(path, "recording")) {
+    out_ << "{\"dt\": " << jsonNumber(dt).dump() << ", \"frames\": [\n";
+  }
+  void frame(int step, double time, const SceneWorld& sw) {
+    nlohmann::json bodies = nlohmann::json::array();
+    for (BodyId id : sw.bodies) {
+      if (!sw.world.isValid(id)) continue;  // broken
+      const Transform t = sw.world.transform(id);
+      bodies.push_back({{"name", sw.world.name(id)},
+                        {"position", jsonVec3(t.position)},
+                        {"rotation", jsonQuat(t.rotation)},
+                        {"velocity", jsonVec3(sw.world.linearVelocity(id))},
+                        {"angular_velocity", jsonVec3(sw.world.angularVelocity(id))}});
+    }
+    const nlohmann::json f = {{"step", step}, {"time", time}, {"bodies", std::move(bodies)}};
+    out_ << (first_ ? "" : ",\n") << f.dump();
+    first_ = false;
+  }
+  ~Recorder() { out_ << "\n]}\n"; }
+
+ private:
+  std::ofstream out_;
+  bool first_ = true;
+};
+
+void progressBar(int step, int steps) {
+  constexpr int kWidth = 40;
+  const int filled = steps == 0 ? kWidth : step * kWidth / steps;
+  std::fprintf(stderr, "\r[%s%s] %3d%% step %d/%d", std::string(filled, '#').c_str(),
+               std::string(kWidth - filled, ' ').c_str(), steps == 0 ? 100 : step * 100 / steps, step, steps);
+  if (step == steps) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+void addStats(BroadPhaseStats& total, const BroadPhaseStats& s) {
+  total.proxies = s.proxies;
+  total.potentialPairs += s.potentialPairs;
+  total.keptPairs += s.keptPairs;
+  total.boxTests += s.boxTests;
+  total.narrowPhaseTests += s.narrowPhaseTests;
+  total.contactPairs += s.contactPairs;
+}
+
+}  // namespace
+
+std::uint64_t stateHash(const SceneWorld& sw) {
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bit
+  const auto mix = [&](float value) {
+    const auto bits = std::bit_cast<std::uint32_t>(value);
+    for (int i = 0; i < 4; ++i) {
+      hash ^= (bits >> (8 * i)) & 0xFFu;
+      hash *= 1099511628211ull;
+    }
+  };
+  const auto mixVec = [&](const Vec3& v) {
+    mix(v.x);
+    mix(v.y);
+    mix(v.z);
+  };
+  for (BodyId id : sw.bodies) {
+    if (!sw.world.isValid(id)) continue;
+    const Transform t = sw.world.transform(id);
+    mixVec(t.position);
+    mix(t.rotation.x);
+    mix(t.rotation.y);
+    mix(t.rotation.z);
+    mix(t.rotation.w);
+    mixVec(sw.world.linearVelocity(id));
+    mixVec(sw.world.angularVelocity(id));
+  }
+  return hash;
+}
+
+RunSummary runScene(const Scene& scene, const RunOptions& options) {
+  const int steps = options.steps.value_or(scene.steps);
+  if (steps < 0) throw Error("run: steps must be >= 0, got " + std::to_string(steps));
+  if (options.recordEvery < 1)
+    throw Error("run: --every must be >= 1, got " + std::to_string(options.recordEvery));
+
+  SceneWorld sw = buildWorld(scene);
+  RunSummary summary;
+  summary.scene = scene.source;
+  summary.steps = steps;
+  summary.dt = scene.dt;
+  for (const Body& b : scene.bodies) {
+    (b.def.type == BodyType::Static      ? summary.staticBodies
+     : b.def.type == BodyType::Kinematic ? summary.kinematicBodies
+                                         : summary.dynamicBodies)++;
+  }
+
+  std::optional<Recorder> recorder;
+  if (!options.recordPath.empty()) recorder.emplace(options.recordPath, scene.dt);
+  std::optional<std::ofstream> events;
+  if (!options.eventsPath.empty()) events.emplace(openOutput(options.eventsPath, "events"));
+
+  // Breakable bodies by slot index: their threshold and the damage so far.
+  struct Breakable {
+    std::size_t body;
+    float threshold;
+    float damage = 0.0f;
+  };
+  std::map<std::uint32_t, Breakable> breakable;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].breakImpulse) breakable[sw.bodies[i].index] = {i, *scene.bodies[i].breakImpulse};
+  }
+  // Names by slot index, for events that name a body broken in the same step.
+  std::vector<std::string> names(scene.bodies.size());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (sw.bodies[i].index >= names.size()) names.resize(sw.bodies[i].index + 1);
+    names[sw.bodies[i].index] = scene.bodies[i].def.name;
+  }
+
+  if (recorder) recorder->frame(0, 0.0, sw);
+  const int progressEvery = std::max(1, steps / 100);
+  const auto start = std::chrono::steady_clock::now();
+  for (int step = 1; step <= steps; ++step) {
+    sw.world.step(scene.dt);
+    addStats(summary.total, sw.world.lastStats());
+    std::vector<std::size_t> broken;
+    for (const ContactEvent& e : sw.world.contactEvents()) {
+      ++summary.contactEvents;
+      if (events) {
+        const nlohmann::json line = {{"step", step},
+                                     {"type", e.type == ContactEvent::Type::Begin ? "begin" : "end"},
+                                     {"a", names[e.a.index]},
+                                     {"b", names[e.b.index]},
+                                     {"point", jsonVec3(e.point)},
+                                     {"normal", jsonVec3(e.normal)},
+                                     {"impulse", jsonNumber(e.impulse)},
+                                     {"speed", jsonNumber(e.speed)}};
+        *events << line.dump() << '\n';
+      }
+      if (e.type != ContactEvent::Type::Begin) continue;
+      for (BodyId id : {e.a, e.b}) {
+        auto it = breakable.find(id.index);
+        if (it == breakable.end()) continue;
+        it->second.damage += e.impulse;
+        if (it->second.damage > it->second.threshold) {
+          broken.push_back(it->second.body);
+          breakable.erase(it);
+        }
+      }
+    }
+    for (std::size_t body : broken) {
+      sw.world.destroyBody(sw.bodies[body]);
+      ++summary.brokenBodies;
+    }
+    if (recorder && (step % options.recordEvery == 0 || step == steps))
+      recorder->frame(step, step * double(scene.dt), sw);
+    if (options.progress && (step % progressEvery == 0 || step == steps)) progressBar(step, steps);
+  }
+  summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (steps > 0) summary.lastStep = sw.world.lastStats();
+  summary.total.proxies = summary.lastStep.proxies;
+  summary.momentum = sw.world.linearMomentum();
+  summary.kineticEnergy = sw.world.kineticEnergy();
+  summary.stateHash = stateHash(sw);
+  return summary;
+}
+
+}  // namespace collide::scene

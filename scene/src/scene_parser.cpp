@@ -1,0 +1,409 @@
+// JSON text -> Scene. Every field of docs/scene-format.md is read here, checked for type and range,
+// and unknown fields are refused, so that a typo is an error rather than a silent default.
+#include "json_node.h"
+
+#include <collide/scene/obj_file.h>
+#include <collide/scene/scene.h>
+#include <collide/shapes.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace collide::scene {
+
+namespace {
+
+// Runs `parse` and re-throws a library Error (an enum name, a hull that Qhull refuses) with the
+// field's path in front.
+template <class F>
+auto withPath(const JsonNode& node, F&& parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const Error& e) {
+    node.fail(e.what());
+  }
+}
+
+std::vector<Vec3> readPoints(const JsonNode& node) {
+  std::vector<Vec3> points;
+  for (const JsonNode& p : node.elements()) points.push_back(p.vec3());
+  return points;
+}
+
+Transform readPlacement(const JsonNode& node) {
+  Transform t;
+  if (auto p = node.find("position")) t.position = p->vec3();
+  if (auto r = node.find("rotation")) t.rotation = r->quaternion();
+  return t;
+}
+
+Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir);
+
+Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
+  node.expectObject({"type", "vertices", "triangles", "file"});
+  const bool inlineMesh = node.has("vertices") || node.has("triangles");
+  if (inlineMesh == node.has("file")) node.fail("a mesh needs either vertices and triangles, or file");
+  std::vector<Vec3> vertices;
+  std::vector<MeshTriangle> triangles;
+  if (auto file = node.find("file")) {
+    const std::string name = file->string();
+    const std::filesystem::path path = baseDir / name;  // an absolute name replaces baseDir
+    ObjMesh mesh = withPath(*file, [&] { return readObjFile(path); });
+    vertices = std::move(mesh.vertices);
+    triangles = std::move(mesh.triangles);
+  } else {
+    vertices = readPoints(node.at("vertices"));
+    for (const JsonNode& t : node.at("triangles").elements()) {
+      const auto corners = t.elements();
+      if (corners.size() != 3) t.fail("must be a triangle [i, j, k], got " + t.shown());
+      MeshTriangle triangle;
+      for (int k = 0; k < 3; ++k) {
+        const int index = corners[k].integer(0);
+        if (static_cast<std::size_t>(index) >= vertices.size()) {
+          corners[k].fail("vertex index out of range (" + std::to_string(vertices.size()) +
+                          " vertices), got " + corners[k].shown());
+        }
+        triangle.v[k] = static_cast<std::uint32_t>(index);
+      }
+      triangles.push_back(triangle);
+    }
+  }
+  return withPath(
+      node, [&] { return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles))); });
+}
+
+Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir) {
+  if (!node.value().is_object()) node.fail("must be a shape object, got " + node.shown());
+  const std::string type = node.at("type").string();
+  if (type == "sphere") {
+    node.expectObject({"type", "radius"});
+    return Sphere{node.at("radius").positive()};
+  }
+  if (type == "capsule") {
+    node.expectObject({"type", "radius", "half_height"});
+    return Capsule{node.at("radius").positive(), node.at("half_height").positive()};
+  }
+  if (type == "cylinder") {
+    node.expectObject({"type", "radius", "half_height"});
+    return Cylinder{node.at("radius").positive(), node.at("half_height").positive()};
+  }
+  if (type == "plane") {
+    node.expectObject({"type", "normal", "distance"});
+    const JsonNode normalNode = node.at("normal");
+    const Vec3 normal = normalNode.vec3();
+    if (std::abs(glm::length(normal) - 1.0f) > 1e-3f) {
+      normalNode.fail("must be a unit vector, got " + normalNode.shown());
+    }
+    return Plane{glm::normalize(normal), node.at("distance").number()};
+  }
+  if (type == "box") {
+    node.expectObject({"type", "half_extents"});
+    return Box{node.at("half_extents").positiveVec3()};
+  }
+  if (type == "ellipsoid") {
+    node.expectObject({"type", "radii"});
+    return Ellipsoid{node.at("radii").positiveVec3()};
+  }
+  if (type == "convex_hull") {
+    node.expectObject({"type", "points"});
+    const JsonNode pointsNode = node.at("points");
+    const auto points = readPoints(pointsNode);
+    return withPath(pointsNode, [&] { return Shape(ConvexHull::fromPoints(points)); });
+  }
+  if (type == "kdop") {
+    node.expectObject({"type", "k", "points"});
+    const JsonNode kNode = node.at("k");
+    const int k = kNode.integer(0);
+    if (k != 6 && k != 14 && k != 18 && k != 26) kNode.fail("must be 6, 14, 18 or 26, got " + kNode.shown());
+    const JsonNode pointsNode = node.at("points");
+    const auto points = readPoints(pointsNode);
+    return withPath(pointsNode, [&] { return Shape(Kdop::fromPoints(k, points)); });
+  }
+  if (type == "mesh") return readMesh(node, baseDir);
+  if (type == "compound") {
+    node.expectObject({"type", "children"});
+    const JsonNode childrenNode = node.at("children");
+    std::vector<Compound::Child> children;
+    for (const JsonNode& child : childrenNode.elements()) {
+      child.expectObject({"shape", "position", "rotation"});
+      const JsonNode shapeNode = child.at("shape");
+      Shape shape = readShape(shapeNode, baseDir);
+      if (shape.type() == ShapeType::Plane) shapeNode.fail("a compound child cannot be a plane");
+      children.push_back({std::move(shape), readPlacement(child)});
+    }
+    if (children.empty()) childrenNode.fail("a compound needs at least one child");
+    return withPath(node, [&] { return Shape(Compound::fromChildren(std::move(children))); });
+  }
+  node.at("type").fail(
+      "unknown shape type " + node.at("type").shown() +
+      " (expected sphere, capsule, plane, box, cylinder, ellipsoid, convex_hull, kdop, mesh or compound)");
+}
+
+void readSettings(const JsonNode& node, Scene& scene) {
+  node.expectObject({"gravity", "dt", "steps", "substeps", "broadphase", "ccd", "sleeping",
+                     "bounciness_combine", "friction_combine", "impact_model", "friction_model",
+                     "penetration_response"});
+  WorldDef& w = scene.world;
+  if (auto n = node.find("gravity")) w.gravity = n->vec3();
+  if (auto n = node.find("dt")) scene.dt = n->positive();
+  if (auto n = node.find("steps")) scene.steps = n->integer(0);
+  if (auto n = node.find("substeps")) w.substeps = n->integer(1);
+  if (auto n = node.find("broadphase")) {
+    w.broadPhase.type = withPath(*n, [&] { return parseBroadPhaseType(n->string()); });
+  }
+  if (auto n = node.find("ccd")) scene.ccd = n->boolean();
+  if (auto n = node.find("sleeping")) w.sleeping = n->boolean();
+  if (auto n = node.find("bounciness_combine")) {
+    w.bouncinessCombine = withPath(*n, [&] { return parseCombineRule(n->string()); });
+  }
+  if (auto n = node.find("friction_combine")) {
+    w.frictionCombine = withPath(*n, [&] { return parseCombineRule(n->string()); });
+  }
+  if (auto n = node.find("impact_model"))
+    w.impactModel = withPath(*n, [&] { return parseImpactModel(n->string()); });
+  if (auto n = node.find("friction_model")) {
+    w.frictionModel = withPath(*n, [&] { return parseFrictionModel(n->string()); });
+  }
+  if (auto n = node.find("penetration_response")) {
+    w.penetrationResponse = withPath(*n, [&] { return parsePenetrationResponse(n->string()); });
+  }
+}
+
+Material readMaterial(const JsonNode& node) {
+  node.expectObject({"bounciness", "friction", "density"});
+  Material m;
+  if (auto n = node.find("bounciness")) m.bounciness = n->unitInterval();
+  if (auto n = node.find("friction")) m.friction = n->nonNegative();
+  if (auto n = node.find("density")) m.density = n->positive();
+  return m;
+}
+
+BodyType readBodyType(const JsonNode& node) {
+  const std::string name = node.string();
+  if (name == "static") return BodyType::Static;
+  if (name == "kinematic") return BodyType::Kinematic;
+  if (name == "dynamic") return BodyType::Dynamic;
+  node.fail("unknown body type " + node.shown() + " (expected static, kinematic or dynamic)");
+}
+
+Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::path& baseDir) {
+  node.expectObject({"name", "type", "shape", "position", "rotation", "scale", "velocity", "angular_velocity",
+                     "mass", "density", "material", "bounciness", "friction", "ccd", "sensor",
+                     "break_impulse"});
+  Body body;
+  BodyDef& d = body.def;
+  d.name = node.at("name").string();
+  if (d.name.empty()) node.at("name").fail("must not be empty");
+  d.type = readBodyType(node.at("type"));
+  const JsonNode shapeNode = node.at("shape");
+  d.shape = readShape(shapeNode, baseDir);
+  if (d.shape.type() == ShapeType::Plane && d.type != BodyType::Static) {
+    shapeNode.fail("a plane can only be on a static body, got a " + std::string(toString(d.type)) + " body");
+  }
+  if (d.shape.type() == ShapeType::Mesh && d.type == BodyType::Dynamic) {
+    shapeNode.fail("a mesh can only be on a static or kinematic body, got a dynamic body");
+  }
+  if (auto n = node.find("position")) d.position = n->vec3();
+  if (auto n = node.find("rotation")) d.rotation = n->quaternion();
+  if (auto n = node.find("scale")) d.scale = n->positive();
+  if (auto n = node.find("velocity")) d.linearVelocity = n->vec3();
+  if (auto n = node.find("angular_velocity")) d.angularVelocity = n->vec3();
+
+  // Material values first, then the body's own.
+  if (auto n = node.find("material")) {
+    body.material = n->string();
+    const auto it = scene.materials.find(body.material);
+    if (it == scene.materials.end()) n->fail("unknown material " + n->shown());
+    const Material& m = it->second;
+    if (m.bounciness) d.bounciness = *m.bounciness;
+    if (m.friction) d.friction = *m.friction;
+    if (m.density) d.density = *m.density;
+  }
+  if (node.has("mass") && node.has("density")) node.at("density").fail("give mass or density, not both");
+  if (auto n = node.find("mass")) d.mass = n->positive();
+  if (auto n = node.find("density")) d.density = n->positive();
+  if (auto n = node.find("bounciness")) d.bounciness = n->unitInterval();
+  if (auto n = node.find("friction")) d.friction = n->nonNegative();
+  if (auto n = node.find("ccd")) body.ccd = n->boolean();
+  if (auto n = node.find("sensor")) d.sensor = n->boolean();
+  if (auto n = node.find("break_impulse")) body.breakImpulse = n->positive();
+  return body;
+}
+
+DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::string, std::size_t>& names) {
+  if (!node.value().is_object()) node.fail("must be a constraint object, got " + node.shown());
+  const JsonNode typeNode = node.at("type");
+  if (typeNode.string() != "distance")
+    typeNode.fail("unknown constraint type " + typeNode.shown() + " (expected distance)");
+  node.expectObject({"type", "a", "b", "anchor_a", "anchor_b", "length", "compliance"});
+  DistanceConstraint c;
+  for (const char* key : {"a", "b"}) {
+    const JsonNode n = node.at(key);
+    const std::string name = n.string();
+    if (!names.contains(name)) n.fail("no body named " + n.shown());
+    (key[0] == 'a' ? c.a : c.b) = name;
+  }
+  if (c.a == c.b) node.at("b").fail("must differ from a, got " + node.at("b").shown());
+  if (auto n = node.find("anchor_a")) c.anchorA = n->vec3();
+  if (auto n = node.find("anchor_b")) c.anchorB = n->vec3();
+  if (auto n = node.find("length")) c.length = n->nonNegative();
+  if (auto n = node.find("compliance")) c.compliance = n->nonNegative();
+  return c;
+}
+
+// Line and column (1-based) of a byte offset, for messages about malformed JSON.
+std::pair<std::size_t, std::size_t> lineColumn(std::string_view text, std::size_t offset) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+// nlohmann's DOM builder behind a SAX handler that remembers where in the document it is, so that
+// a parse error (a syntax error, or a number such as 1e999 that overflows a double) can name its
+// line, column and, for a number, the field path.
+class PathTrackingSax {
+ public:
+  using DomParser = nlohmann::detail::json_sax_dom_parser<Json>;
+  explicit PathTrackingSax(Json& result) : dom_(result, false) {}
+
+  bool null() { return value(), dom_.null(); }
+  bool boolean(bool v) { return value(), dom_.boolean(v); }
+  bool number_integer(Json::number_integer_t v) { return value(), dom_.number_integer(v); }
+  bool number_unsigned(Json::number_unsigned_t v) { return value(), dom_.number_unsigned(v); }
+  bool number_float(Json::number_float_t v, const std::string& s) { return value(), dom_.number_float(v, s); }
+  bool string(std::string& v) { return value(), dom_.string(v); }
+  bool binary(Json::binary_t& v) { return value(), dom_.binary(v); }
+  bool start_object(std::size_t n) {
+    value();
+    frames_.push_back({false, 0, ""});
+    return dom_.start_object(n);
+  }
+  bool key(std::string& k) {
+    frames_.back().key = k;
+    return dom_.key(k);
+  }
+  bool end_object() {
+    frames_.pop_back();
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t n) {
+    value();
+    frames_.push_back({true, 0, ""});
+    return dom_.start_array(n);
+  }
+  bool end_array() {
+    frames_.pop_back();
+    return dom_.end_array();
+  }
+  bool parse_error(std::size_t position, const std::string& token, const Json::exception& e) {
+    position_ = position;
+    token_ = token;
+    what_ = e.what();
+    numberOverflow_ = e.id == 406;
+    return false;
+  }
+
+  // Where the pending value would go: the key just read, or the next array slot.
+  std::string path() const {
+    std::string out;
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      if (f.array) {
+        out += "[" + std::to_string(i + 1 == frames_.size() ? f.count : f.count - 1) + "]";
+      } else {
+        out += (out.empty() ? "" : ".") + f.key;
+      }
+    }
+    return out;
+  }
+  std::size_t position() const { return position_; }
+  const std::string& token() const { return token_; }
+  const std::string& what() const { return what_; }
+  bool numberOverflow() const { return numberOverflow_; }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t count;  // array elements started
+    std::string key;    // object: the last key
+  };
+  void value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
+  }
+  DomParser dom_;
+  std::vector<Frame> frames_;
+  std::size_t position_ = 0;
+  std::string token_, what_;
+  bool numberOverflow_ = false;
+};
+
+Json parseDocument(std::string_view text, const std::string& source) {
+  Json document;
+  PathTrackingSax sax(document);
+  if (Json::sax_parse(text, &sax)) return document;
+  // nlohmann's position is one past the offending character.
+  const auto [line, column] = lineColumn(text, sax.position() == 0 ? 0 : sax.position() - 1);
+  const std::string where = "line " + std::to_string(line) + ", column " + std::to_string(column);
+  if (sax.numberOverflow()) {
+    throw Error(source + ": " + sax.path() + ": must be a finite number within float range, got " +
+                sax.token() + " (" + where + ")");
+  }
+  const auto colon = sax.what().rfind(": ");
+  throw Error(source + ": malformed JSON at " + where +
+              (colon == std::string::npos ? "" : ": " + sax.what().substr(colon + 2)));
+}
+
+}  // namespace
+
+Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir) {
+  Scene scene;
+  scene.source = sourceName;
+  const Json document = parseDocument(text, scene.source);
+  const JsonNode root(document, "", scene.source);
+  if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
+  root.expectObject({"format", "settings", "materials", "bodies", "constraints"});
+  const JsonNode format = root.at("format");
+  if (format.string() != kFormat)
+    format.fail("must be \"" + std::string(kFormat) + "\", got " + format.shown());
+
+  if (auto n = root.find("settings")) readSettings(*n, scene);
+  if (auto n = root.find("materials")) {
+    if (!n->value().is_object()) n->fail("must be an object mapping names to materials, got " + n->shown());
+    for (const auto& [name, unused] : n->value().items())
+      scene.materials[name] = readMaterial(*n->find(name));
+  }
+  std::map<std::string, std::size_t> names;
+  if (auto n = root.find("bodies")) {
+    for (const JsonNode& b : n->elements()) {
+      Body body = readBody(b, scene, baseDir);
+      const auto [it, inserted] = names.emplace(body.def.name, scene.bodies.size());
+      if (!inserted) {
+        b.at("name").fail("duplicate name " + b.at("name").shown() + " (also bodies[" +
+                          std::to_string(it->second) + "])");
+      }
+      body.def.userData = scene.bodies.size();
+      scene.bodies.push_back(std::move(body));
+    }
+  }
+  if (auto n = root.find("constraints")) {
+    for (const JsonNode& c : n->elements()) scene.constraints.push_back(readConstraint(c, names));
+  }
+  return scene;
+}
+
+Scene loadSceneFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("scene file " + path.string() + ": cannot be opened");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path.string(), path.parent_path().empty() ? "." : path.parent_path());
+}
+
+}  // namespace collide::scene

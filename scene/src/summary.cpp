@@ -1,0 +1,83 @@
+// The summary of a run, as the table `collide run` prints and as JSON (--json).
+#include "json_output.h"
+
+#include <collide/scene/runner.h>
+
+#include <cstdio>
+
+namespace collide::scene {
+
+namespace {
+
+std::string hex(std::uint64_t value) {
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+nlohmann::json statsJson(const BroadPhaseStats& s) {
+  return {{"potential_pairs", s.potentialPairs},
+          {"broad_phase_pairs", s.keptPairs},
+          {"narrow_phase_tests", s.narrowPhaseTests},
+          {"contact_pairs", s.contactPairs}};
+}
+
+}  // namespace
+
+std::string formatSummary(const RunSummary& s) {
+  std::string out;
+  char line[256];
+  const auto add = [&](const char* format, auto... values) {
+    std::snprintf(line, sizeof line, format, values...);
+    out += line;
+  };
+  const double simTime = s.steps * double(s.dt);
+  add("scene           %s\n", s.scene.c_str());
+  add("steps           %d x %.3f ms = %.3f s simulated\n", s.steps, s.dt * 1e3, simTime);
+  add("wall time       %.3f s, %.3f ms/step\n", s.wallSeconds,
+      s.steps == 0 ? 0.0 : s.wallSeconds * 1e3 / s.steps);
+  add("bodies          %d: %d static, %d kinematic, %d dynamic\n",
+      s.staticBodies + s.kinematicBodies + s.dynamicBodies, s.staticBodies, s.kinematicBodies,
+      s.dynamicBodies);
+  if (s.brokenBodies > 0) add("broken          %d bodies removed\n", s.brokenBodies);
+  add("contact events  %llu\n", static_cast<unsigned long long>(s.contactEvents));
+  add("\n%-24s %14s %16s\n", "pairs", "last step", "total");
+  const auto row = [&](const char* name, std::uint64_t last, std::uint64_t total) {
+    add("%-24s %14llu %16llu\n", name, static_cast<unsigned long long>(last),
+        static_cast<unsigned long long>(total));
+  };
+  row("potential n(n-1)/2", s.lastStep.potentialPairs, s.total.potentialPairs);
+  row("kept by broad phase", s.lastStep.keptPairs, s.total.keptPairs);
+  row("narrow-phase tests", s.lastStep.narrowPhaseTests, s.total.narrowPhaseTests);
+  row("in contact", s.lastStep.contactPairs, s.total.contactPairs);
+  if (s.total.potentialPairs > 0) {
+    add("in contact / potential: %.4f%%\n",
+        100.0 * double(s.total.contactPairs) / double(s.total.potentialPairs));
+  }
+  add("\nmomentum        (%.6g, %.6g, %.6g) kg m/s\n", s.momentum.x, s.momentum.y, s.momentum.z);
+  add("kinetic energy  %.6g J\n", s.kineticEnergy);
+  add("state hash      %s\n", hex(s.stateHash).c_str());
+  return out;
+}
+
+std::string summaryJson(const RunSummary& s) {
+  const nlohmann::json j = {
+      {"scene", s.scene},
+      {"steps", s.steps},
+      {"dt", jsonNumber(s.dt)},
+      {"sim_time", s.steps * double(s.dt)},
+      {"wall_seconds", s.wallSeconds},
+      {"ms_per_step", s.steps == 0 ? 0.0 : s.wallSeconds * 1e3 / s.steps},
+      {"bodies",
+       {{"static", s.staticBodies}, {"kinematic", s.kinematicBodies}, {"dynamic", s.dynamicBodies}}},
+      {"broken_bodies", s.brokenBodies},
+      {"contact_events", s.contactEvents},
+      {"last_step", statsJson(s.lastStep)},
+      {"total", statsJson(s.total)},
+      {"momentum", jsonVec3(s.momentum)},
+      {"kinetic_energy", jsonNumber(s.kineticEnergy)},
+      {"state_hash", hex(s.stateHash)}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace collide::scene

@@ -1,0 +1,152 @@
+// The runner: determinism, the pair funnel of the billiard shot, the outputs, breakable bodies.
+#include <collide/scene/builtin_scenes.h>
+#include <collide/scene/runner.h>
+
+#include <nlohmann/json.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+namespace collide::scene {
+namespace {
+
+const std::string kData = COLLIDE_SCENE_TEST_DATA;
+
+std::filesystem::path scratch(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("collide_scene_test_" + std::to_string(::getpid()) + "_" + name);
+}
+
+TEST(Runner, SameSceneTwiceGivesTheSameHash) {
+  const Scene billiards = loadBuiltinScene("billiards");
+  RunOptions options;
+  options.steps = 60;
+  const RunSummary first = runScene(billiards, options);
+  const RunSummary second = runScene(billiards, options);
+  EXPECT_EQ(first.stateHash, second.stateHash);
+  // And the hash sees the state: fewer steps, another hash.
+  options.steps = 59;
+  EXPECT_NE(runScene(billiards, options).stateHash, first.stateHash);
+}
+
+// The lecture's argument for a broad phase: most potential pairs never touch. In the break shot,
+// 21 bodies make 210 potential pairs a step; the balls touch the cloth and, in the rack, each other.
+TEST(Runner, BilliardsContactsAreFewOfThePotentialPairs) {
+  RunOptions options;
+  options.steps = 120;
+  const RunSummary s = runScene(loadBuiltinScene("billiards"), options);
+  EXPECT_EQ(s.dynamicBodies, 16);
+  EXPECT_EQ(s.staticBodies, 5);
+  EXPECT_EQ(s.lastStep.potentialPairs, 21u * 20u / 2u);
+  EXPECT_EQ(s.total.potentialPairs, 120u * 210u);
+  EXPECT_GE(s.total.keptPairs, s.total.narrowPhaseTests);
+  EXPECT_GE(s.total.narrowPhaseTests, s.total.contactPairs);
+  // The 16 balls stay on the cloth: at least 16 contacts every step.
+  EXPECT_GE(s.total.contactPairs, 120u * 16u);
+  EXPECT_LT(s.total.contactPairs * 4, s.total.potentialPairs);
+}
+
+TEST(Runner, CueBallMomentumGoesIntoTheRack) {
+  // Before the cue ball arrives (0.635 m at 6 m/s: about 0.1 s), momentum is the cue ball's alone,
+  // minus what the cloth's friction took; after the break the rack carries it forward (+x).
+  RunOptions options;
+  options.steps = 60;
+  const RunSummary s = runScene(loadBuiltinScene("billiards"), options);
+  EXPECT_GT(s.momentum.x, 0.0f);
+  EXPECT_LT(s.momentum.x, 0.17f * 6.0f);
+}
+
+TEST(Runner, RecordingAndEventsFollowTheFormat) {
+  const auto record = scratch("record.json"), events = scratch("events.jsonl");
+  RunOptions options;
+  options.steps = 25;
+  options.recordPath = record.string();
+  options.recordEvery = 10;
+  options.eventsPath = events.string();
+  const Scene scene = loadSceneFile(kData + "/small_drop.json");
+  const RunSummary s = runScene(scene, options);
+
+  std::ifstream recordFile(record);
+  const auto doc = nlohmann::json::parse(recordFile);
+  EXPECT_FLOAT_EQ(doc["dt"].get<float>(), 1.0f / 60.0f);
+  // Frames at steps 0, 10, 20 and always the last (25).
+  ASSERT_EQ(doc["frames"].size(), 4u);
+  EXPECT_EQ(doc["frames"][1]["step"], 10);
+  EXPECT_EQ(doc["frames"][3]["step"], 25);
+  EXPECT_NEAR(doc["frames"][3]["time"].get<double>(), 25.0 / 60.0, 1e-6);
+  const auto& ball = doc["frames"][0]["bodies"][1];
+  EXPECT_EQ(ball["name"], "ball");
+  EXPECT_EQ(ball["position"], nlohmann::json::array({0, 0.6, 0}));
+  EXPECT_EQ(ball["rotation"], nlohmann::json::array({0, 0, 0, 1}));
+  for (const char* key : {"velocity", "angular_velocity"}) EXPECT_TRUE(ball.contains(key));
+
+  // The ball starts 0.1 m above the ground and lands: one begin event, ball against ground.
+  std::ifstream eventsFile(events);
+  std::string line;
+  int begins = 0;
+  while (std::getline(eventsFile, line)) {
+    const auto e = nlohmann::json::parse(line);
+    for (const char* key : {"step", "type", "a", "b", "point", "normal", "impulse", "speed"}) {
+      EXPECT_TRUE(e.contains(key)) << key;
+    }
+    if (e["type"] == "begin") {
+      ++begins;
+      EXPECT_TRUE((e["a"] == "ground" && e["b"] == "ball") || (e["a"] == "ball" && e["b"] == "ground"))
+          << line;
+      EXPECT_GT(e["speed"].get<float>(), 0.5f);  // fell 0.1 m: about 1.4 m/s
+    }
+  }
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(s.contactEvents, 1u);
+  std::filesystem::remove(record);
+  std::filesystem::remove(events);
+}
+
+TEST(Runner, SummaryJsonHasTheTablesNumbers) {
+  RunOptions options;
+  options.steps = 5;
+  const RunSummary s = runScene(loadBuiltinScene("billiards"), options);
+  const auto j = nlohmann::json::parse(summaryJson(s));
+  EXPECT_EQ(j["steps"], 5);
+  EXPECT_EQ(j["bodies"]["dynamic"], 16);
+  EXPECT_EQ(j["total"]["potential_pairs"], 5 * 210);
+  EXPECT_EQ(j["last_step"]["contact_pairs"], s.lastStep.contactPairs);
+  EXPECT_EQ(j["state_hash"].get<std::string>().size(), 16u);
+  const std::string table = formatSummary(s);
+  EXPECT_THAT(table, ::testing::HasSubstr("potential n(n-1)/2"));
+  EXPECT_THAT(table, ::testing::HasSubstr("21: 5 static, 0 kinematic, 16 dynamic"));
+}
+
+TEST(Runner, BreakableWallLosesBricksToTheBall) {
+  RunOptions options;
+  options.steps = 90;
+  const RunSummary s = runScene(loadBuiltinScene("breakable"), options);
+  EXPECT_GT(s.brokenBodies, 0);
+  EXPECT_LT(s.brokenBodies, 45);  // the ball makes a hole, not the weight of the wall
+  // Without the ball nothing breaks: the bricks' own weight stays under the threshold.
+  Scene quiet = loadBuiltinScene("breakable");
+  quiet.bodies.pop_back();
+  EXPECT_EQ(runScene(quiet, options).brokenBodies, 0);
+}
+
+TEST(Runner, BadOptionsAreRefused) {
+  const Scene scene = loadBuiltinScene("billiards");
+  RunOptions options;
+  options.steps = -1;
+  EXPECT_THROW(runScene(scene, options), Error);
+  options.steps = 1;
+  options.recordEvery = 0;
+  options.recordPath = scratch("never.json").string();
+  EXPECT_THROW(runScene(scene, options), Error);
+  options.recordEvery = 1;
+  options.recordPath = "/nonexistent-dir/x.json";
+  EXPECT_THROW(runScene(scene, options), Error);
+}
+
+}  // namespace
+}  // namespace collide::scene

@@ -1,0 +1,294 @@
+// The scene loader: every field of docs/scene-format.md lands where it should, and each class of
+// bad input is refused with a message naming the field path and the value.
+#include <collide/scene/scene.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace collide::scene {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kData = COLLIDE_SCENE_TEST_DATA;
+
+// The message of the Error that parsing `text` throws ("" if it does not throw).
+std::string parseError(const std::string& text) {
+  try {
+    parseScene(text, "test.json", kData);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A one-body scene around `body`.
+std::string withBody(const std::string& body) {
+  return R"({"format": "collide-scene/1", "bodies": [)" + body + "]}";
+}
+
+TEST(SceneParser, EveryFieldReachesTheScene) {
+  const Scene s = loadSceneFile(kData + "/every_field.json");
+  EXPECT_EQ(s.world.gravity, Vec3(0.5f, -9.5f, 0.25f));
+  EXPECT_FLOAT_EQ(s.dt, 0.01f);
+  EXPECT_EQ(s.steps, 42);
+  EXPECT_EQ(s.world.substeps, 6);
+  EXPECT_EQ(s.world.broadPhase.type, BroadPhaseType::SweepAndPrune);
+  EXPECT_TRUE(s.ccd);
+  EXPECT_FALSE(s.world.sleeping);
+  EXPECT_EQ(s.world.bouncinessCombine, CombineRule::Multiply);
+  EXPECT_EQ(s.world.frictionCombine, CombineRule::Min);
+  EXPECT_EQ(s.world.impactModel, ImpactModel::Interpolated);
+  EXPECT_EQ(s.world.frictionModel, FrictionModel::Viscous);
+  EXPECT_EQ(s.world.penetrationResponse, PenetrationResponse::Revert);
+
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials.at("felt"), (Material{0.1f, 0.4f, 800.0f}));
+  EXPECT_EQ(s.materials.at("steel"), (Material{std::nullopt, 0.3f, std::nullopt}));
+
+  ASSERT_EQ(s.bodies.size(), 11u);
+  const BodyDef& ground = s.bodies[0].def;
+  EXPECT_EQ(ground.name, "ground");
+  EXPECT_EQ(ground.type, BodyType::Static);
+  ASSERT_EQ(ground.shape.type(), ShapeType::Plane);
+  EXPECT_EQ(ground.shape.plane().normal, Vec3(0, 1, 0));
+  EXPECT_FLOAT_EQ(ground.shape.plane().distance, -0.5f);
+
+  const Body& ball = s.bodies[1];
+  EXPECT_EQ(ball.def.type, BodyType::Dynamic);
+  EXPECT_FLOAT_EQ(ball.def.shape.sphere().radius, 0.5f);
+  EXPECT_EQ(ball.def.position, Vec3(1, 2, 3));
+  // [x, y, z, w] = [0, 0.6, 0, 0.8]: glm stores (w, x, y, z).
+  EXPECT_FLOAT_EQ(ball.def.rotation.y, 0.6f);
+  EXPECT_FLOAT_EQ(ball.def.rotation.w, 0.8f);
+  EXPECT_FLOAT_EQ(ball.def.scale, 2.0f);
+  EXPECT_EQ(ball.def.linearVelocity, Vec3(1, 0, -1));
+  EXPECT_EQ(ball.def.angularVelocity, Vec3(0, 3, 0));
+  ASSERT_TRUE(ball.def.mass.has_value());
+  EXPECT_FLOAT_EQ(*ball.def.mass, 1.5f);
+  EXPECT_EQ(ball.material, "felt");
+  EXPECT_FLOAT_EQ(ball.def.bounciness, 0.9f);  // its own value over the material's 0.1
+  EXPECT_FLOAT_EQ(ball.def.friction, 0.4f);    // the material's
+  EXPECT_TRUE(ball.ccd);
+  EXPECT_FALSE(ball.def.sensor);
+  EXPECT_EQ(ball.def.userData, 1u);
+
+  const Body& crate = s.bodies[2];
+  EXPECT_EQ(crate.def.type, BodyType::Kinematic);
+  EXPECT_EQ(crate.def.shape.box().halfExtents, Vec3(0.5f, 0.25f, 0.125f));
+  EXPECT_TRUE(crate.def.sensor);
+  EXPECT_FLOAT_EQ(crate.def.friction, 0.3f);
+  EXPECT_FLOAT_EQ(crate.def.bounciness, 0.0f);  // neither the body nor steel says: the default
+
+  const Body& pill = s.bodies[3];
+  EXPECT_FLOAT_EQ(pill.def.shape.capsule().radius, 0.2f);
+  EXPECT_FLOAT_EQ(pill.def.shape.capsule().halfHeight, 0.3f);
+  EXPECT_FALSE(pill.def.mass.has_value());
+  EXPECT_FLOAT_EQ(pill.def.density, 2000.0f);
+  EXPECT_FLOAT_EQ(pill.def.friction, 0.7f);
+  ASSERT_TRUE(pill.breakImpulse.has_value());
+  EXPECT_FLOAT_EQ(*pill.breakImpulse, 12.5f);
+
+  EXPECT_FLOAT_EQ(s.bodies[4].def.shape.cylinder().radius, 0.3f);
+  EXPECT_FLOAT_EQ(s.bodies[4].def.shape.cylinder().halfHeight, 0.4f);
+  EXPECT_EQ(s.bodies[5].def.shape.ellipsoid().radii, Vec3(0.3f, 0.4f, 0.5f));
+  // The hull of a corner tetrahedron plus an inner point: 4 vertices, volume 1/6.
+  EXPECT_EQ(s.bodies[6].def.shape.convexHull().vertices().size(), 4u);
+  EXPECT_NEAR(s.bodies[6].def.shape.convexHull().volume(), 1.0f / 6.0f, 1e-6f);
+  EXPECT_EQ(s.bodies[7].def.shape.kdop().k(), 14);
+  EXPECT_EQ(s.bodies[8].def.shape.mesh().triangles().size(), 1u);
+  // The OBJ cube: 6 quads triangulated, closed, volume 1.
+  const TriangleMesh& objCube = s.bodies[9].def.shape.mesh();
+  EXPECT_EQ(objCube.triangles().size(), 12u);
+  EXPECT_TRUE(objCube.isClosed());
+  EXPECT_NEAR(objCube.volume(), 1.0f, 1e-5f);
+  const Compound& dumbbell = s.bodies[10].def.shape.compound();
+  ASSERT_EQ(dumbbell.children().size(), 3u);
+  EXPECT_EQ(dumbbell.children()[0].transform.position, Vec3(-0.6f, 0, 0));
+  EXPECT_FLOAT_EQ(dumbbell.children()[1].transform.rotation.z, 0.6f);
+  EXPECT_FLOAT_EQ(dumbbell.children()[2].shape.sphere().radius, 0.3f);
+
+  ASSERT_EQ(s.constraints.size(), 1u);
+  const DistanceConstraint& c = s.constraints[0];
+  EXPECT_EQ(c.a, "ball");
+  EXPECT_EQ(c.b, "crate");
+  EXPECT_EQ(c.anchorA, Vec3(0, 0.5f, 0));
+  EXPECT_EQ(c.anchorB, Vec3(0.1f, 0, 0));
+  ASSERT_TRUE(c.length.has_value());
+  EXPECT_FLOAT_EQ(*c.length, 2.5f);
+  EXPECT_FLOAT_EQ(c.compliance, 0.001f);
+}
+
+TEST(SceneParser, BodiesReachTheWorld) {
+  Scene s = loadSceneFile(kData + "/every_field.json");
+  s.constraints.clear();  // distance constraints are not in the World yet
+  SceneWorld sw = buildWorld(s);
+  ASSERT_EQ(sw.bodies.size(), s.bodies.size());
+  EXPECT_EQ(sw.world.def().penetrationResponse, PenetrationResponse::Revert);
+  EXPECT_EQ(sw.world.name(sw.bodies[1]), "ball");
+  EXPECT_FLOAT_EQ(sw.world.mass(sw.bodies[1]), 1.5f);
+  // Density 2000 on a capsule r 0.2, half height 0.3: pi r^2 (2 hh + 4/3 r) * 2000.
+  const float pi = 3.14159265f;
+  EXPECT_NEAR(sw.world.mass(sw.bodies[3]), pi * 0.04f * (0.6f + 0.8f / 3.0f) * 2000.0f, 1e-2f);
+  EXPECT_EQ(sw.world.transform(sw.bodies[9]).position, Vec3(25, 3, 0));
+  EXPECT_EQ(sw.world.linearVelocity(sw.bodies[1]), Vec3(1, 0, -1));
+}
+
+TEST(SceneParser, DefaultsAreTheEngines) {
+  const Scene s = parseScene(R"({"format": "collide-scene/1"})");
+  const WorldDef defaults;
+  EXPECT_EQ(s.world.gravity, defaults.gravity);
+  EXPECT_EQ(s.world.substeps, defaults.substeps);
+  EXPECT_FLOAT_EQ(s.dt, 1.0f / 60.0f);
+  EXPECT_EQ(s.steps, 600);
+  EXPECT_TRUE(s.bodies.empty());
+}
+
+TEST(SceneParserErrors, MalformedJsonGivesLineAndColumn) {
+  const std::string message =
+      parseError("{ \"format\": \"collide-scene/1\",\n  \"bodies\": [ { \"name\": 1 ]\n}");
+  EXPECT_THAT(message, HasSubstr("test.json: malformed JSON at line 2, column 27"));
+}
+
+TEST(SceneParserErrors, NegativeSizeNamesThePathAndValue) {
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "a", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+      {"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": -1}})")),
+      HasSubstr("test.json: bodies[1].shape.radius: must be > 0, got -1"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "box",
+      "half_extents": [1, 0, 1]}})")),
+              HasSubstr("bodies[0].shape.half_extents[1]: must be > 0, got 0"));
+}
+
+TEST(SceneParserErrors, WrongTypeNamesTheField) {
+  EXPECT_THAT(parseError(withBody(
+                  R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": "big"}})")),
+              HasSubstr("bodies[0].shape.radius: must be a number, got \"big\""));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"sleeping": 1}})"),
+              HasSubstr("settings.sleeping: must be true or false, got 1"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"steps": 2.5}})"),
+              HasSubstr("settings.steps: must be an integer, got 2.5"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": {}})"),
+              HasSubstr("bodies: must be an array, got an object"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "position": [1, 2],
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].position: must be [x, y, z], got [1,2]"));
+}
+
+TEST(SceneParserErrors, MissingRequiredField) {
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic"})")),
+              HasSubstr("bodies[0].shape: missing required field"));
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "capsule", "radius": 1}})")),
+      HasSubstr("bodies[0].shape.half_height: missing required field"));
+  EXPECT_THAT(parseError(R"({"bodies": []})"), HasSubstr("test.json: format: missing required field"));
+}
+
+TEST(SceneParserErrors, UnknownFieldIsRefused) {
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radus": 1}})")),
+      HasSubstr("bodies[0].shape.radus: unknown field (expected type, radius)"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravty": [0, 0, 0]}})"),
+              HasSubstr("settings.gravty: unknown field"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "extra": 1})"),
+              HasSubstr("test.json: extra: unknown field"));
+}
+
+TEST(SceneParserErrors, UnknownNames) {
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "spere", "radius": 1}})")),
+      HasSubstr("bodies[0].shape.type: unknown shape type \"spere\""));
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "b", "type": "dynamc", "shape": {"type": "sphere", "radius": 1}})")),
+      HasSubstr("bodies[0].type: unknown body type \"dynamc\""));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "material": "wood",
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].material: unknown material \"wood\""));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"broadphase": "octree"}})"),
+              HasSubstr("settings.broadphase: broad phase: unknown type \"octree\""));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"friction_model": "sticky"}})"),
+              HasSubstr("settings.friction_model: "));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [
+      {"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}],
+      "constraints": [{"type": "distance", "a": "b", "b": "nobody"}]})"),
+              HasSubstr("constraints[0].b: no body named \"nobody\""));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/2"})"),
+              HasSubstr("format: must be \"collide-scene/1\", got \"collide-scene/2\""));
+}
+
+// JSON has no NaN or infinity: "1e999" parses to infinity, and 1e39 overflows a float.
+TEST(SceneParserErrors, HugeNumbersAreNotFinite) {
+  EXPECT_THAT(
+      parseError(
+          withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1e999}})")),
+      HasSubstr("bodies[0].shape.radius: must be a finite number within float range, got 1e999 (line 1"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e999, 0]}})"),
+              HasSubstr("settings.gravity[1]: must be a finite number within float range, got -1e999"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e39, 0]}})"),
+              HasSubstr("settings.gravity[1]: must be a finite number within float range, got -1e+39"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": "NaN"}})"),
+              HasSubstr("settings.dt: must be a number, got \"NaN\""));
+}
+
+TEST(SceneParserErrors, OutOfRangeValues) {
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "bounciness": 1.5,
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].bounciness: must be in [0, 1], got 1.5"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 0}})"),
+              HasSubstr("settings.substeps: must be >= 1, got 0"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "rotation": [0, 0, 0, 2],
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].rotation: must be a unit quaternion"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "shape": {"type": "kdop", "k": 10, "points": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}})")),
+              HasSubstr("bodies[0].shape.k: must be 6, 14, 18 or 26, got 10"));
+}
+
+TEST(SceneParserErrors, ShapesTheLibraryRefuses) {
+  // Coplanar hull points: Qhull's refusal with the field in front.
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "shape": {"type": "convex_hull", "points": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]}})")),
+              HasSubstr("bodies[0].shape.points: "));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "static",
+      "shape": {"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,0,1]], "triangles": [[0, 1, 3]]}})")),
+              HasSubstr("bodies[0].shape.triangles[0][2]: vertex index out of range (3 vertices), got 3"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}})")),
+              HasSubstr("bodies[0].shape: a plane can only be on a static body, got a dynamic body"));
+  EXPECT_THAT(parseError(withBody(
+                  R"({"name": "b", "type": "static", "shape": {"type": "mesh", "file": "missing.obj"}})")),
+              HasSubstr("bodies[0].shape.file: OBJ file "));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "shape": {"type": "compound", "children": []}})")),
+              HasSubstr("bodies[0].shape.children: a compound needs at least one child"));
+}
+
+TEST(SceneParserErrors, DuplicateNames) {
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "b", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+      {"name": "b", "type": "static", "shape": {"type": "sphere", "radius": 1}})")),
+      HasSubstr("bodies[1].name: duplicate name \"b\" (also bodies[0])"));
+}
+
+TEST(SceneWorldErrors, WhatTheWorldDoesNotSupportYetIsNamed) {
+  Scene s = loadSceneFile(kData + "/every_field.json");
+  try {
+    buildWorld(s);
+    ADD_FAILURE() << "distance constraints were accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(std::string(e.what()),
+                HasSubstr("constraints[0]: distance constraints are not supported yet"));
+  }
+  s = parseScene(R"({"format": "collide-scene/1", "settings": {"sleeping": true}})", "sleepy.json");
+  try {
+    buildWorld(s);
+    ADD_FAILURE() << "sleeping was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(std::string(e.what()), HasSubstr("sleepy.json: settings.sleeping: "));
+  }
+}
+
+}  // namespace
+}  // namespace collide::scene

@@ -1,0 +1,49 @@
+// `collide run SCENE` and `collide scenes`: scene files and built-in scenes through the scene
+// library (scene/), the summary on stdout, a progress bar on stderr when it is a terminal.
+#include "commands.h"
+
+#include <collide/scene/builtin_scenes.h>
+#include <collide/scene/runner.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+using namespace collide;
+
+int runCommand(const RunArguments& arguments) {
+  // A file wins over a built-in of the same name; something path-like that does not exist is a
+  // missing file, anything else an unknown built-in (whose message lists the built-ins).
+  const std::filesystem::path path(arguments.scene);
+  const bool pathLike = path.has_parent_path() || path.has_extension();
+  const scene::Scene loaded = std::filesystem::exists(path) || pathLike
+                                  ? scene::loadSceneFile(path)
+                                  : scene::loadBuiltinScene(arguments.scene);
+  scene::RunOptions options;
+  options.steps = arguments.steps;
+  options.recordPath = arguments.record;
+  options.recordEvery = arguments.every;
+  options.eventsPath = arguments.events;
+  options.progress = isatty(STDERR_FILENO) != 0;
+  const scene::RunSummary summary = scene::runScene(loaded, options);
+  std::printf("%s", scene::formatSummary(summary).c_str());
+  if (!arguments.json.empty()) {
+    std::ofstream out(arguments.json, std::ios::binary);
+    if (!out) throw Error("summary file " + arguments.json + ": cannot be written");
+    out << scene::summaryJson(summary);
+  }
+  return 0;
+}
+
+int scenesCommand(const std::string& exportName) {
+  if (!exportName.empty()) {
+    std::printf("%s", scene::builtinSceneJson(exportName).c_str());
+    return 0;
+  }
+  for (const scene::BuiltinScene& s : scene::builtinScenes()) {
+    std::printf("%-16s %.*s\n", std::string(s.name).c_str(), int(s.description.size()), s.description.data());
+  }
+  return 0;
+}
