@@ -65,6 +65,8 @@ bool collideCapsuleCapsule(const Shape&, const Transform&, const Shape&, const T
 bool collideCapsuleBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 // Box, k-DOP and hull against each other: SAT with face clipping (sat_polyhedra.cpp).
 bool collidePolyhedra(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+// Box against box: the same answer as collidePolyhedra, specialised (box_box.cpp).
+bool collideBoxBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 // The separating-axis test alone, without the face preference: the largest separation over the
 // face normals and the Gauss-map-pruned edge pairs, and its axis (from A to B). For tests.
 struct SatAxis {
