@@ -147,6 +147,16 @@ bool mergeContacts(std::span<const NormalContact> contacts, float margin, Manifo
     ContactPoint point = contact.point;
     point.depth = glm::dot(point.pointOnA - point.pointOnB, normal);
     if (point.depth < -margin) continue;
+    // A point on an edge shared by two triangles comes from both, with the same id: keep one.
+    const ContactPoint* begin = overflow.empty() ? kept : overflow.data();
+    const std::size_t stored = overflow.empty() ? std::min<std::size_t>(count, 64) : overflow.size();
+    if (std::any_of(begin, begin + stored, [&](const ContactPoint& other) {
+          const Vec3 d = other.pointOnB - point.pointOnB;
+          return other.featureId == point.featureId &&
+                 glm::dot(d, d) <= 1e-10f * (1.0f + glm::dot(point.pointOnB, point.pointOnB));
+        })) {
+      continue;
+    }
     if (count < 64) {
       kept[count] = point;
     } else {
