@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 #include <collide/narrowphase.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -13,6 +14,10 @@
 
 #if defined(COLLIDE_HAVE_CCD)
 #include <ccd/ccd.h>
+#endif
+#if defined(COLLIDE_BENCH_WITH_BULLET)
+#include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
 #endif
 
 using namespace collide;
@@ -91,7 +96,7 @@ void BM_BoxBoxGjkEpaKernel(benchmark::State& state) {
   }
 }
 // A box resting face-down on a larger box, slightly wobbling: four clipped points.
-void BM_CollideBoxOnBoxResting(benchmark::State& state) {
+std::vector<Placed> makeRestingBoxPairs() {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   std::vector<Placed> pairs;
@@ -101,6 +106,26 @@ void BM_CollideBoxOnBoxResting(benchmark::State& state) {
     pairs.push_back({Box{Vec3(3.0f, 0.5f, 3.0f)}, Box{Vec3(0.5f)}, Transform{},
                      Transform{Vec3(0.5f * unit(rng), 0.99f, 0.5f * unit(rng)), wobble, 1.0f}});
   }
+  return pairs;
+}
+
+template <detail::CollideFunction F>
+void runKernel(benchmark::State& state, const std::vector<Placed>& pairs) {
+  Manifold m;
+  std::size_t i = 0;
+  int points = 0;
+  for (auto _ : state) {
+    const Placed& p = pairs[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(F(p.a, p.ta, p.b, p.tb, 0.0f, m));
+    points += m.count;
+    benchmark::ClobberMemory();
+  }
+  state.counters["points_per_pair"] =
+      benchmark::Counter(double(points) / double(std::max<std::size_t>(i, 1)));
+}
+
+void BM_CollideBoxOnBoxResting(benchmark::State& state) {
+  const std::vector<Placed> pairs = makeRestingBoxPairs();
   Manifold m;
   std::size_t i = 0;
   for (auto _ : state) {
@@ -109,6 +134,70 @@ void BM_CollideBoxOnBoxResting(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
 }
+// The box-specific kernel (the table's box–box cell) and the generic polyhedron SAT on the same
+// pairs: resting (four points) and random (about half touching).
+void BM_BoxBoxRestingFastKernel(benchmark::State& s) {
+  runKernel<detail::collideBoxBox>(s, makeRestingBoxPairs());
+}
+void BM_BoxBoxRestingGenericSatKernel(benchmark::State& s) {
+  runKernel<detail::collidePolyhedra>(s, makeRestingBoxPairs());
+}
+void BM_BoxBoxRandomFastKernel(benchmark::State& s) {
+  runKernel<detail::collideBoxBox>(s, makePairs(Box{Vec3(0.4f)}, Box{Vec3(0.5f)}, 1.4f));
+}
+void BM_BoxBoxRandomGenericSatKernel(benchmark::State& s) {
+  runKernel<detail::collidePolyhedra>(s, makePairs(Box{Vec3(0.4f)}, Box{Vec3(0.5f)}, 1.4f));
+}
+BENCHMARK(BM_BoxBoxRestingFastKernel);
+BENCHMARK(BM_BoxBoxRestingGenericSatKernel);
+BENCHMARK(BM_BoxBoxRandomFastKernel);
+BENCHMARK(BM_BoxBoxRandomGenericSatKernel);
+
+#if defined(COLLIDE_BENCH_WITH_BULLET)
+// Bullet's box–box (btBoxBoxDetector, ODE's dBoxBox: 15 axes, then clipping, up to four points)
+// on the same pairs, with a result that only counts the points.
+struct CountingResult : btDiscreteCollisionDetectorInterface::Result {
+  int points = 0;
+  void setShapeIdentifiersA(int, int) override {}
+  void setShapeIdentifiersB(int, int) override {}
+  void addContactPoint(const btVector3&, const btVector3&, btScalar) override { ++points; }
+};
+
+btTransform toBulletTransform(const Transform& t) {
+  return btTransform(btQuaternion(t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w),
+                     btVector3(t.position.x, t.position.y, t.position.z));
+}
+
+void runBullet(benchmark::State& state, const std::vector<Placed>& pairs) {
+  std::vector<btBoxShape> shapesA, shapesB;
+  std::vector<btDiscreteCollisionDetectorInterface::ClosestPointInput> inputs(pairs.size());
+  shapesA.reserve(pairs.size());
+  shapesB.reserve(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const Vec3 a = pairs[k].a.box().halfExtents, b = pairs[k].b.box().halfExtents;
+    shapesA.emplace_back(btVector3(a.x, a.y, a.z));
+    shapesB.emplace_back(btVector3(b.x, b.y, b.z));
+    inputs[k].m_transformA = toBulletTransform(pairs[k].ta);
+    inputs[k].m_transformB = toBulletTransform(pairs[k].tb);
+  }
+  CountingResult result;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPairs - 1);
+    btBoxBoxDetector detector(&shapesA[k], &shapesB[k]);
+    detector.getClosestPoints(inputs[k], result, nullptr);
+    benchmark::ClobberMemory();
+  }
+  state.counters["points_per_pair"] =
+      benchmark::Counter(double(result.points) / double(std::max<std::size_t>(i, 1)));
+}
+void BM_BulletBoxBoxResting(benchmark::State& s) { runBullet(s, makeRestingBoxPairs()); }
+void BM_BulletBoxBoxRandom(benchmark::State& s) {
+  runBullet(s, makePairs(Box{Vec3(0.4f)}, Box{Vec3(0.5f)}, 1.4f));
+}
+BENCHMARK(BM_BulletBoxBoxResting);
+BENCHMARK(BM_BulletBoxBoxRandom);
+#endif
 // Hulls of 24 random points on a sphere (about 14 faces each).
 void BM_CollideHullHullSat(benchmark::State& s) {
   std::mt19937 rng(3);

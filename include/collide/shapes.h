@@ -178,11 +178,25 @@ public:
   // Calls visit(triangleIndex) for every triangle whose box overlaps `box` (local frame).
   template <class Visitor> void forEachTriangleOverlapping(const Aabb& box, Visitor&& visit) const;
 
+  // Adjacency, for the narrow phase's internal-edge handling. How the surface continues across
+  // edge k (from v[k] to v[k+1]) of a triangle, seen from the triangle's front: no single
+  // neighbour (an outline, or an edge of three and more triangles), bending away from the front
+  // (convex), coplanar within 0.1° (flat), or bending towards it (concave).
+  enum class EdgeKind : std::uint8_t { Boundary, Convex, Flat, Concave };
+  EdgeKind edgeKind(std::uint32_t triangle, int edge) const { return edgeKinds_[3 * triangle + edge]; }
+  // A vertex inside a flat patch: every edge at it is flat.
+  bool isFlatVertex(std::uint32_t vertex) const { return flatVertices_[vertex] != 0; }
+  // Triangles joined by flat edges share a patch number.
+  std::uint32_t flatPatch(std::uint32_t triangle) const { return patches_[triangle]; }
+
 private:
   std::vector<Vec3> vertices_;
   std::vector<MeshTriangle> triangles_;
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> triangleOrder_;
+  std::vector<EdgeKind> edgeKinds_;
+  std::vector<std::uint8_t> flatVertices_;
+  std::vector<std::uint32_t> patches_;
   bool closed_ = false;
   float volume_ = 0.0f;
   Vec3 centroid_{0.0f};

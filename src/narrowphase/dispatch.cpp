@@ -198,6 +198,11 @@ constexpr PairTable buildPairTable() {
                               "edge contact: one point");
     }
   }
+  // Two boxes: the same test specialised (15 axes in A's frame, axis-aligned clipping).
+  b.add<collideBoxBox>(T::Box, T::Box, A::Sat,
+                       "separating axes in A's frame (3 + 3 faces, 9 edge directions); face contact: "
+                       "incident face clipped to the reference face, up to four points; edge contact: one "
+                       "point");
 
   // 4. Triangle meshes: per triangle near the other shape, merged.
   for (const ShapeType c : kConvexTypes) {

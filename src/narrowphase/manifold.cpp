@@ -1,10 +1,36 @@
 // Building manifolds: reducing many candidate contacts to four, and one contact from a distance.
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "narrowphase/pair_functions.h"
 
 namespace collide::detail {
+
+namespace {
+
+// Whether candidate i beats the best so far (index `best`, -1 for none) by `value`: by more than a
+// rounding tolerance, or within it and deeper, or as deep and first in a fixed order of positions.
+// Near-ties are common (a clipped rectangle's two corners across its diagonal span the same area)
+// and must not be decided by the order in which the candidates were made: two routines that find
+// the same points (the box–box path and the generic SAT) then keep the same four.
+bool beats(std::span<const ContactPoint> candidates, int i, float value, int best, float bestValue) {
+  if (best < 0) return true;
+  const float tolerance = 1e-4f * std::max(std::abs(value), std::abs(bestValue)) + 1e-12f;
+  if (value > bestValue + tolerance) return true;
+  if (value < bestValue - tolerance) return false;
+  const ContactPoint& a = candidates[i];
+  const ContactPoint& b = candidates[best];
+  const float depthTolerance = 1e-6f * (1.0f + std::abs(a.depth) + std::abs(b.depth));
+  if (a.depth > b.depth + depthTolerance) return true;
+  if (a.depth < b.depth - depthTolerance) return false;
+  const Vec3 pa = a.midpoint(), pb = b.midpoint();
+  if (pa.x != pb.x) return pa.x < pb.x;
+  if (pa.y != pb.y) return pa.y < pb.y;
+  return pa.z < pb.z;
+}
+
+}  // namespace
 
 void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal, Manifold& out) {
   const int count = static_cast<int>(candidates.size());
@@ -19,17 +45,19 @@ void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal
     return p - glm::dot(p, normal) * normal;
   };
   // 1. The deepest point: the solver needs it most.
-  int first = 0;
-  for (int i = 1; i < count; ++i) {
-    if (candidates[i].depth > candidates[first].depth) first = i;
+  int first = -1;
+  for (int i = 0; i < count; ++i) {
+    if (beats(candidates, i, candidates[i].depth, first, first < 0 ? 0.0f : candidates[first].depth))
+      first = i;
   }
   // 2. The point farthest from it.
   int second = -1;
   float best = -1.0f;
   for (int i = 0; i < count; ++i) {
+    if (i == first) continue;
     const Vec3 d = position(i) - position(first);
     const float distance = glm::dot(d, d);
-    if (i != first && distance > best) {
+    if (beats(candidates, i, distance, second, best)) {
       best = distance;
       second = i;
     }
@@ -42,7 +70,7 @@ void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal
   for (int i = 0; i < count; ++i) {
     if (i == first || i == second) continue;
     const float area = glm::dot(glm::cross(p1 - p0, position(i) - p0), normal);
-    if (std::abs(area) > best) {
+    if (beats(candidates, i, std::abs(area), third, best)) {
       best = std::abs(area);
       third = i;
       thirdArea = area;
@@ -55,7 +83,8 @@ void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal
   for (int i = 0; i < count; ++i) {
     if (i == first || i == second || i == third) continue;
     const float area = glm::dot(glm::cross(p1 - p0, position(i) - p0), normal);
-    if (area * thirdArea < 0.0f && std::abs(area) > best) {
+    if (area * thirdArea < 0.0f && std::abs(area) > 0.0f &&
+        beats(candidates, i, std::abs(area), fourth, best)) {
       best = std::abs(area);
       fourth = i;
     }
@@ -68,7 +97,7 @@ void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal
       const Vec3 q = position(i);
       const float nearest =
           std::min({glm::dot(q - p0, q - p0), glm::dot(q - p1, q - p1), glm::dot(q - p2, q - p2)});
-      if (nearest > best) {
+      if (beats(candidates, i, nearest, fourth, best)) {
         best = nearest;
         fourth = i;
       }
@@ -118,6 +147,16 @@ bool mergeContacts(std::span<const NormalContact> contacts, float margin, Manifo
     ContactPoint point = contact.point;
     point.depth = glm::dot(point.pointOnA - point.pointOnB, normal);
     if (point.depth < -margin) continue;
+    // A point on an edge shared by two triangles comes from both, with the same id: keep one.
+    const ContactPoint* begin = overflow.empty() ? kept : overflow.data();
+    const std::size_t stored = overflow.empty() ? std::min<std::size_t>(count, 64) : overflow.size();
+    if (std::any_of(begin, begin + stored, [&](const ContactPoint& other) {
+          const Vec3 d = other.pointOnB - point.pointOnB;
+          return other.featureId == point.featureId &&
+                 glm::dot(d, d) <= 1e-10f * (1.0f + glm::dot(point.pointOnB, point.pointOnB));
+        })) {
+      continue;
+    }
     if (count < 64) {
       kept[count] = point;
     } else {

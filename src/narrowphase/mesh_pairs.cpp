@@ -1,7 +1,13 @@
-// Triangle-mesh pairs, the simple correct fallback: the mesh's BVH yields the triangles near the
-// other shape, each triangle is a three-point polytope for GJK/EPA (meshes are two-sided
-// surfaces), and the per-triangle contacts are merged into one manifold. Internal-edge removal and
-// SAT triangle clipping are later refinements of the same cells.
+// Triangle-mesh pairs. The mesh's BVH yields the triangles near the other shape; their contacts are
+// merged into one manifold (the deepest contact's normal, at most four points).
+//   - Polyhedra (box, k-DOP, hull): each triangle is a flat polyhedron for the separating-axis
+//     test with face clipping (sat_polyhedra.cpp), so a box on a tessellated floor gets its four
+//     corners. Internal edges are handled there with the mesh's adjacency (TriangleMesh::edgeKind,
+//     the idea of Jolt's active edges): a contact whose normal belongs to an edge or vertex
+//     inside a flat patch or on a concave fold is replaced by the triangle's face contact, and
+//     clipped points on such edges are left to the neighbours, whose points span the region.
+//   - Other convex shapes: each triangle is a three-point polytope for GJK/EPA (meshes are
+//     two-sided surfaces); one point per triangle.
 #include <vector>
 
 #include "narrowphase/convex_distance.h"
@@ -34,13 +40,61 @@ Aabb boundsInFrame(const Shape& shape, const Transform& transform, const Transfo
   return transformAabb(localBounds(shape), frame.inverse() * transform).expanded(margin / frame.scale);
 }
 
+bool isPolyhedron(const Shape& shape) {
+  return shape.type() == ShapeType::Box || shape.type() == ShapeType::Kdop ||
+         shape.type() == ShapeType::ConvexHull;
+}
+
+// Mesh feature codes (the mesh's 16 bits of a contact id): a flat patch 0x4000 | patch, an edge
+// 0x8000 | a hash of its two vertices, a vertex 0xC000 | index. A point on the face of a patch
+// keeps its id while it slides from triangle to triangle of the patch.
+constexpr std::uint16_t kMeshFace = 0x4000u, kMeshEdge = 0x8000u, kMeshVertex = 0xC000u;
+constexpr std::uint16_t kMeshIndex = 0x3fffu;
+
+SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Transform& transform) {
+  using Kind = TriangleMesh::EdgeKind;
+  SatTriangle t;
+  const MeshTriangle& indices = mesh.triangles()[index];
+  for (int k = 0; k < 3; ++k) t.vertices[k] = transform.applyToPoint(mesh.vertices()[indices.v[k]]);
+  t.activeEdgesFront = t.activeEdgesBack = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Kind kind = mesh.edgeKind(index, k);
+    // Seen from the back, a convex bend is concave and the other way round.
+    if (kind == Kind::Boundary || kind == Kind::Convex) t.activeEdgesFront |= 1u << k;
+    if (kind == Kind::Boundary || kind == Kind::Concave) t.activeEdgesBack |= 1u << k;
+    if (kind == Kind::Flat) t.flatEdges |= 1u << k;
+    if (mesh.isFlatVertex(indices.v[k])) t.flatVertices |= 1u << k;
+    const std::uint32_t a = indices.v[k], b = indices.v[(k + 1) % 3];
+    const std::uint32_t low = std::min(a, b), high = std::max(a, b);
+    t.edgeFeature[k] =
+        static_cast<std::uint16_t>(kMeshEdge | ((low * 0x9E37u ^ high * 0x7F4Bu) & kMeshIndex));
+    t.vertexFeature[k] = static_cast<std::uint16_t>(kMeshVertex | (indices.v[k] & kMeshIndex));
+  }
+  t.faceFeature = static_cast<std::uint16_t>(kMeshFace | (mesh.flatPatch(index) & kMeshIndex));
+  return t;
+}
+
 }  // namespace
 
 bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
                             const Transform& trianglesTransform, const Shape& convex,
                             const Transform& convexTransform, float margin, Manifold& out) {
-  const ConvexSupport support = makeConvexSupport(convex, convexTransform);
   std::vector<NormalContact> contacts;
+  if (isPolyhedron(convex)) {
+    // Loose triangles: no adjacency, every edge active.
+    std::vector<SatTriangle> placed(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      for (int k = 0; k < 3; ++k) placed[i].vertices[k] = trianglesTransform.applyToPoint(triangles[i][k]);
+      placed[i].faceFeature = static_cast<std::uint16_t>(kMeshFace | (i & kMeshIndex));
+      for (int k = 0; k < 3; ++k) {
+        placed[i].edgeFeature[k] = static_cast<std::uint16_t>(kMeshEdge | ((3 * i + k) & kMeshIndex));
+        placed[i].vertexFeature[k] = static_cast<std::uint16_t>(kMeshVertex | ((3 * i + k) & kMeshIndex));
+      }
+    }
+    collideTrianglesPolyhedron(placed, convex, convexTransform, margin, contacts);
+    return mergeContacts(contacts, margin, out);
+  }
+  const ConvexSupport support = makeConvexSupport(convex, convexTransform);
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     triangleContact(triangles[i], trianglesTransform, support, margin, static_cast<std::uint32_t>(i),
                     contacts);
@@ -50,17 +104,24 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
 
 bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                        const Transform& transformB, float margin, Manifold& out) {
-  // Contacts carry the triangle index as their whole feature id.
   const TriangleMesh& mesh = shapeA.mesh();
-  const ConvexSupport support = makeConvexSupport(shapeB, transformB);
+  const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
   std::vector<NormalContact> contacts;
-  mesh.forEachTriangleOverlapping(
-      boundsInFrame(shapeB, transformB, transformA, margin), [&](std::uint32_t index) {
-        triangleContact(mesh.triangle(index), transformA, support, margin, index, contacts);
-      });
+  if (isPolyhedron(shapeB)) {
+    thread_local std::vector<SatTriangle> triangles;
+    triangles.clear();
+    mesh.forEachTriangleOverlapping(
+        bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, transformA)); });
+    collideTrianglesPolyhedron(triangles, shapeB, transformB, margin, contacts);
+    return mergeContacts(contacts, margin, out);
+  }
+  // Other convex shapes: contacts carry the triangle index as their whole feature id.
+  const ConvexSupport support = makeConvexSupport(shapeB, transformB);
+  mesh.forEachTriangleOverlapping(bounds, [&](std::uint32_t index) {
+    triangleContact(mesh.triangle(index), transformA, support, margin, index, contacts);
+  });
   return mergeContacts(contacts, margin, out);
 }
-
 bool collideMeshMesh(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                      const Transform& transformB, float margin, Manifold& out) {
   // Triangles of A near B, then triangles of B near each of them. Two static meshes never meet

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace collide::detail {
 
@@ -65,6 +66,8 @@ bool collideCapsuleCapsule(const Shape&, const Transform&, const Shape&, const T
 bool collideCapsuleBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 // Box, k-DOP and hull against each other: SAT with face clipping (sat_polyhedra.cpp).
 bool collidePolyhedra(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+// Box against box: the same answer as collidePolyhedra, specialised (box_box.cpp).
+bool collideBoxBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 // The separating-axis test alone, without the face preference: the largest separation over the
 // face normals and the Gauss-map-pruned edge pairs, and its axis (from A to B). For tests.
 struct SatAxis {
@@ -73,6 +76,25 @@ struct SatAxis {
 };
 SatAxis polyhedraSeparation(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                             const Transform& transformB);
+
+// One triangle of a mesh for the polyhedron–triangle SAT (sat_polyhedra.cpp): world vertices,
+// what the mesh knows about its edges (TriangleMesh::edgeKind), and the mesh's 16-bit feature codes.
+struct SatTriangle {
+  std::array<Vec3, 3> vertices{};
+  std::uint8_t activeEdgesFront = 0x7;  // bit k: edge k may give a contact normal, seen from the front
+  std::uint8_t activeEdgesBack = 0x7;   // the same seen from the back (convex and concave swap)
+  std::uint8_t flatEdges = 0;           // bit k: edge k joins a coplanar neighbour
+  std::uint8_t flatVertices = 0;        // bit k: vertex k lies inside a flat patch
+  std::uint16_t faceFeature = 0;
+  std::array<std::uint16_t, 3> edgeFeature{};
+  std::array<std::uint16_t, 3> vertexFeature{};
+};
+// Contacts of each triangle (A) with a box, k-DOP or hull (B), normal from the triangle: SAT with
+// the triangle as a flat polyhedron (faces ±n, three edges), face clipping, and the replacement
+// of normals on inactive edges by the face's contact. Appends to `contacts` (merge them after).
+void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& polyhedron,
+                                const Transform& transform, float margin,
+                                std::vector<NormalContact>& contacts);
 
 bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);

@@ -395,4 +395,297 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
   return faceContact(a, faceA.face, b, true, margin, out);
 }
 
+// ---- A triangle against a polyhedron ----
+//
+// The triangle is a flat polyhedron: two faces (n and -n) and three edges. Its Gauss map is the
+// two poles ±n joined by three half circles, one per edge, each through the edge's outward
+// in-plane normal: an edge's arc spans 180°, so the arc test above (for arcs shorter than a half
+// circle) does not serve it. Instead, the polyhedron's negated arc (-m1, -m2) must cross the
+// great circle of directions perpendicular to the edge, and the crossing point must lie on the
+// edge's side of the triangle.
+
+namespace {
+
+// The triangle half of a contact id while clipping against the triangle's sides: bit k set when
+// the point lies on side k (edge v[k] -> v[k+1]); none for the face, two for a corner.
+constexpr std::uint32_t kSideBits = 0x7u;
+
+int cornerBetween(std::uint32_t bits) {
+  // Sides k and k + 1 meet at vertex k + 1.
+  for (int k = 0; k < 3; ++k) {
+    if (bits == ((1u << k) | (1u << ((k + 1) % 3)))) return (k + 1) % 3;
+  }
+  return -1;
+}
+
+struct TriangleFrame {
+  std::array<Vec3, 3> v;
+  std::array<Vec3, 3> edge;     // v[k+1] - v[k]
+  std::array<Vec3, 3> outward;  // unit, in the plane, away from the triangle across edge k
+  Vec3 normal{0.0f};            // unit, counter-clockwise
+  float size = 0.0f;
+};
+
+TriangleFrame frameOf(const std::array<Vec3, 3>& v) {
+  TriangleFrame t;
+  t.v = v;
+  for (int k = 0; k < 3; ++k) t.edge[k] = v[(k + 1) % 3] - v[k];
+  t.normal = glm::normalize(glm::cross(t.edge[0], -t.edge[2]));
+  for (int k = 0; k < 3; ++k) t.outward[k] = glm::normalize(glm::cross(t.edge[k], t.normal));
+  t.size = std::max({glm::length(t.edge[0]), glm::length(t.edge[1]), glm::length(t.edge[2])});
+  return t;
+}
+
+// The mesh half of a contact's id from the side bits of its point on the triangle.
+std::uint32_t meshFeature(const SatTriangle& triangle, std::uint32_t bits) {
+  if (bits == 0) return triangle.faceFeature;
+  for (int k = 0; k < 3; ++k) {
+    if (bits == (1u << k)) return triangle.edgeFeature[k];
+  }
+  const int corner = cornerBetween(bits);
+  return corner >= 0 ? triangle.vertexFeature[corner] : triangle.faceFeature;
+}
+
+// Whether a contact point named by its side bits lies inside a flat patch of the mesh (on an edge
+// between coplanar triangles, or at a vertex all of whose edges are such): the neighbours'
+// points then span the contact region without it.
+bool insideFlatPatch(const SatTriangle& triangle, std::uint32_t bits) {
+  for (int k = 0; k < 3; ++k) {
+    if (bits == (1u << k)) return (triangle.flatEdges >> k) & 1u;
+  }
+  const int corner = cornerBetween(bits);
+  return corner >= 0 && ((triangle.flatVertices >> corner) & 1u);
+}
+
+// Face contact on the triangle's face, seen from `side` (+1: the polyhedron above the front):
+// the polyhedron's incident face clipped against the triangle's three side planes.
+void triangleFaceContact(const TriangleFrame& t, const SatTriangle& triangle, float side,
+                         const WorldPolyhedron& poly, float margin, std::vector<NormalContact>& contacts) {
+  const Vec3 normal = side * t.normal;  // from the triangle to the polyhedron
+  const float offset = glm::dot(normal, t.v[0]);
+  const std::uint32_t incFace = incidentFace(poly, normal);
+  constexpr std::size_t kMaxClip = 64;
+  std::array<ClipVertex, kMaxClip> bufferA, bufferB;
+  std::size_t count = 0;
+  const ConvexHull::Face& face = poly.hull->faces()[incFace];
+  std::uint32_t h = face.firstEdge;
+  for (std::uint32_t k = 0; k < face.edgeCount && count < kMaxClip; ++k) {
+    const std::uint32_t vertex = poly.hull->halfEdges()[h].origin;
+    bufferA[count++] = {poly.vertices[vertex], featurePair(0, poly.vertexFeature(vertex))};
+    h = poly.hull->halfEdges()[h].next;
+  }
+  ClipVertex* in = bufferA.data();
+  ClipVertex* next = bufferB.data();
+  for (std::uint32_t k = 0; k < 3 && count > 0; ++k) {
+    count = clipPolygon(std::span<const ClipVertex>(in, count),
+                        Plane{t.outward[k], glm::dot(t.outward[k], t.v[k])},
+                        std::span<ClipVertex>(next, kMaxClip), [&](const ClipVertex& a, const ClipVertex& b) {
+                          const std::uint32_t bits = ((a.featureId & b.featureId) & kSideBits) | (1u << k);
+                          return featurePair(bits, mixClip(a.featureId >> 16, b.featureId >> 16));
+                        });
+    std::swap(in, next);
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 p = in[i].position;
+    const float separation = glm::dot(normal, p) - offset;
+    if (separation > margin) continue;
+    const std::uint32_t bits = in[i].featureId & kSideBits;
+    if (insideFlatPatch(triangle, bits)) continue;
+    NormalContact contact;
+    contact.normal = normal;
+    contact.point.pointOnA = p - separation * normal;
+    contact.point.pointOnB = p;
+    contact.point.depth = -separation;
+    contact.point.featureId = featurePair(meshFeature(triangle, bits), in[i].featureId >> 16);
+    contacts.push_back(contact);
+  }
+}
+
+// Face contact on a face of the polyhedron: the triangle clipped against its side planes.
+void polyhedronFaceContact(const TriangleFrame& t, const SatTriangle& triangle, const WorldPolyhedron& poly,
+                           std::uint32_t refFace, float margin, std::vector<NormalContact>& contacts) {
+  const Plane& refPlane = poly.planes[refFace];
+  constexpr std::size_t kMaxClip = 64;
+  std::array<ClipVertex, kMaxClip> bufferA, bufferB;
+  std::size_t count = 3;
+  // Vertex k lies on sides k - 1 and k.
+  for (int k = 0; k < 3; ++k) {
+    bufferA[k] = {t.v[k], featurePair((1u << k) | (1u << ((k + 2) % 3)), poly.faceFeature(refFace))};
+  }
+  ClipVertex* in = bufferA.data();
+  ClipVertex* next = bufferB.data();
+  const ConvexHull::Face& face = poly.hull->faces()[refFace];
+  std::uint32_t h = face.firstEdge;
+  for (std::uint32_t k = 0; k < face.edgeCount && count > 0; ++k) {
+    const Vec3 start = poly.vertices[poly.hull->halfEdges()[h].origin];
+    const Vec3 side = glm::normalize(glm::cross(poly.edgeEnd(h) - start, refPlane.normal));
+    const std::uint32_t sideFeature = poly.edgeFeature(h);
+    count = clipPolygon(std::span<const ClipVertex>(in, count), Plane{side, glm::dot(side, start)},
+                        std::span<ClipVertex>(next, kMaxClip), [&](const ClipVertex& a, const ClipVertex& b) {
+                          const std::uint32_t bits = a.featureId & b.featureId & kSideBits;
+                          return featurePair(bits, mixClip(sideFeature, (a.featureId ^ b.featureId) >> 16));
+                        });
+    std::swap(in, next);
+    h = poly.hull->halfEdges()[h].next;
+  }
+  if (count == 0 || std::none_of(in, in + count, [&](const ClipVertex& v) {
+        return refPlane.signedDistance(v.position) <= margin;
+      })) {
+    int deepest = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (refPlane.signedDistance(t.v[k]) < refPlane.signedDistance(t.v[deepest])) deepest = k;
+    }
+    in[0] = {t.v[deepest],
+             featurePair((1u << deepest) | (1u << ((deepest + 2) % 3)), poly.faceFeature(refFace))};
+    count = 1;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 p = in[i].position;
+    const float separation = refPlane.signedDistance(p);
+    if (separation > margin) continue;
+    NormalContact contact;
+    contact.normal = -refPlane.normal;
+    contact.point.pointOnA = p;
+    contact.point.pointOnB = p - separation * refPlane.normal;
+    contact.point.depth = -separation;
+    contact.point.featureId =
+        featurePair(meshFeature(triangle, in[i].featureId & kSideBits), in[i].featureId >> 16);
+    contacts.push_back(contact);
+  }
+}
+
+// Whether a contact normal (from the triangle) is one the surface can give: the triangle's face
+// normal, or the normal of an edge or vertex of the triangle that is active (on the mesh's outline
+// or a convex bend, seen from the normal's side). The triangle's features touching along the
+// normal are its vertices farthest along it.
+bool normalAllowed(const TriangleFrame& t, const SatTriangle& triangle, const Vec3& normal) {
+  const float along = glm::dot(normal, t.normal);
+  const Vec3 inPlane = normal - along * t.normal;
+  if (glm::length(inPlane) <= 1e-4f) return true;  // the face normal (within 0.006°)
+  const std::uint8_t active = along >= 0.0f ? triangle.activeEdgesFront : triangle.activeEdgesBack;
+  float heights[3], highest = -1e30f;
+  for (int k = 0; k < 3; ++k) highest = std::max(highest, heights[k] = glm::dot(normal, t.v[k]));
+  const float tolerance = 1e-4f * t.size;
+  std::uint32_t top = 0;  // vertex bits
+  for (int k = 0; k < 3; ++k) {
+    if (heights[k] >= highest - tolerance) top |= 1u << k;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t edgeBits = (1u << k) | (1u << ((k + 1) % 3));
+    if (top == edgeBits) return (active >> k) & 1u;
+    // A vertex: active unless it lies inside a flat patch and neither of the triangle's edges at it
+    // is active (an outline vertex or a vertex at a bend may push any way).
+    if (top == (1u << k)) {
+      return !((triangle.flatVertices >> k) & 1u) || ((active >> k) & 1u) || ((active >> ((k + 2) % 3)) & 1u);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& shape,
+                                const Transform& transform, float margin,
+                                std::vector<NormalContact>& contacts) {
+  thread_local Scratch scratch;
+  const WorldPolyhedron poly = place(shape, transform, 0, scratch);
+  const auto edges = poly.hull->halfEdges();
+  for (const SatTriangle& triangle : triangles) {
+    const TriangleFrame t = frameOf(triangle.vertices);
+    // 1. The triangle's face, from the side the polyhedron is on.
+    float lowest = 1e30f, highest = -1e30f;
+    for (const Vec3& p : poly.vertices) {
+      const float d = glm::dot(t.normal, p);
+      lowest = std::min(lowest, d);
+      highest = std::max(highest, d);
+    }
+    const float planeOffset = glm::dot(t.normal, t.v[0]);
+    const float frontSeparation = lowest - planeOffset, backSeparation = planeOffset - highest;
+    const float side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
+    const float triangleSeparation = std::max(frontSeparation, backSeparation);
+    if (triangleSeparation > margin) continue;
+    // 2. The polyhedron's faces against the triangle's vertices.
+    float faceSeparation = -1e30f;
+    std::uint32_t face = 0;
+    for (std::uint32_t f = 0; f < poly.planes.size(); ++f) {
+      const Plane& plane = poly.planes[f];
+      const float s = std::min({glm::dot(plane.normal, t.v[0]), glm::dot(plane.normal, t.v[1]),
+                                glm::dot(plane.normal, t.v[2])}) -
+                      plane.distance;
+      if (s > faceSeparation) {
+        faceSeparation = s;
+        face = f;
+      }
+    }
+    if (faceSeparation > margin) continue;
+    // 3. Edge pairs crossing on the Gauss map.
+    float edgeSeparation = -1e30f;
+    int edgeT = 0;
+    std::uint32_t edgeP = 0;
+    Vec3 edgeAxis(0.0f);
+    for (std::uint32_t j = 0; j < edges.size(); ++j) {
+      const ConvexHull::HalfEdge& halfEdge = edges[j];
+      if (halfEdge.twin < j) continue;
+      const Vec3 a = -poly.planes[halfEdge.face].normal, b = -poly.planes[edges[halfEdge.twin].face].normal;
+      const Vec3 origin = poly.vertices[halfEdge.origin];
+      const Vec3 direction = poly.edgeEnd(j) - origin;
+      for (int k = 0; k < 3; ++k) {
+        const float da = glm::dot(a, t.edge[k]), db = glm::dot(b, t.edge[k]);
+        if (!(da * db < 0.0f)) continue;
+        const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
+        if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
+        Vec3 axis = glm::cross(t.edge[k], direction);
+        const float length = glm::length(axis);
+        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
+        axis /= length;
+        if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
+        const float separation = glm::dot(axis, origin - t.v[k]);
+        if (separation > edgeSeparation) {
+          edgeSeparation = separation;
+          edgeT = k;
+          edgeP = j;
+          edgeAxis = axis;
+        }
+      }
+    }
+    if (edgeSeparation > margin) continue;
+
+    // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
+    // face unless an edge pair is clearly better (the tolerances of collidePolyhedra): the surface
+    // under a resting body stays the reference whatever the triangle's size.
+    constexpr float kRelative = 0.98f;
+    const float absolute = 1e-3f * std::min(t.size, poly.size);
+    const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
+    const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
+    const std::size_t before = contacts.size();
+    Vec3 normal = side * t.normal;
+    if (edgeSeparation > kRelative * bestFace + absolute) {
+      const SegmentPair closest = closestPointsSegmentSegment(
+          t.v[edgeT], t.v[(edgeT + 1) % 3], poly.vertices[edges[edgeP].origin], poly.edgeEnd(edgeP));
+      NormalContact contact;
+      contact.normal = edgeAxis;
+      contact.point.pointOnA = closest.pointOnFirst;
+      contact.point.pointOnB = closest.pointOnSecond;
+      contact.point.depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edgeAxis);
+      contact.point.featureId = featurePair(triangle.edgeFeature[edgeT], poly.edgeFeature(edgeP));
+      if (contact.point.depth >= -margin) {
+        contacts.push_back(contact);
+        normal = edgeAxis;
+      }
+    }
+    if (contacts.size() == before && polyhedronFace) {
+      polyhedronFaceContact(t, triangle, poly, face, margin, contacts);
+      normal = -poly.planes[face].normal;
+    }
+    if (contacts.size() == before) {
+      triangleFaceContact(t, triangle, side, poly, margin, contacts);
+    } else if (!normalAllowed(t, triangle, normal)) {
+      // Internal edge: the contact would push along an edge or vertex inside a flat patch or a
+      // concave fold (a bump for a body sliding over it). The face's contact replaces it.
+      contacts.resize(before);
+      triangleFaceContact(t, triangle, side, poly, margin, contacts);
+    }
+  }
+}
+
 }  // namespace collide::detail

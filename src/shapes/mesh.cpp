@@ -45,6 +45,102 @@ bool isClosedSurface(std::span<const MeshTriangle> triangles) {
   return true;
 }
 
+// Edge adjacency: how the surface continues across each edge, for the narrow phase's internal-edge
+// handling (the idea of Jolt's active edges and Bullet's internal-edge adjustment: a contact on an
+// edge shared by coplanar or concave neighbours must not push along the edge's normal).
+//
+// Two triangles whose normals differ by less than this angle are coplanar: a tessellated floor's
+// triangles are flat to rounding, and 0.1° is far above float noise yet far below any modelled bend.
+constexpr double kFlatCosine = 0.99999847691;  // cos(0.1°)
+
+struct Adjacency {
+  std::vector<TriangleMesh::EdgeKind> edgeKinds;  // 3 per triangle
+  std::vector<std::uint8_t> flatVertices;
+  std::vector<std::uint32_t> patches;
+};
+
+std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles) {
+  using Kind = TriangleMesh::EdgeKind;
+  const std::size_t count = triangles.size();
+  std::vector<glm::dvec3> normals(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    const glm::dvec3 a(vertices[triangles[t].v[0]]), b(vertices[triangles[t].v[1]]),
+        c(vertices[triangles[t].v[2]]);
+    normals[t] = glm::normalize(glm::cross(b - a, c - a));
+  }
+  // Every triangle edge under its undirected key, sorted: the entries of one edge are adjacent.
+  struct Entry {
+    std::uint64_t key;
+    std::uint32_t triangleEdge;  // 3 * triangle + k
+  };
+  std::vector<Entry> entries;
+  entries.reserve(3 * count);
+  for (std::size_t t = 0; t < count; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = triangles[t].v[k], j = triangles[t].v[(k + 1) % 3];
+      entries.push_back({static_cast<std::uint64_t>(std::min(i, j)) << 32 | std::max(i, j),
+                         static_cast<std::uint32_t>(3 * t + k)});
+    }
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
+    return x.key < y.key || (x.key == y.key && x.triangleEdge < y.triangleEdge);
+  });
+
+  Adjacency result;
+  result.edgeKinds.assign(3 * count, Kind::Boundary);
+  result.patches.resize(count);
+  for (std::uint32_t t = 0; t < count; ++t) result.patches[t] = t;
+  // The kind of edge k of triangle t against its neighbour u: the neighbour's far vertex below t's
+  // plane bends away from t's front (convex), above it towards it (concave).
+  auto kindAcross = [&](std::uint32_t t, std::uint32_t u) {
+    if (std::abs(glm::dot(normals[t], normals[u])) >= kFlatCosine) return Kind::Flat;
+    const MeshTriangle& other = triangles[u];
+    const MeshTriangle& self = triangles[t];
+    double height = 0.0;
+    for (const std::uint32_t v : other.v) {
+      if (v != self.v[0] && v != self.v[1] && v != self.v[2]) {
+        height = glm::dot(normals[t], glm::dvec3(vertices[v]) - glm::dvec3(vertices[self.v[0]]));
+      }
+    }
+    return height < 0.0 ? Kind::Convex : Kind::Concave;
+  };
+  for (std::size_t begin = 0; begin < entries.size();) {
+    std::size_t end = begin + 1;
+    while (end < entries.size() && entries[end].key == entries[begin].key) ++end;
+    if (end - begin == 2) {  // a manifold edge; one triangle or three and more stay boundary
+      const std::uint32_t t = entries[begin].triangleEdge / 3, u = entries[begin + 1].triangleEdge / 3;
+      const Kind kindT = kindAcross(t, u), kindU = kindAcross(u, t);
+      result.edgeKinds[entries[begin].triangleEdge] = kindT;
+      result.edgeKinds[entries[begin + 1].triangleEdge] = kindU;
+      if (kindT == Kind::Flat) result.patches[findRoot(result.patches, t)] = findRoot(result.patches, u);
+    }
+    begin = end;
+  }
+  for (std::uint32_t t = 0; t < count; ++t) result.patches[t] = findRoot(result.patches, t);
+  // A vertex is inside a flat patch when every edge at it is flat (then its fan is closed).
+  result.flatVertices.assign(vertices.size(), 0);
+  for (const MeshTriangle& t : triangles) {
+    for (const std::uint32_t v : t.v) result.flatVertices[v] = 1;
+  }
+  for (std::size_t t = 0; t < count; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (result.edgeKinds[3 * t + k] != Kind::Flat) {
+        result.flatVertices[triangles[t].v[k]] = 0;
+        result.flatVertices[triangles[t].v[(k + 1) % 3]] = 0;
+      }
+    }
+  }
+  return result;
+}
+
 }  // namespace
 
 TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
@@ -96,6 +192,10 @@ TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector
   detail::TriangleBvh bvh = detail::buildTriangleBvh(mesh.vertices_, mesh.triangles_);
   mesh.nodes_ = std::move(bvh.nodes);
   mesh.triangleOrder_ = std::move(bvh.triangleOrder);
+  Adjacency adjacency = buildAdjacency(mesh.vertices_, mesh.triangles_);
+  mesh.edgeKinds_ = std::move(adjacency.edgeKinds);
+  mesh.flatVertices_ = std::move(adjacency.flatVertices);
+  mesh.patches_ = std::move(adjacency.patches);
   mesh.closed_ = isClosedSurface(mesh.triangles_);
   if (mesh.closed_) {
     // Integrate about the box centre: the moments of a mesh far from the origin would otherwise

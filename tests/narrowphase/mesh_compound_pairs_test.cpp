@@ -3,8 +3,11 @@
 #include <collide/narrowphase.h>
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 
+#include "narrowphase/convex_distance.h"
+#include "narrowphase/pair_functions.h"
 #include "narrowphase/test_helpers.h"
 
 using namespace collide;
@@ -52,10 +55,7 @@ TEST(MeshPairs, SphereRollingAcrossAFlatGridAlwaysPushesStraightUp) {
   EXPECT_EQ(contacts, 401);
 }
 
-// Disabled: the mesh–convex cell still gives one GJK/EPA point per triangle (ids = triangle
-// indices, positions not at the corners). Needs polyhedron–triangle SAT with clipping (the
-// triangle as a two-faced flat polyhedron; docs/narrowphase.md, "Open issues").
-TEST(MeshPairs, DISABLED_BoxRestingOnAFlatGridGivesFourStableCorners) {
+TEST(MeshPairs, BoxRestingOnAFlatGridGivesFourStableCorners) {
   // A box face-down on the grid, sunk 0.02, its corners inside four different quads: four
   // points, normal +y, each at a bottom corner of the box; the same ids under small wobbles.
   const Shape grid = flatGrid(6);
@@ -87,6 +87,117 @@ TEST(MeshPairs, DISABLED_BoxRestingOnAFlatGridGivesFourStableCorners) {
     for (int i = 0; i < 4; ++i) now.insert(m.points[i].featureId);
     EXPECT_EQ(now, ids) << "trial " << trial;
   }
+}
+
+TEST(MeshPairs, BoxSlidingAcrossAFlatGridAlwaysPushesStraightUp) {
+  // A box turned 20° about y, sunk 0.03, moved in small steps across quad edges, diagonals and
+  // vertices, and slightly tilted: the normal stays +y (internal edges give no side normal), the
+  // deepest point is the lowest corner, and there are four points (the bottom corners).
+  const Shape grid = flatGrid(6);
+  const Vec3 h(0.4f, 0.25f, 0.3f);
+  const float depth = 0.03f;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> small(-1.0f, 1.0f);
+  Manifold m;
+  for (int step = 0; step <= 400; ++step) {
+    const float t = float(step) / 400.0f;
+    const Quat rotation = axisAngle({0, 1, 0}, 20.0f) * axisAngle(randomUnit(rng), 0.2f * small(rng));
+    const Transform tb = at(Vec3(-1.7f + 3.4f * t, h.y - depth, -1.1f + 2.0f * t), rotation);
+    ASSERT_TRUE(collide::collide(grid, Transform::identity(), Box{h}, tb, m)) << "step " << step;
+    EXPECT_LT(angleDegrees(m.normal, Vec3(0, 1, 0)), 1e-3f) << "step " << step;
+    EXPECT_EQ(m.count, 4) << "step " << step;
+    float lowest = 1e30f;
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 corner = tb.applyToPoint(Vec3(i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z));
+      lowest = std::min(lowest, corner.y);
+    }
+    EXPECT_NEAR(m.maxDepth(), -lowest, 1e-5f) << "step " << step;
+  }
+}
+
+TEST(MeshPairs, InternalEdgeGivesTheFaceNormalWhereLooseTrianglesBump) {
+  // A narrow box (half width 0.05, half height 0.2) straddling the quad edge x = 0, centred at x = 0.01, sunk
+  // 0.08: deeper than it overlaps either triangle sideways (0.06 and 0.04), so for each triangle alone the
+  // horizontal axis across the shared edge separates best, and the deepest of those contacts is a
+  // side normal: a bump. The mesh knows the edge is flat: +y, depth 0.08.
+  const Shape grid = flatGrid(6);
+  const Vec3 h(0.05f, 0.2f, 0.05f);
+  const Transform tb = at({0.01f, h.y - 0.08f, 0.5f});
+  Manifold m;
+  ASSERT_TRUE(collide::collide(grid, Transform::identity(), Box{h}, tb, m));
+  EXPECT_LT(angleDegrees(m.normal, Vec3(0, 1, 0)), 1e-3f);
+  EXPECT_NEAR(m.maxDepth(), 0.08f, 1e-5f);
+  EXPECT_EQ(m.count, 4);
+  // The two triangles under the box (z > x on the right, z < x + 1 on the left), loose: no
+  // adjacency, every edge active. The box is pushed sideways out of the deeper overlap, along -x.
+  const std::array<Vec3, 3> under[] = {{Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1)},
+                                       {Vec3(-1, 0, 0), Vec3(0, 0, 1), Vec3(0, 0, 0)}};
+  Manifold loose;
+  ASSERT_TRUE(detail::collideTrianglesConvex(under, Transform::identity(), Box{h}, tb, 0.0f, loose));
+  EXPECT_LT(angleDegrees(loose.normal, Vec3(-1, 0, 0)), 1e-3f);
+  EXPECT_NEAR(loose.maxDepth(), 0.06f, 1e-5f);
+}
+
+TEST(MeshPairs, TheMeshOutlineStillPushesSideways) {
+  // The grid's outline edge x = 3 is active: a box beside the grid, its side 0.01 over the edge
+  // and straddling the surface (0.25 above and below), is pushed out along +x by 0.01.
+  const Shape grid = flatGrid(6);
+  const Vec3 h(0.4f, 0.25f, 0.3f);
+  Manifold m;
+  ASSERT_TRUE(collide::collide(grid, Transform::identity(), Box{h}, at({3.0f + h.x - 0.01f, 0.0f, 0.2f}), m));
+  EXPECT_LT(angleDegrees(m.normal, Vec3(1, 0, 0)), 1e-3f);
+  EXPECT_NEAR(m.maxDepth(), 0.01f, 1e-5f);
+}
+
+TEST(MeshPairs, TriangleSatAgreesWithGjkEpaOnRandomPolyhedra) {
+  // One loose triangle against a random box, or a random hull (12 points), in random poses: the
+  // triangle SAT's verdict is GJK's (outside a 1e-4 band), and its depth lies between the minimum
+  // penetration (EPA on the triangle as a three-point polytope) and that depth with the face
+  // preference's allowance (2 % plus 1e-3 of the sizes), within 1e-4.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  int compared = 0, verdicts = 0, depthFailures = 0;
+  std::string first;
+  for (int i = 0; i < 1000; ++i) {
+    const std::array<Vec3, 3> triangle = {Vec3(-1.0f, 0.0f, -0.6f), Vec3(0.3f, 0.0f, 1.0f),
+                                          Vec3(0.9f, 0.1f, -0.7f)};
+    Shape shape = randomPrimitive(ShapeType::Box, rng);
+    if (i % 2 == 1) {
+      std::vector<Vec3> points(12);
+      for (Vec3& p : points) p = Vec3(0.2f + unit(rng), 0.2f + unit(rng), 0.2f + unit(rng)) * randomUnit(rng);
+      shape = Shape(ConvexHull::fromPoints(points));
+    }
+    const Transform tb =
+        at(Vec3(unit(rng) - 0.5f, 1.6f * (unit(rng) - 0.5f), unit(rng) - 0.5f), randomRotation(rng));
+    DistanceResult reference;
+    const bool near =
+        detail::convexSignedDistance(detail::makePointsSupport(triangle.data(), 3, Transform::identity()),
+                                     detail::makeConvexSupport(shape, tb), 1.0f, reference);
+    Manifold m;
+    const bool hit =
+        detail::collideTrianglesConvex(std::span(&triangle, 1), Transform::identity(), shape, tb, 0.0f, m);
+    const bool overlapping = near && reference.distance < 0.0f;
+    if (near && std::abs(reference.distance) < 1e-4f) continue;
+    if (hit != overlapping) {
+      ++verdicts;
+      if (first.empty())
+        first = "pair " + std::to_string(i) + ": verdict, distance " + std::to_string(reference.distance);
+      continue;
+    }
+    if (!hit) continue;
+    ++compared;
+    const float depth = -reference.distance, size = 1e-3f * 2.0f;
+    if (m.maxDepth() < depth - 1e-4f || m.maxDepth() > (depth + size) / 0.98f + 1e-4f) {
+      ++depthFailures;
+      if (first.empty())
+        first = "pair " + std::to_string(i) + ": depth " + std::to_string(m.maxDepth()) + ", EPA " +
+                std::to_string(depth);
+    }
+  }
+  SCOPED_TRACE(first);
+  EXPECT_EQ(verdicts, 0);
+  EXPECT_EQ(depthFailures, 0);
+  EXPECT_GT(compared, 200);
 }
 
 TEST(CompoundPairs, TwoSphereCompoundOnAPlaneGivesTwoPoints) {

@@ -342,3 +342,171 @@ TEST(SatPolyhedra, RandomHullPairsAgreeWithLibccd) {
   EXPECT_GT(tally.compared, pairs / 5);
 }
 #endif
+
+// ---- The box–box fast path (box_box.cpp) against the generic polyhedron routine ----
+
+namespace {
+
+struct FastPathTally {
+  int pairs = 0, hits = 0, faceContacts = 0, edgeContacts = 0, multiPoint = 0, failures = 0;
+  std::string firstFailure;
+  void fail(const std::string& text) {
+    ++failures;
+    if (firstFailure.empty()) firstFailure = text;
+  }
+};
+
+// Runs both routines on one pair and compares: the same verdict; the same number of points; the
+// normals within 1e-3 rad; the deepest depth within 1e-4 relative (1e-5 absolute near zero); and
+// each point (both pointOnA and pointOnB, up to order) matched by one of the other within 1e-4 of
+// the boxes' size.
+void compareFastPath(const Shape& a, const Transform& ta, const Shape& b, const Transform& tb, float margin,
+                     const char* where, FastPathTally& tally) {
+  ++tally.pairs;
+  Manifold fast, generic;
+  const bool fastHit = detail::collideBoxBox(a, ta, b, tb, margin, fast);
+  const bool genericHit = detail::collidePolyhedra(a, ta, b, tb, margin, generic);
+  if (fastHit != genericHit) {
+    tally.fail(std::string(where) + ": verdicts differ (fast " + std::to_string(fastHit) + ")");
+    return;
+  }
+  if (!fastHit) return;
+  ++tally.hits;
+  (generic.count == 1 ? tally.edgeContacts : tally.faceContacts) += 1;
+  tally.multiPoint += generic.count > 1;
+  if (fast.count != generic.count) {
+    tally.fail(std::string(where) + ": " + std::to_string(fast.count) + " points, generic " +
+               std::to_string(generic.count));
+    return;
+  }
+  const float angle = std::acos(std::clamp(glm::dot(fast.normal, generic.normal), -1.0f, 1.0f));
+  if (angle > 1e-3f) {
+    tally.fail(std::string(where) + ": normals " + std::to_string(angle) + " rad apart");
+    return;
+  }
+  const float depth = generic.maxDepth();
+  if (std::abs(fast.maxDepth() - depth) > 1e-4f * std::abs(depth) + 1e-5f) {
+    tally.fail(std::string(where) + ": depth " + std::to_string(fast.maxDepth()) + ", generic " +
+               std::to_string(depth));
+    return;
+  }
+  const float size =
+      std::min(glm::length(a.box().halfExtents) * ta.scale, glm::length(b.box().halfExtents) * tb.scale);
+  for (int i = 0; i < generic.count; ++i) {
+    bool matched = false;
+    for (int k = 0; k < fast.count && !matched; ++k) {
+      matched = glm::length(fast.points[k].pointOnA - generic.points[i].pointOnA) <= 1e-4f * size &&
+                glm::length(fast.points[k].pointOnB - generic.points[i].pointOnB) <= 1e-4f * size &&
+                std::abs(fast.points[k].depth - generic.points[i].depth) <= 1e-4f * size;
+    }
+    if (!matched) {
+      tally.fail(std::string(where) + ": generic point " + std::to_string(i) + " has no match");
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(BoxBox, TableUsesTheBoxPathForBoxPairs) {
+  // The cell is SAT and its description names the box-specific axes.
+  const PairInfo info = pairInfo(ShapeType::Box, ShapeType::Box);
+  EXPECT_EQ(info.algorithm, PairAlgorithm::Sat);
+  EXPECT_NE(info.description.find("9 edge directions"), std::string_view::npos) << info.description;
+}
+
+TEST(BoxBox, RandomPairsAgreeWithTheGenericRoutine) {
+  // Random boxes (half extents 0.2 to 1.2, scale 0.5 to 2) in random poses at centre distances up
+  // to 1.3 × the sum of their half diagonals, with and without a speculative margin.
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  FastPathTally tally;
+  for (int i = 0; i < 2 * kRandomPairs; ++i) {
+    const Shape a = randomPrimitive(ShapeType::Box, rng), b = randomPrimitive(ShapeType::Box, rng);
+    const float scaleA = 0.5f + 1.5f * unit(rng), scaleB = 0.5f + 1.5f * unit(rng);
+    const float reach = glm::length(a.box().halfExtents) * scaleA + glm::length(b.box().halfExtents) * scaleB;
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, randomRotation(rng), scaleA);
+    const Transform tb =
+        at(ta.position + randomUnit(rng) * (1.3f * reach * unit(rng)), randomRotation(rng), scaleB);
+    const float margin = (i % 3 == 0) ? 0.1f * reach * unit(rng) : 0.0f;
+    char where[64];
+    std::snprintf(where, sizeof where, "random pair %d", i);
+    compareFastPath(a, ta, b, tb, margin, where, tally);
+  }
+  std::printf("box x box fast path, random: %d pairs, %d hits (%d face, %d edge), %d failures\n", tally.pairs,
+              tally.hits, tally.faceContacts, tally.edgeContacts, tally.failures);
+  SCOPED_TRACE(tally.firstFailure);
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.hits, tally.pairs / 4);
+  EXPECT_GT(tally.edgeContacts, tally.pairs / 50);
+}
+
+TEST(BoxBox, NearlyRestingPairsAgreeWithTheGenericRoutine) {
+  // Face to face, the way stacks rest: a box over a box of random size, tilted by up to 3°,
+  // turned about the vertical, shifted sideways (sometimes over the edge), sunk or lifted by a
+  // little, with a margin. Mostly multi-point face contacts, where the clipping must agree.
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  FastPathTally tally;
+  for (int i = 0; i < 2 * kRandomPairs; ++i) {
+    const Shape a = randomPrimitive(ShapeType::Box, rng), b = randomPrimitive(ShapeType::Box, rng);
+    const Vec3 hA = a.box().halfExtents, hB = b.box().halfExtents;
+    const Quat tilt = axisAngle(randomUnit(rng), 3.0f * unit(rng)) * axisAngle({0, 1, 0}, 180.0f * unit(rng));
+    const Transform ta = at(Vec3(0.0f), axisAngle(randomUnit(rng), 2.0f * unit(rng)));
+    const Vec3 local(hA.x * 1.2f * unit(rng), hA.y + hB.y + 0.03f * unit(rng), hA.z * 1.2f * unit(rng));
+    const Transform tb = at(ta.applyToPoint(local), ta.rotation * tilt);
+    char where[64];
+    std::snprintf(where, sizeof where, "resting pair %d", i);
+    compareFastPath(a, ta, b, tb, 0.02f, where, tally);
+    std::snprintf(where, sizeof where, "resting pair %d mirrored", i);
+    compareFastPath(b, tb, a, ta, 0.02f, where, tally);
+  }
+  std::printf("box x box fast path, resting: %d pairs, %d hits (%d with 2-4 points), %d failures\n",
+              tally.pairs, tally.hits, tally.multiPoint, tally.failures);
+  SCOPED_TRACE(tally.firstFailure);
+  EXPECT_EQ(tally.failures, 0);
+  EXPECT_GT(tally.multiPoint, tally.pairs / 2);
+}
+
+TEST(BoxBox, BoxOverTheGroundsEdgeKeepsItsClippedIds) {
+  // A box hanging over the edge of the ground (x = 1): its two corners on the ground plus two
+  // points where its bottom edges cross the ground's side plane. The clipped points are named by
+  // (ground edge, box edge), so under small wobbles the same four ids come back, all different.
+  // Tilts stay small against the depth: a box tilted so that its edge over the ground's edge is
+  // clearly shallower than its lowest corner gets the one-point edge contact, by the face
+  // preference's rule.
+  const Shape ground = Box{Vec3(1.0f, 0.5f, 1.0f)}, box = Box{Vec3(0.4f, 0.2f, 0.3f)};
+  const float depth = 0.05f;
+  Manifold m;
+  ASSERT_TRUE(collide::collide(ground, Transform::identity(), box, at({1.1f, 0.7f - depth, 0.0f}), m));
+  ASSERT_EQ(m.count, 4);
+  std::set<std::uint32_t> ids;
+  int clipped = 0;
+  for (int i = 0; i < 4; ++i) {
+    ids.insert(m.points[i].featureId);
+    const std::uint32_t groundCode = m.points[i].featureId & 0xffffu;
+    if (groundCode != detail::boxFeature(1, 2, 1)) {
+      // On the ground's +x top edge, at x = 1; the box half is one of its bottom edges along x.
+      ++clipped;
+      EXPECT_EQ(groundCode, detail::boxFeature(2, 2, 1));
+      EXPECT_NEAR(m.points[i].pointOnA.x, 1.0f, 1e-6f);
+      const std::uint32_t boxCode = m.points[i].featureId >> 16;
+      EXPECT_EQ(boxCode % 3, 1u) << boxCode;
+      EXPECT_EQ((boxCode / 3) % 3, 0u) << boxCode;
+    }
+  }
+  EXPECT_EQ(clipped, 2);
+  ASSERT_EQ(ids.size(), 4u);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> small(-1.0f, 1.0f);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Transform tb =
+        at({1.1f + 0.03f * small(rng), 0.7f - depth + 0.003f * small(rng), 0.03f * small(rng)},
+           axisAngle(randomUnit(rng), 0.05f * small(rng)));
+    ASSERT_TRUE(collide::collide(ground, Transform::identity(), box, tb, m)) << "trial " << trial;
+    ASSERT_EQ(m.count, 4) << "trial " << trial;
+    std::set<std::uint32_t> now;
+    for (int i = 0; i < 4; ++i) now.insert(m.points[i].featureId);
+    EXPECT_EQ(now, ids) << "trial " << trial;
+  }
+}

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <random>
+#include <set>
 #include <string>
 #include "test_assertions.h"
 
@@ -372,4 +373,109 @@ TEST(TriangleMesh, RejectsBadInputWithMessages) {
 
   // A small triangle in a small mesh is fine: the tolerance is relative.
   EXPECT_NO_THROW(TriangleMesh::fromTriangles({{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0}}, {{{0, 1, 2}}}));
+}
+
+namespace {
+
+// Two triangles sharing the edge (0,0,-1)-(0,0,1), one on x < 0 and one on x > 0, both wound
+// counter-clockwise seen from +y; the second's far vertex at height `lift` (0: flat, < 0: the
+// surface bends down across the edge, a convex ridge seen from +y; > 0: a concave valley).
+TriangleMesh hinge(float lift) {
+  std::vector<Vec3> vertices = {{0, 0, -1}, {0, 0, 1}, {-1, 0, 0}, {1, lift, 0}};
+  std::vector<MeshTriangle> triangles = {{{0, 2, 1}}, {{0, 1, 3}}};
+  return TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
+}
+
+int sharedEdge(const TriangleMesh& mesh, std::uint32_t triangle) {
+  // The edge of the triangle between vertices 0 and 1 (either direction).
+  const MeshTriangle& t = mesh.triangles()[triangle];
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t a = t.v[k], b = t.v[(k + 1) % 3];
+    if ((a == 0 && b == 1) || (a == 1 && b == 0)) return k;
+  }
+  return -1;
+}
+
+}  // namespace
+
+TEST(TriangleMesh, EdgeKindsOfAHingeFollowItsBend) {
+  using Kind = TriangleMesh::EdgeKind;
+  // The normals of the two triangles are +y and, lifted by h over 1, tilted by atan(h).
+  for (const auto& [lift, kind] : {std::pair{0.0f, Kind::Flat},
+                                   {-0.5f, Kind::Convex},
+                                   {0.5f, Kind::Concave},
+                                   // 0.05° is under the 0.1° flat tolerance, 0.2° above it
+                                   {std::tan(glm::radians(0.05f)), Kind::Flat},
+                                   {-std::tan(glm::radians(0.2f)), Kind::Convex}}) {
+    const TriangleMesh mesh = hinge(lift);
+    for (std::uint32_t t = 0; t < 2; ++t) {
+      const int shared = sharedEdge(mesh, t);
+      ASSERT_GE(shared, 0);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(mesh.edgeKind(t, k), k == shared ? kind : Kind::Boundary)
+            << "lift " << lift << " edge " << k;
+      }
+    }
+    // Flat hinges are one patch; no vertex is inside it (all lie on the outline).
+    EXPECT_EQ(mesh.flatPatch(0) == mesh.flatPatch(1), kind == Kind::Flat) << "lift " << lift;
+    for (std::uint32_t v = 0; v < 4; ++v) EXPECT_FALSE(mesh.isFlatVertex(v));
+  }
+}
+
+TEST(TriangleMesh, FlatGridHasFlatInteriorEdgesAndVertices) {
+  // A 3 × 3 grid of quads (two triangles each) on y = 0: edges inside are flat, the outline's are
+  // boundary; the 4 inner vertices are inside the flat patch, the 12 outline ones are not; one patch.
+  const int n = 3;
+  std::vector<Vec3> vertices;
+  std::vector<MeshTriangle> triangles;
+  for (int z = 0; z <= n; ++z)
+    for (int x = 0; x <= n; ++x) vertices.emplace_back(float(x), 0.0f, float(z));
+  auto index = [&](int x, int z) { return static_cast<std::uint32_t>(z * (n + 1) + x); };
+  for (int z = 0; z < n; ++z) {
+    for (int x = 0; x < n; ++x) {
+      triangles.push_back({{index(x, z), index(x, z + 1), index(x + 1, z + 1)}});
+      triangles.push_back({{index(x, z), index(x + 1, z + 1), index(x + 1, z)}});
+    }
+  }
+  const TriangleMesh mesh = TriangleMesh::fromTriangles(vertices, triangles);
+  int boundary = 0, flat = 0;
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = vertices[triangles[t].v[k]], b = vertices[triangles[t].v[(k + 1) % 3]];
+      const bool outline = (a.x == 0 && b.x == 0) || (a.x == n && b.x == n) || (a.z == 0 && b.z == 0) ||
+                           (a.z == n && b.z == n);
+      const auto kind = mesh.edgeKind(t, k);
+      EXPECT_EQ(kind, outline ? TriangleMesh::EdgeKind::Boundary : TriangleMesh::EdgeKind::Flat);
+      boundary += kind == TriangleMesh::EdgeKind::Boundary;
+      flat += kind == TriangleMesh::EdgeKind::Flat;
+      EXPECT_EQ(mesh.flatPatch(t), mesh.flatPatch(0));
+    }
+  }
+  EXPECT_EQ(boundary, 4 * n);
+  EXPECT_EQ(flat, 3 * 2 * n * n - 4 * n);  // each inner edge counted from both sides
+  int inner = 0;
+  for (std::uint32_t v = 0; v < vertices.size(); ++v) {
+    const bool inside = vertices[v].x > 0 && vertices[v].x < n && vertices[v].z > 0 && vertices[v].z < n;
+    EXPECT_EQ(mesh.isFlatVertex(v), inside) << v;
+    inner += inside;
+  }
+  EXPECT_EQ(inner, (n - 1) * (n - 1));
+}
+
+TEST(TriangleMesh, ClosedBoxMeshEdgesAreConvexOrFlat) {
+  // The 12-triangle box surface, wound outwards: the face diagonals are flat, the 12 box edges
+  // convex from outside (24 triangle edges); six patches, one per face.
+  const TriangleMesh mesh = test::boxMesh(Vec3(1.0f, 0.5f, 0.7f), [](const Vec3& p) { return p; });
+  int convex = 0, flat = 0;
+  std::set<std::uint32_t> patches;
+  for (std::uint32_t t = 0; t < 12; ++t) {
+    patches.insert(mesh.flatPatch(t));
+    for (int k = 0; k < 3; ++k) {
+      convex += mesh.edgeKind(t, k) == TriangleMesh::EdgeKind::Convex;
+      flat += mesh.edgeKind(t, k) == TriangleMesh::EdgeKind::Flat;
+    }
+  }
+  EXPECT_EQ(convex, 24);
+  EXPECT_EQ(flat, 12);
+  EXPECT_EQ(patches.size(), 6u);
 }
