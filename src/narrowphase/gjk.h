@@ -17,7 +17,8 @@ struct SimplexVertex {
 
 struct Simplex {
   SimplexVertex vertices[4];
-  float lambda[4] = {1.0f, 0.0f, 0.0f, 0.0f};  // barycentric coordinates of the closest point
+  // Barycentric coordinates of the closest point, in double precision like the solve (gjk.cpp).
+  double lambda[4] = {1.0, 0.0, 0.0, 0.0};
   int count = 0;
 };
 
@@ -40,6 +41,9 @@ struct GjkResult {
   float distance = 0.0f;  // between the cores
   Vec3 pointOnA{0.0f};    // on A's core
   Vec3 pointOnB{0.0f};    // on B's core
+  // Separated: unit, from A to B, the direction of the closest point of A - B (more accurate than
+  // pointOnB - pointOnA, whose float rounding is large against a small distance).
+  Vec3 normal{0.0f, 1.0f, 0.0f};
   Simplex simplex;
   int iterations = 0;
 };
