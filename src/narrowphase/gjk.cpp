@@ -168,17 +168,61 @@ bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
   return outside;
 }
 
-GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound) {
+namespace {
+
+void saveCache(const ConvexSupport& a, const ConvexSupport& b, const Simplex& simplex, GjkCache* cache) {
+  if (cache == nullptr) return;
+  cache->count = simplex.count;
+  for (int i = 0; i < simplex.count; ++i) {
+    cache->localA[i] = a.toLocal(simplex.vertices[i].a);
+    cache->localB[i] = b.toLocal(simplex.vertices[i].b);
+  }
+}
+
+}  // namespace
+
+GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound, GjkCache* cache) {
   GjkResult result;
   Simplex& simplex = result.simplex;
-  // A - B contains a.center() - b.center(); the origin lies in direction b.center() - a.center() from it.
-  Vec3 direction = b.center() - a.center();
-  if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
-  simplex.vertices[0] = minkowskiSupport(a, b, direction);
-  simplex.lambda[0] = 1.0;
-  simplex.count = 1;
-  DVec3 v(simplex.vertices[0].w);
-  double maxVertexSquared = glm::dot(v, v);
+  if (cache != nullptr && cache->count > 0 && !a.inflated && !b.inflated) {
+    // Warm start: last query's simplex placed by the current transforms.
+    simplex.count = std::min(cache->count, 4);
+    for (int i = 0; i < simplex.count; ++i) {
+      SimplexVertex& vertex = simplex.vertices[i];
+      vertex.a = a.toWorld(cache->localA[i]);
+      vertex.b = b.toWorld(cache->localB[i]);
+      vertex.w = vertex.a - vertex.b;
+    }
+    DVec3 closest;
+    if (!closestPointOfSimplexD(simplex, closest)) {
+      // The cached tetrahedron still encloses the origin: overlapping, and EPA can start from it.
+      result.status = GjkResult::Status::Overlapping;
+      result.iterations = 0;
+      DVec3 pointOnA(0.0), pointOnB(0.0);
+      for (int i = 0; i < simplex.count; ++i) {
+        pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
+        pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
+      }
+      result.pointOnA = Vec3(pointOnA);
+      result.pointOnB = Vec3(pointOnB);
+      saveCache(a, b, simplex, cache);
+      return result;
+    }
+  } else {
+    // A - B contains a.center() - b.center(); the origin lies in direction b.center() - a.center()
+    // from it.
+    Vec3 direction = b.center() - a.center();
+    if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
+    simplex.vertices[0] = minkowskiSupport(a, b, direction);
+    simplex.lambda[0] = 1.0;
+    simplex.count = 1;
+  }
+  DVec3 v = pointOf(simplex);
+  double maxVertexSquared = 0.0;
+  for (int i = 0; i < simplex.count; ++i) {
+    maxVertexSquared =
+        std::max(maxVertexSquared, glm::dot(DVec3(simplex.vertices[i].w), DVec3(simplex.vertices[i].w)));
+  }
   const double boundSquared = bound < 1e15f ? double(bound) * double(bound) : 1e30;
   bool overlapping = false;
 
@@ -195,6 +239,7 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
     // origin from A - B): once it exceeds the bound the caller does not care about the rest.
     if (vw > 0.0 && vw * vw > boundSquared * vv) {
       result.status = GjkResult::Status::BeyondBound;
+      saveCache(a, b, simplex, cache);
       return result;
     }
     // No progress beyond the relative tolerance: v is the closest point (van den Bergen 1999).
@@ -236,6 +281,7 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
   }
   result.pointOnA = Vec3(pointOnA);
   result.pointOnB = Vec3(pointOnB);
+  saveCache(a, b, simplex, cache);
   if (overlapping) {
     result.status = GjkResult::Status::Overlapping;
     result.distance = 0.0f;
