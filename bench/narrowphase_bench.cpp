@@ -224,15 +224,21 @@ BENCHMARK(BM_CollideBoxOnBoxResting);
 BENCHMARK(BM_CollideHullHullSat);
 BENCHMARK(BM_CollideEllipsoidCylinderGjkEpa);
 
-// ---- GJK on 32-vertex polytopes (random points on a sphere), separated pairs ----
+// ---- GJK on 32-vertex convex hulls (hulls of 32 random points on a sphere), separated pairs ----
+//
+// Every variant runs on the same pairs and the same support functions as libccd: a ConvexHull's
+// support or, for the "Points" variants, our scan over the 32 points. "Cold" calls start from
+// nothing; "Warm" calls pass a GjkCache per pair while the pair moves a little
+// between visits (B turns 1° and slides 0.005 per visit, 16 visits per pair), as in a simulation
+// step. libccd 2.1 has no distance query and no warm start: its GJK yes/no test is the peer.
 
-struct Cloud {
-  std::vector<Vec3> points;
-};
+constexpr int kFrames = 16;
 
 struct HullPairs {
-  std::vector<Cloud> clouds;
-  std::vector<detail::ConvexSupport> a, b;
+  std::vector<Shape> hulls;
+  std::vector<std::vector<Vec3>> clouds;
+  // [pair][frame]
+  std::vector<detail::ConvexSupport> a, b, pointsA, pointsB;
 };
 
 HullPairs makeHullPairs() {
@@ -240,41 +246,96 @@ HullPairs makeHullPairs() {
   std::normal_distribution<float> n(0.0f, 1.0f);
   HullPairs pairs;
   pairs.clouds.resize(2 * kPairs);
-  for (Cloud& cloud : pairs.clouds) {
-    for (int i = 0; i < 32; ++i) cloud.points.push_back(0.5f * glm::normalize(Vec3(n(rng), n(rng), n(rng))));
+  pairs.hulls.reserve(2 * kPairs);
+  for (auto& cloud : pairs.clouds) {
+    for (int i = 0; i < 32; ++i) cloud.push_back(0.5f * glm::normalize(Vec3(n(rng), n(rng), n(rng))));
+    pairs.hulls.push_back(Shape(ConvexHull::fromPoints(cloud)));
   }
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   for (int i = 0; i < kPairs; ++i) {
     const Vec3 direction = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)) + Vec3(1e-3f));
     const Transform ta{Vec3(0.0f), randomRotation(rng), 1.0f};
-    const Transform tb{direction * 1.2f, randomRotation(rng), 1.0f};  // apart by about 0.2
-    pairs.a.push_back(detail::makePointsSupport(pairs.clouds[2 * i].points.data(), 32, ta));
-    pairs.b.push_back(detail::makePointsSupport(pairs.clouds[2 * i + 1].points.data(), 32, tb));
+    const Quat rb = randomRotation(rng);
+    const Vec3 spin = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)) + Vec3(1e-3f));
+    const Vec3 slide = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)) + Vec3(1e-3f));
+    for (int f = 0; f < kFrames; ++f) {
+      // Apart by about 0.2 at frame 0.
+      const Transform tb{direction * 1.2f + 0.005f * float(f) * slide,
+                         glm::angleAxis(glm::radians(1.0f * float(f)), spin) * rb, 1.0f};
+      pairs.a.push_back(detail::makeConvexSupport(pairs.hulls[2 * i], ta));
+      pairs.b.push_back(detail::makeConvexSupport(pairs.hulls[2 * i + 1], tb));
+      pairs.pointsA.push_back(detail::makePointsSupport(pairs.clouds[2 * i].data(), 32, ta));
+      pairs.pointsB.push_back(detail::makePointsSupport(pairs.clouds[2 * i + 1].data(), 32, tb));
+    }
   }
   return pairs;
 }
 
-void BM_GjkDistanceHull32(benchmark::State& state) {
+// Visit order: all pairs at frame 0, then all at frame 1, ...
+std::size_t visit(std::size_t i) {
+  const std::size_t pair = i % kPairs;
+  const std::size_t frame = (i / kPairs) % kFrames;
+  return pair * kFrames + frame;
+}
+
+void BM_GjkDistanceHull32Cold(benchmark::State& state) {
   const HullPairs pairs = makeHullPairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const std::size_t k = i++ & (kPairs - 1);
-    benchmark::DoNotOptimize(detail::gjkDistance(pairs.a[k], pairs.b[k]));
+    const std::size_t k = visit(i++);
+    detail::ConvexSupport a = pairs.a[k], b = pairs.b[k];
+    benchmark::DoNotOptimize(detail::gjkDistance(a, b));
   }
 }
-BENCHMARK(BM_GjkDistanceHull32);
+BENCHMARK(BM_GjkDistanceHull32Cold);
 
-void BM_GjkIntersectHull32(benchmark::State& state) {
+void BM_GjkDistanceHull32Warm(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  std::vector<detail::GjkCache> caches(kPairs);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t pair = i % kPairs;
+    const std::size_t k = visit(i++);
+    detail::ConvexSupport a = pairs.a[k], b = pairs.b[k];
+    benchmark::DoNotOptimize(detail::gjkDistance(a, b, 1e30f, &caches[pair]));
+  }
+}
+BENCHMARK(BM_GjkDistanceHull32Warm);
+
+void BM_GjkIntersectHull32Cold(benchmark::State& state) {
   // The same GJK as a yes/no test: bound 0 stops as soon as a separating plane is found, the work
   // libccd's ccdGJKIntersect does.
   const HullPairs pairs = makeHullPairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const std::size_t k = i++ & (kPairs - 1);
-    benchmark::DoNotOptimize(detail::gjkDistance(pairs.a[k], pairs.b[k], 0.0f));
+    const std::size_t k = visit(i++);
+    detail::ConvexSupport a = pairs.a[k], b = pairs.b[k];
+    benchmark::DoNotOptimize(detail::gjkDistance(a, b, 0.0f));
   }
 }
-BENCHMARK(BM_GjkIntersectHull32);
+BENCHMARK(BM_GjkIntersectHull32Cold);
+
+void BM_GjkDistancePoints32Cold(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = visit(i++);
+    benchmark::DoNotOptimize(detail::gjkDistance(pairs.pointsA[k], pairs.pointsB[k]));
+  }
+}
+BENCHMARK(BM_GjkDistancePoints32Cold);
+
+void BM_GjkDistancePoints32Warm(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  std::vector<detail::GjkCache> caches(kPairs);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t pair = i % kPairs;
+    const std::size_t k = visit(i++);
+    benchmark::DoNotOptimize(detail::gjkDistance(pairs.pointsA[k], pairs.pointsB[k], 1e30f, &caches[pair]));
+  }
+}
+BENCHMARK(BM_GjkDistancePoints32Warm);
 
 #if defined(COLLIDE_HAVE_CCD)
 void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
@@ -283,22 +344,37 @@ void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out
   for (int i = 0; i < 3; ++i) out->v[i] = p[i];
 }
 
-void BM_LibccdGjkIntersectHull32(benchmark::State& state) {
-  // libccd 2.1 has no public distance query; its GJK intersection test does less work than our
-  // distance (a yes/no, no closest points), so this comparison favours libccd.
-  const HullPairs pairs = makeHullPairs();
+ccd_t makeCcd() {
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = ccdSupport;
   ccd.support2 = ccdSupport;
   ccd.max_iterations = 100;
+  return ccd;
+}
+
+void BM_LibccdGjkIntersectHull32(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  const ccd_t ccd = makeCcd();
   std::size_t i = 0;
   for (auto _ : state) {
-    const std::size_t k = i++ & (kPairs - 1);
-    benchmark::DoNotOptimize(ccdGJKIntersect(&pairs.a[k], &pairs.b[k], &ccd));
+    const std::size_t k = visit(i++);
+    detail::ConvexSupport a = pairs.a[k], b = pairs.b[k];
+    benchmark::DoNotOptimize(ccdGJKIntersect(&a, &b, &ccd));
   }
 }
 BENCHMARK(BM_LibccdGjkIntersectHull32);
+
+void BM_LibccdGjkIntersectPoints32(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  const ccd_t ccd = makeCcd();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = visit(i++);
+    benchmark::DoNotOptimize(ccdGJKIntersect(&pairs.pointsA[k], &pairs.pointsB[k], &ccd));
+  }
+}
+BENCHMARK(BM_LibccdGjkIntersectPoints32);
 #endif
 
 }  // namespace

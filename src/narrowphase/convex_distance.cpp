@@ -17,12 +17,11 @@ bool convexSignedDistance(const ConvexSupport& a, const ConvexSupport& b, float 
 
   // Cores apart by a clear margin: the direction between the closest points is well defined and
   // the rounded shapes' answer follows exactly (the radius offsets both points along it).
-  const Vec3 gap = gjk.pointOnB - gjk.pointOnA;
   const float coreDistance = gjk.distance;
   const float size = std::max(
       {glm::length(gjk.pointOnA - a.center()), glm::length(gjk.pointOnB - b.center()), radii, 1e-20f});
   if (gjk.status == GjkResult::Status::Separated && coreDistance > (radii > 0.0f ? 1e-4f : 1e-5f) * size) {
-    const Vec3 normal = gap / glm::length(gap);
+    const Vec3 normal = gjk.normal;
     out.distance = coreDistance - radii;
     out.normal = normal;
     out.pointOnA = gjk.pointOnA + a.radius * normal;
@@ -31,21 +30,37 @@ bool convexSignedDistance(const ConvexSupport& a, const ConvexSupport& b, float 
     return out.distance <= maxDistance;
   }
   if (radii > 0.0f && gjk.status == GjkResult::Status::Separated) {
-    // The cores nearly touch but the rounded shapes overlap deeply: the direction between the
-    // cores' closest points is lost in rounding, so run EPA on the whole rounded shapes instead,
-    // whose difference holds the origin well inside (Jolt does the same with its convex radius).
+    // The cores nearly touch but the rounded shapes overlap deeply. The direction between the
+    // cores is reliable for some cores (a point: the depth varies only as d cos θ around it) and
+    // lost in rounding for others (two nearly crossing segments: tilting it by θ costs their length
+    // times θ), so two candidates are weighed by their directional depth, the translation along
+    // the normal that separates the shapes (an upper bound of the depth; the smaller the better):
+    // the cores' direction, and EPA on the whole rounded shapes, whose difference holds the origin
+    // well inside (Jolt runs EPA on the rounded shapes the same way).
+    const Vec3 coreNormal = gjk.normal;
+    const float coreDepth = radii - coreDistance;
+    const float coreDirectional =
+        glm::dot(a.supportCore(coreNormal) - b.supportCore(-coreNormal), coreNormal) + radii;
+    out.distance = -coreDepth;
+    out.normal = coreNormal;
+    out.pointOnA = gjk.pointOnA + a.radius * coreNormal;
+    out.pointOnB = gjk.pointOnB - b.radius * coreNormal;
     ConvexSupport wholeA = a, wholeB = b;
     wholeA.inflated = wholeB.inflated = true;
     const GjkResult whole = gjkDistance(wholeA, wholeB);
     if (whole.status == GjkResult::Status::Overlapping) {
       const EpaResult epa = epaPenetration(wholeA, wholeB, whole.simplex);
-      out.distance = -epa.depth;
-      out.normal = epa.normal;
-      out.pointOnA = epa.pointOnA;
-      out.pointOnB = epa.pointOnB;
-      out.overlapping = out.distance < 0.0f;
-      return out.distance <= maxDistance;
+      const float epaDirectional =
+          glm::dot(wholeA.supportCore(epa.normal) - wholeB.supportCore(-epa.normal), epa.normal);
+      if (epaDirectional < coreDirectional) {
+        out.distance = -epa.depth;
+        out.normal = epa.normal;
+        out.pointOnA = epa.pointOnA;
+        out.pointOnB = epa.pointOnB;
+      }
     }
+    out.overlapping = out.distance < 0.0f;
+    return out.distance <= maxDistance;
   }
   // The cores touch or overlap: EPA gives their penetration; the radii add to it.
   const EpaResult epa = epaPenetration(a, b, gjk.simplex);

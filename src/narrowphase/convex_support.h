@@ -37,6 +37,10 @@ struct ConvexSupport {
     return length > 0.0f ? p + (radius / length) * worldDirection : p;
   }
 
+  // Between the shape's local frame and the world (the warm-start cache keeps local points).
+  Vec3 toWorld(const Vec3& local) const { return position + rotation * (scale * local); }
+  Vec3 toLocal(const Vec3& world) const { return (glm::transpose(rotation) * (world - position)) / scale; }
+
   // A point inside the core, to seed GJK's search direction.
   Vec3 center() const { return position; }
 

@@ -269,13 +269,20 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
     if (gap <= std::max(absoluteTolerance, kRelativeTolerance * std::abs(best.distance))) break;
     if (polytope.vertexCount == kMaxVertices) break;
     // A support point already in the polytope cannot lie beyond one of its faces unless rounding
-    // folded the polytope; adding it again would only make slivers.
+    // folded the polytope there: that face is not on the hull of the polytope's vertices, so it
+    // bounds nothing. Adding the point again would only make slivers; instead the face is retired
+    // (treated like a sliver: never the nearest, removed by the next expansion that reaches it)
+    // and the search goes on with the next nearest face. Stopping here instead left the depth
+    // short by up to 10 % on cylinder rims (differential test).
     bool known = false;
     for (int i = 0; i < polytope.vertexCount && !known; ++i) {
       const Vec3 d = polytope.vertices[i].w - w.w;
       known = glm::dot(d, d) <= 1e-12f * scaleSquared;
     }
-    if (known) break;
+    if (known) {
+      polytope.faces[bestIndex].degenerate = true;
+      continue;
+    }
     polytope.vertices[polytope.vertexCount] = w;
     if (!polytope.expand(polytope.vertexCount++, bestIndex)) break;
   }

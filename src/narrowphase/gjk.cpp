@@ -19,17 +19,15 @@ constexpr int kMaxIterations = 64;
 // single precision that misplaces the closest point enough for GJK to stall or cycle.
 using DVec3 = glm::dvec3;
 
-Vec3 closestBarycentricOnSegment(const DVec3& a, const DVec3& b, const DVec3& p) {
+DVec3 closestBarycentricOnSegment(const DVec3& a, const DVec3& b, const DVec3& p) {
   const DVec3 ab = b - a;
   const double lengthSquared = glm::dot(ab, ab);
-  if (lengthSquared <= 0.0) return {1.0f, 0.0f, 0.0f};
+  if (lengthSquared <= 0.0) return {1.0, 0.0, 0.0};
   const double t = std::clamp(glm::dot(p - a, ab) / lengthSquared, 0.0, 1.0);
-  if (t == 0.0) return {1.0f, 0.0f, 0.0f};
-  if (t == 1.0) return {0.0f, 1.0f, 0.0f};
-  return {static_cast<float>(1.0 - t), static_cast<float>(t), 0.0f};
+  return {1.0 - t, t, 0.0};
 }
 
-Vec3 closestBarycentricOnTriangleD(const DVec3& a, const DVec3& b, const DVec3& c, const DVec3& p) {
+DVec3 closestBarycentricOnTriangleD(const DVec3& a, const DVec3& b, const DVec3& c, const DVec3& p) {
   // The projection onto the plane, with barycentric coordinates as ratios of signed areas; if one
   // is negative the answer lies on an edge, and the nearest of the three edges is it.
   const DVec3 n = glm::cross(b - a, c - a);
@@ -40,17 +38,16 @@ Vec3 closestBarycentricOnTriangleD(const DVec3& a, const DVec3& b, const DVec3& 
     const double u = glm::dot(glm::cross(b - q, c - q), n) / nn;
     const double v = glm::dot(glm::cross(c - q, a - q), n) / nn;
     const double w = 1.0 - u - v;
-    if (u >= 0.0 && v >= 0.0 && w >= 0.0)
-      return {static_cast<float>(u), static_cast<float>(v), static_cast<float>(w)};
+    if (u >= 0.0 && v >= 0.0 && w >= 0.0) return {u, v, w};
   }
-  const Vec3 eab = closestBarycentricOnSegment(a, b, p);
-  const Vec3 eac = closestBarycentricOnSegment(a, c, p);
-  const Vec3 ebc = closestBarycentricOnSegment(b, c, p);
-  const Vec3 candidates[3] = {{eab.x, eab.y, 0.0f}, {eac.x, 0.0f, eac.y}, {0.0f, ebc.x, ebc.y}};
-  Vec3 best = candidates[0];
+  const DVec3 eab = closestBarycentricOnSegment(a, b, p);
+  const DVec3 eac = closestBarycentricOnSegment(a, c, p);
+  const DVec3 ebc = closestBarycentricOnSegment(b, c, p);
+  const DVec3 candidates[3] = {{eab.x, eab.y, 0.0}, {eac.x, 0.0, eac.y}, {0.0, ebc.x, ebc.y}};
+  DVec3 best = candidates[0];
   double bestDistance = 1e300;
-  for (const Vec3& candidate : candidates) {
-    const DVec3 r = double(candidate.x) * a + double(candidate.y) * b + double(candidate.z) * c - p;
+  for (const DVec3& candidate : candidates) {
+    const DVec3 r = candidate.x * a + candidate.y * b + candidate.z * c - p;
     const double distance = glm::dot(r, r);
     if (distance < bestDistance) {
       bestDistance = distance;
@@ -63,53 +60,53 @@ Vec3 closestBarycentricOnTriangleD(const DVec3& a, const DVec3& b, const DVec3& 
 }  // namespace
 
 Vec3 closestBarycentricOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
-  return closestBarycentricOnTriangleD(DVec3(a), DVec3(b), DVec3(c), DVec3(p));
+  return Vec3(closestBarycentricOnTriangleD(DVec3(a), DVec3(b), DVec3(c), DVec3(p)));
 }
 
 namespace {
 
 // Keeps the vertices with a non-zero coordinate, in order.
-void compact(Simplex& simplex, const float* lambda, int count) {
+void compact(Simplex& simplex, const double* lambda, int count) {
   int kept = 0;
   for (int i = 0; i < count; ++i) {
-    if (lambda[i] > 0.0f) {
+    if (lambda[i] > 0.0) {
       simplex.vertices[kept] = simplex.vertices[i];
       simplex.lambda[kept] = lambda[i];
       ++kept;
     }
   }
   if (kept == 0) {  // cannot happen for coordinates summing to 1; keep the first vertex to be safe
-    simplex.lambda[0] = 1.0f;
+    simplex.lambda[0] = 1.0;
     kept = 1;
   }
   simplex.count = kept;
 }
 
-Vec3 pointOf(const Simplex& simplex) {
+DVec3 pointOf(const Simplex& simplex) {
   DVec3 p(0.0);
-  for (int i = 0; i < simplex.count; ++i) p += double(simplex.lambda[i]) * DVec3(simplex.vertices[i].w);
-  return Vec3(p);
+  for (int i = 0; i < simplex.count; ++i) p += simplex.lambda[i] * DVec3(simplex.vertices[i].w);
+  return p;
 }
 
-}  // namespace
-
-bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
-  const Vec3 origin(0.0f);
+// The closest point kept in double precision: near convergence on curved shapes an iteration turns v
+// by ~1e-4 while |v|² changes below float resolution, and a float v would stall there.
+bool closestPointOfSimplexD(Simplex& simplex, DVec3& outClosest) {
   switch (simplex.count) {
     case 1:
-      simplex.lambda[0] = 1.0f;
+      simplex.lambda[0] = 1.0;
       break;
     case 2: {
-      const Vec3 l =
+      const DVec3 l =
           closestBarycentricOnSegment(DVec3(simplex.vertices[0].w), DVec3(simplex.vertices[1].w), DVec3(0.0));
-      const float lambda[2] = {l.x, l.y};
+      const double lambda[2] = {l.x, l.y};
       compact(simplex, lambda, 2);
       break;
     }
     case 3: {
-      const Vec3 l = closestBarycentricOnTriangle(simplex.vertices[0].w, simplex.vertices[1].w,
-                                                  simplex.vertices[2].w, origin);
-      const float lambda[3] = {l.x, l.y, l.z};
+      const DVec3 l =
+          closestBarycentricOnTriangleD(DVec3(simplex.vertices[0].w), DVec3(simplex.vertices[1].w),
+                                        DVec3(simplex.vertices[2].w), DVec3(0.0));
+      const double lambda[3] = {l.x, l.y, l.z};
       compact(simplex, lambda, 3);
       break;
     }
@@ -132,21 +129,21 @@ bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
         if (-glm::dot(n, a) * glm::dot(n, w[face[3]] - a) < 0.0) inside = false;
       }
       if (inside) {
-        outClosest = origin;
+        outClosest = DVec3(0.0);
         return false;
       }
       double bestDistance = 1e300;
-      float bestLambda[4] = {0, 0, 0, 0};
+      double bestLambda[4] = {0, 0, 0, 0};
       for (const auto& face : kFaces) {
         const DVec3& a = w[face[0]];
         const DVec3& b = w[face[1]];
         const DVec3& c = w[face[2]];
-        const Vec3 l = closestBarycentricOnTriangleD(a, b, c, DVec3(0.0));
-        const DVec3 q = double(l.x) * a + double(l.y) * b + double(l.z) * c;
+        const DVec3 l = closestBarycentricOnTriangleD(a, b, c, DVec3(0.0));
+        const DVec3 q = l.x * a + l.y * b + l.z * c;
         const double distance = glm::dot(q, q);
         if (distance < bestDistance) {
           bestDistance = distance;
-          std::fill(bestLambda, bestLambda + 4, 0.0f);
+          std::fill(bestLambda, bestLambda + 4, 0.0);
           bestLambda[face[0]] = l.x;
           bestLambda[face[1]] = l.y;
           bestLambda[face[2]] = l.z;
@@ -162,38 +159,92 @@ bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
   return true;
 }
 
-GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound) {
+}  // namespace
+
+bool closestPointOfSimplex(Simplex& simplex, Vec3& outClosest) {
+  DVec3 closest;
+  const bool outside = closestPointOfSimplexD(simplex, closest);
+  outClosest = Vec3(closest);
+  return outside;
+}
+
+namespace {
+
+void saveCache(const ConvexSupport& a, const ConvexSupport& b, const Simplex& simplex, GjkCache* cache) {
+  if (cache == nullptr) return;
+  cache->count = simplex.count;
+  for (int i = 0; i < simplex.count; ++i) {
+    cache->localA[i] = a.toLocal(simplex.vertices[i].a);
+    cache->localB[i] = b.toLocal(simplex.vertices[i].b);
+  }
+}
+
+}  // namespace
+
+GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound, GjkCache* cache) {
   GjkResult result;
   Simplex& simplex = result.simplex;
-  // A - B contains a.center() - b.center(); the origin lies in direction b.center() - a.center() from it.
-  Vec3 direction = b.center() - a.center();
-  if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
-  simplex.vertices[0] = minkowskiSupport(a, b, direction);
-  simplex.lambda[0] = 1.0f;
-  simplex.count = 1;
-  Vec3 v = simplex.vertices[0].w;
-  float maxVertexSquared = glm::dot(v, v);
-  const float boundSquared = bound < 1e15f ? bound * bound : 1e30f;
+  if (cache != nullptr && cache->count > 0 && !a.inflated && !b.inflated) {
+    // Warm start: last query's simplex placed by the current transforms.
+    simplex.count = std::min(cache->count, 4);
+    for (int i = 0; i < simplex.count; ++i) {
+      SimplexVertex& vertex = simplex.vertices[i];
+      vertex.a = a.toWorld(cache->localA[i]);
+      vertex.b = b.toWorld(cache->localB[i]);
+      vertex.w = vertex.a - vertex.b;
+    }
+    DVec3 closest;
+    if (!closestPointOfSimplexD(simplex, closest)) {
+      // The cached tetrahedron still encloses the origin: overlapping, and EPA can start from it.
+      result.status = GjkResult::Status::Overlapping;
+      result.iterations = 0;
+      DVec3 pointOnA(0.0), pointOnB(0.0);
+      for (int i = 0; i < simplex.count; ++i) {
+        pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
+        pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
+      }
+      result.pointOnA = Vec3(pointOnA);
+      result.pointOnB = Vec3(pointOnB);
+      saveCache(a, b, simplex, cache);
+      return result;
+    }
+  } else {
+    // A - B contains a.center() - b.center(); the origin lies in direction b.center() - a.center()
+    // from it.
+    Vec3 direction = b.center() - a.center();
+    if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
+    simplex.vertices[0] = minkowskiSupport(a, b, direction);
+    simplex.lambda[0] = 1.0;
+    simplex.count = 1;
+  }
+  DVec3 v = pointOf(simplex);
+  double maxVertexSquared = 0.0;
+  for (int i = 0; i < simplex.count; ++i) {
+    maxVertexSquared =
+        std::max(maxVertexSquared, glm::dot(DVec3(simplex.vertices[i].w), DVec3(simplex.vertices[i].w)));
+  }
+  const double boundSquared = bound < 1e15f ? double(bound) * double(bound) : 1e30;
   bool overlapping = false;
 
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     result.iterations = iteration + 1;
-    const float vv = glm::dot(v, v);
-    if (vv <= kTouchingSquared * std::max(maxVertexSquared, 1e-30f)) {
+    const double vv = glm::dot(v, v);
+    if (vv <= kTouchingSquared * std::max(maxVertexSquared, 1e-30)) {
       overlapping = true;
       break;
     }
-    const SimplexVertex next = minkowskiSupport(a, b, -v);
-    const float vw = glm::dot(v, next.w);
+    const SimplexVertex next = minkowskiSupport(a, b, Vec3(-v));
+    const double vw = glm::dot(v, DVec3(next.w));
     // v·w / |v| is a lower bound of the distance (the plane through w normal to v separates the
     // origin from A - B): once it exceeds the bound the caller does not care about the rest.
-    if (vw > 0.0f && vw * vw > boundSquared * vv) {
+    if (vw > 0.0 && vw * vw > boundSquared * vv) {
       result.status = GjkResult::Status::BeyondBound;
+      saveCache(a, b, simplex, cache);
       return result;
     }
     // No progress beyond the relative tolerance: v is the closest point (van den Bergen 1999).
-    // The |v| |w| term is single precision's floor: v·w carries rounding of ~1e-7 |v| |w|, so a
-    // small distance between large shapes cannot converge relative to itself alone.
+    // The |v| |w| term is single precision's floor: the support points are floats, so a small
+    // distance between large shapes cannot converge relative to itself alone.
     if (vv - vw <= kRelativeGap * (vv + std::sqrt(vv * maxVertexSquared))) break;
     // A repeated vertex means the support cannot get any closer either (rounding).
     bool repeated = false;
@@ -204,40 +255,41 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
 
     const Simplex previous = simplex;
     simplex.vertices[simplex.count++] = next;
-    Vec3 closest;
-    if (!closestPointOfSimplex(simplex, closest)) {
+    DVec3 closest;
+    if (!closestPointOfSimplexD(simplex, closest)) {
       overlapping = true;
       break;
     }
-    const float closestSquared = glm::dot(closest, closest);
-    if (closestSquared > vv) {
-      // Rounding made the new simplex worse: keep the previous answer and stop.
+    const double closestSquared = glm::dot(closest, closest);
+    if (closestSquared >= vv) {
+      // No progress (rounding in the solve): keep the previous answer and stop.
       simplex = previous;
       break;
     }
-    // An unchanged point would repeat this iteration forever. (An equal length alone is still
-    // progress: near convergence |v|² changes below float resolution while v itself moves.)
-    if (closest == v) break;
     v = closest;
-    maxVertexSquared = 0.0f;
+    maxVertexSquared = 0.0;
     for (int i = 0; i < simplex.count; ++i) {
-      maxVertexSquared = std::max(maxVertexSquared, glm::dot(simplex.vertices[i].w, simplex.vertices[i].w));
+      maxVertexSquared =
+          std::max(maxVertexSquared, glm::dot(DVec3(simplex.vertices[i].w), DVec3(simplex.vertices[i].w)));
     }
   }
 
-  Vec3 pointOnA(0.0f), pointOnB(0.0f);
+  DVec3 pointOnA(0.0), pointOnB(0.0);
   for (int i = 0; i < simplex.count; ++i) {
-    pointOnA += simplex.lambda[i] * simplex.vertices[i].a;
-    pointOnB += simplex.lambda[i] * simplex.vertices[i].b;
+    pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
+    pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
   }
-  result.pointOnA = pointOnA;
-  result.pointOnB = pointOnB;
+  result.pointOnA = Vec3(pointOnA);
+  result.pointOnB = Vec3(pointOnB);
+  saveCache(a, b, simplex, cache);
   if (overlapping) {
     result.status = GjkResult::Status::Overlapping;
     result.distance = 0.0f;
   } else {
     result.status = GjkResult::Status::Separated;
-    result.distance = std::sqrt(glm::dot(v, v));
+    const double length = std::sqrt(glm::dot(v, v));
+    result.distance = static_cast<float>(length);
+    result.normal = Vec3(-v / length);
   }
   return result;
 }

@@ -17,7 +17,8 @@ struct SimplexVertex {
 
 struct Simplex {
   SimplexVertex vertices[4];
-  float lambda[4] = {1.0f, 0.0f, 0.0f, 0.0f};  // barycentric coordinates of the closest point
+  // Barycentric coordinates of the closest point, in double precision like the solve (gjk.cpp).
+  double lambda[4] = {1.0, 0.0, 0.0, 0.0};
   int count = 0;
 };
 
@@ -40,13 +41,30 @@ struct GjkResult {
   float distance = 0.0f;  // between the cores
   Vec3 pointOnA{0.0f};    // on A's core
   Vec3 pointOnB{0.0f};    // on B's core
+  // Separated: unit, from A to B, the direction of the closest point of A - B (more accurate than
+  // pointOnB - pointOnA, whose float rounding is large against a small distance).
+  Vec3 normal{0.0f, 1.0f, 0.0f};
   Simplex simplex;
   int iterations = 0;
 };
 
+// What one GJK query leaves for the next query of the same pair (frame coherence): its final
+// simplex as points in the two shapes' local frames.
+// Box2D's b2SimplexCache keeps vertex indices instead; local points serve every support kind. The
+// cached points, placed by the new transforms, are still points of A and B, so they make a valid
+// starting simplex however far the shapes moved: a pair that barely moved converges in one or two
+// support calls instead of five to ten. A default-constructed cache is empty (a cold start).
+struct GjkCache {
+  Vec3 localA[4];
+  Vec3 localB[4];
+  int count = 0;
+};
+
 // The closest points of the cores of A and B (their radii are ignored). Stops early with
-// BeyondBound as soon as the distance is proven larger than `bound`.
-GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound = 1e30f);
+// BeyondBound as soon as the distance is proven larger than `bound`. With a cache, starts from the
+// cached simplex and updates it; the cache must belong to this pair in this order (A, B).
+GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float bound = 1e30f,
+                      GjkCache* cache = nullptr);
 
 // Reduces the simplex to the smallest sub-simplex whose hull holds its point closest to the origin,
 // sets the barycentric coordinates and returns that point. Returns false when the origin lies

@@ -5,6 +5,7 @@
 
 #include "geometry/closest_points.h"
 #include "narrowphase/convex_distance.h"
+#include "narrowphase/gjk.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/test_helpers.h"
 
@@ -93,6 +94,42 @@ TEST(Gjk, CapsuleBoxDistanceMatchesBruteForceAlongTheSegment) {
     EXPECT_NEAR(generic(capsule, ta, box, tb).distance, coreDistance - capsule.radius, 2e-5f);
   }
   EXPECT_GT(separated, 200);
+}
+
+// The warm-start cache must not change answers: a box and an ellipsoid move along a path that
+// goes from apart to overlapping and back, each step warm-started from the previous one, and every
+// step must give the cold start's status and distance. The closest points agree less closely: on a
+// curved surface of radius R a point off by e changes the distance by e²/(2R), so GJK's distance
+// tolerance (~1e-6 of |v|² + |v||w|, about 4e-6 here) leaves them sqrt(2 R 4e-6) ~ 2e-3 apart.
+TEST(Gjk, WarmStartFromTheCacheGivesTheColdAnswersAlongAPath) {
+  const Shape box = Box{Vec3(0.5f, 0.3f, 0.4f)};
+  const Shape ellipsoid = Ellipsoid{Vec3(0.4f, 0.6f, 0.3f)};
+  detail::GjkCache cache;
+  int warmIterations = 0, coldIterations = 0, overlappingSteps = 0;
+  for (int step = 0; step <= 200; ++step) {
+    const float t = float(step) / 200.0f;
+    const Transform ta = at(Vec3(0.0f), axisAngle(Vec3(0.2f, 1.0f, 0.1f), 40.0f * t));
+    // x from 2 to 0.3 and back: apart, overlapping, apart.
+    const float x = 0.3f + 1.7f * std::abs(2.0f * t - 1.0f);
+    const Transform tb = at(Vec3(x, 0.1f, 0.05f), axisAngle(Vec3(1.0f, 0.3f, 0.0f), 90.0f * t));
+    const auto a = detail::makeConvexSupport(box, ta);
+    const auto b = detail::makeConvexSupport(ellipsoid, tb);
+    const detail::GjkResult cold = detail::gjkDistance(a, b);
+    const detail::GjkResult warm = detail::gjkDistance(a, b, 1e30f, &cache);
+    ASSERT_EQ(warm.status, cold.status) << "step " << step;
+    EXPECT_NEAR(warm.distance, cold.distance, 1e-5f) << "step " << step;
+    if (cold.status == detail::GjkResult::Status::Separated) {
+      EXPECT_NEAR(glm::length(warm.pointOnA - cold.pointOnA), 0.0f, 3e-3f) << "step " << step;
+      EXPECT_NEAR(glm::length(warm.pointOnB - cold.pointOnB), 0.0f, 3e-3f) << "step " << step;
+    } else {
+      ++overlappingSteps;
+    }
+    warmIterations += warm.iterations;
+    coldIterations += cold.iterations;
+  }
+  EXPECT_GT(overlappingSteps, 20);
+  // Frame coherence is the point of the cache: far fewer support calls along the path.
+  EXPECT_LT(warmIterations, coldIterations / 2) << warmIterations << " vs " << coldIterations;
 }
 
 TEST(Epa, DeepSphereInBoxAndBoxInSlabMatchClosedForms) {
