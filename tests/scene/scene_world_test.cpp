@@ -5,11 +5,17 @@
 #include <collide/scene/runner.h>
 #include <collide/scene/scene.h>
 
+#include <nlohmann/json.hpp>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 namespace collide::scene {
 namespace {
@@ -89,14 +95,29 @@ TEST(SceneWorld, SleepingPutsADroppedBoxToSleep) {
   }
 }
 
-TEST(SceneWorld, SummaryCountsSleepingBodies) {
+TEST(SceneWorld, SummaryAndRecordingReportSleepingBodies) {
   RunOptions options;
   options.steps = 180;
+  options.recordEvery = 60;
+  options.recordPath = (std::filesystem::temp_directory_path() /
+                        ("collide_scene_test_" + std::to_string(::getpid()) + "_sleep_record.json"))
+                           .string();
   const RunSummary asleep = runScene(parseScene(droppedBox(true), "drop.json"), options);
   EXPECT_TRUE(asleep.sleeping);
   EXPECT_EQ(asleep.awakeBodies, 0);
   EXPECT_EQ(asleep.asleepBodies, 1);
   EXPECT_THAT(formatSummary(asleep), HasSubstr("0 awake, 1 asleep"));
+  const auto summary = nlohmann::json::parse(summaryJson(asleep));
+  EXPECT_EQ(summary["sleeping"]["asleep"], 1);
+  // The recording: the box awake in the first frame (t = 0), asleep in the last (t = 3 s).
+  std::ifstream in(options.recordPath);
+  const auto record = nlohmann::json::parse(in);
+  std::filesystem::remove(options.recordPath);
+  ASSERT_EQ(record["frames"].size(), 4u);
+  EXPECT_EQ(record["frames"][0]["bodies"][1]["awake"], true);
+  EXPECT_EQ(record["frames"][3]["bodies"][1]["awake"], false);
+  EXPECT_EQ(record["frames"][3]["bodies"][0]["awake"], false);  // static
+  options.recordPath.clear();
   const RunSummary awake = runScene(parseScene(droppedBox(false), "drop.json"), options);
   EXPECT_FALSE(awake.sleeping);
   EXPECT_EQ(awake.awakeBodies, 1);
