@@ -1,5 +1,6 @@
-// Demonstration scenes: every proxy type in one pile, the two penetration responses, and a wall
-// that breaks under contact impulses (the lecture's ad-hoc effects driven by collision events).
+// Demonstration scenes: every proxy type in one pile, the two penetration responses, a wall that
+// breaks under contact impulses (the lecture's ad-hoc effects driven by collision events), and
+// particles joined by distance constraints.
 #include "builtin_scene_parts.h"
 
 #include <cmath>
@@ -123,6 +124,52 @@ Json breakable() {
   ball["velocity"] = vec(0, 2, 14);
   ball["mass"] = 60;
   bodies.push_back(ball);
+  return doc;
+}
+
+// Particles and rigid distance constraints: a rope of 10 particles hanging from a static hook,
+// released 30 degrees from vertical, and a 7 x 7 net of particles (links between grid neighbours)
+// falling over a static ball. Sleeping is on: the net comes to rest draped over the ball, its rim on
+// the ground, and sleeps; the rope keeps swinging (nothing damps it).
+Json chain() {
+  Json doc = demoDocument();
+  doc["settings"]["sleeping"] = true;
+  Json& bodies = doc["bodies"];
+  Json& constraints = doc["constraints"] = Json::array();
+  bodies.push_back(groundPlane());
+  const auto particle = [&](const std::string& name, double radius, double mass, const Json& position) {
+    Json p = body(name, "dynamic", sphere(radius), position);
+    p["particle"] = true;
+    p["mass"] = num(mass);
+    bodies.push_back(p);
+  };
+  const auto link = [&](const std::string& a, const std::string& b) {
+    constraints.push_back({{"type", "distance"}, {"a", a}, {"b", b}});  // rigid, length as placed
+  };
+
+  constexpr double kHookX = -3, kHookY = 5, kLink = 0.35, kAngle = M_PI / 6;
+  bodies.push_back(body("hook", "static", box(0.1, 0.1, 0.1), vec(kHookX, kHookY, 0)));
+  std::string previous = "hook";
+  for (int k = 0; k < 10; ++k) {
+    const std::string name = "rope_" + std::to_string(k);
+    const double along = (k + 1) * kLink;
+    particle(name, 0.05, 0.1, vec(kHookX + along * std::sin(kAngle), kHookY - along * std::cos(kAngle), 0));
+    link(previous, name);
+    previous = name;
+  }
+
+  constexpr double kBallX = 2, kBallRadius = 0.4, kSpacing = 0.25;
+  bodies.push_back(body("ball", "static", sphere(kBallRadius), vec(kBallX, kBallRadius, 0)));
+  constexpr int kSide = 7;
+  const auto knot = [](int i, int j) { return "net_" + std::to_string(i) + "_" + std::to_string(j); };
+  for (int i = 0; i < kSide; ++i) {
+    for (int j = 0; j < kSide; ++j) {
+      const double x = kBallX + (i - (kSide - 1) / 2.0) * kSpacing, z = (j - (kSide - 1) / 2.0) * kSpacing;
+      particle(knot(i, j), 0.06, 0.05, vec(x, 3, z));
+      if (i > 0) link(knot(i - 1, j), knot(i, j));
+      if (j > 0) link(knot(i, j - 1), knot(i, j));
+    }
+  }
   return doc;
 }
 

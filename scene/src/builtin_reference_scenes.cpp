@@ -3,8 +3,57 @@
 // terrain.
 #include "builtin_scene_parts.h"
 
+#include <collide/scene/builtin_scenes.h>
+#include <collide/scene/reference_scenes.h>
+
 #include <cmath>
 #include <random>
+
+namespace collide::scene {
+
+std::span<const ReferenceScene> referenceScenes() {
+  static constexpr std::array<ReferenceScene, 5> kScenes = {
+      {{"B1", "billiards"}, {"R1", "pile"}, {"R2", "rain"}, {"R3", "pyramid"}, {"R4", "terrain"}}};
+  return kScenes;
+}
+
+Scene loadReferenceScene(std::string_view idOrName) {
+  for (const ReferenceScene& r : referenceScenes()) {
+    if (r.id == idOrName || r.builtin == idOrName) return loadBuiltinScene(r.builtin);
+  }
+  throw Error("unknown reference scene \"" + std::string(idOrName) +
+              "\" (expected B1, R1, R2, R3, R4 or billiards, pile, rain, pyramid, terrain)");
+}
+
+double terrainHeight(double x, double z) { return 0.5 * std::sin(0.3 * x) * std::cos(0.3 * z); }
+
+Vec3 terrainHullPosition(int x, int y, int z) {
+  return Vec3(static_cast<float>((x - (kTerrainLatticeX - 1) / 2.0) * 1.5), static_cast<float>(3.0 + y * 1.5),
+              static_cast<float>((z - (kTerrainLatticeZ - 1) / 2.0) * 1.5));
+}
+
+// reference-scenes.md writes std::normal_distribution(0,1), whose RealType defaults to double: the
+// draws and the normalisation are in double so that any other builder following the text gets the
+// same floats.
+std::vector<std::array<Vec3, kTerrainHullPoints>> terrainHullPoints() {
+  std::vector<std::array<Vec3, kTerrainHullPoints>> hulls(kTerrainLatticeX * kTerrainLatticeY *
+                                                          kTerrainLatticeZ);
+  std::mt19937 rng(42);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  for (auto& hull : hulls) {
+    for (Vec3& point : hull) {
+      const double px = gauss(rng);
+      const double py = gauss(rng);
+      const double pz = gauss(rng);
+      const double scale = 0.5 / std::sqrt(px * px + py * py + pz * pz);
+      point = Vec3(static_cast<float>(px * scale), static_cast<float>(py * scale),
+                   static_cast<float>(pz * scale));
+    }
+  }
+  return hulls;
+}
+
+}  // namespace collide::scene
 
 namespace collide::scene::builtin {
 
@@ -121,19 +170,17 @@ Json pyramid() {
   return doc;
 }
 
-// R4: 2,000 convex hulls on a static sine terrain. The hull points come from one std::mt19937
-// seeded 42, hull after hull in the lattice order below (x outermost, then y, then z), 12 points a
-// hull, each point three std::normal_distribution<float>(0, 1) draws in separate statements (x, y,
-// z), normalised to length 0.5.
+// R4: 2,000 convex hulls on a static sine terrain; the hull points and positions as
+// reference_scenes.h gives them.
 Json terrain() {
   Json doc = referenceDocument();
   Json& bodies = doc["bodies"];
-  constexpr int kQuads = 100;
+  constexpr int kQuads = kTerrainQuads;
   Json vertices = Json::array(), triangles = Json::array();
   for (int j = 0; j <= kQuads; ++j) {
     for (int i = 0; i <= kQuads; ++i) {
       const double x = i - kQuads / 2.0, z = j - kQuads / 2.0;
-      vertices.push_back(vec(x, 0.5 * std::sin(0.3 * x) * std::cos(0.3 * z), z));
+      vertices.push_back(vec(x, terrainHeight(x, z), z));
     }
   }
   const auto at = [&](int i, int j) { return j * (kQuads + 1) + i; };
@@ -149,22 +196,16 @@ Json terrain() {
   ground["friction"] = num(0.5);
   bodies.push_back(ground);
 
-  std::mt19937 rng(42);
-  std::normal_distribution<float> gauss(0.0f, 1.0f);
-  for (int x = 0; x < 20; ++x) {
-    for (int y = 0; y < 5; ++y) {
-      for (int z = 0; z < 20; ++z) {
+  const auto hulls = terrainHullPoints();
+  std::size_t next = 0;
+  for (int x = 0; x < kTerrainLatticeX; ++x) {
+    for (int y = 0; y < kTerrainLatticeY; ++y) {
+      for (int z = 0; z < kTerrainLatticeZ; ++z) {
         Json points = Json::array();
-        for (int p = 0; p < 12; ++p) {
-          const float px = gauss(rng);
-          const float py = gauss(rng);
-          const float pz = gauss(rng);
-          const Vec3 point = 0.5f * glm::normalize(Vec3(px, py, pz));
-          points.push_back(jsonVec3(point));
-        }
-        Json b = body("hull_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
-                      "dynamic", {{"type", "convex_hull"}, {"points", points}},
-                      vec((x - 9.5) * 1.5, 3.0 + y * 1.5, (z - 9.5) * 1.5));
+        for (const Vec3& point : hulls[next++]) points.push_back(jsonVec3(point));
+        Json b =
+            body("hull_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z), "dynamic",
+                 {{"type", "convex_hull"}, {"points", points}}, jsonVec3(terrainHullPosition(x, y, z)));
         b["mass"] = 1;
         b["friction"] = num(0.5);
         bodies.push_back(b);

@@ -17,6 +17,7 @@ Json terrain();
 Json proxies();
 Json penetrationDrop(const char* response);
 Json breakable();
+Json chain();
 }  // namespace builtin
 
 namespace {
@@ -42,8 +43,9 @@ const std::vector<Entry>& registry() {
        [] { return builtin::penetrationDrop("project"); }},
       {{"breakable", "a brick wall whose bricks break under contact impulses, hit by a heavy ball"},
        builtin::breakable},
-      // tunneling (needs CCD, issue 7) and chain (needs particles and distance constraints) come
-      // with those features.
+      {{"chain", "particles and distance constraints: a swinging rope and a net falling over a ball"},
+       builtin::chain},
+      // tunneling (needs CCD, issue 7) comes with it.
   };
   return entries;
 }

@@ -25,7 +25,9 @@ std::ofstream openOutput(const std::string& path, const char* what) {
 // Streams the recording: {"dt": ..., "frames": [ ... ]}, one frame at a time.
 class Recorder {
  public:
-  Recorder(const std::string& path, float dt) : out_(openOutput(path, "recording")) {
+  // With sleeping on, each body also carries "awake" (static bodies: false).
+  Recorder(const std::string& path, float dt, bool sleeping)
+      : out_(openOutput(path, "recording")), sleeping_(sleeping) {
     out_ << "{\"dt\": " << jsonNumber(dt).dump() << ", \"frames\": [\n";
   }
   void frame(int step, double time, const SceneWorld& sw) {
@@ -33,11 +35,13 @@ class Recorder {
     for (BodyId id : sw.bodies) {
       if (!sw.world.isValid(id)) continue;  // broken
       const Transform t = sw.world.transform(id);
-      bodies.push_back({{"name", sw.world.name(id)},
-                        {"position", jsonVec3(t.position)},
-                        {"rotation", jsonQuat(t.rotation)},
-                        {"velocity", jsonVec3(sw.world.linearVelocity(id))},
-                        {"angular_velocity", jsonVec3(sw.world.angularVelocity(id))}});
+      nlohmann::json body = {{"name", sw.world.name(id)},
+                             {"position", jsonVec3(t.position)},
+                             {"rotation", jsonQuat(t.rotation)},
+                             {"velocity", jsonVec3(sw.world.linearVelocity(id))},
+                             {"angular_velocity", jsonVec3(sw.world.angularVelocity(id))}};
+      if (sleeping_) body["awake"] = sw.world.isAwake(id);
+      bodies.push_back(std::move(body));
     }
     const nlohmann::json f = {{"step", step}, {"time", time}, {"bodies", std::move(bodies)}};
     out_ << (first_ ? "" : ",\n") << f.dump();
@@ -47,6 +51,7 @@ class Recorder {
 
  private:
   std::ofstream out_;
+  bool sleeping_;
   bool first_ = true;
 };
 
@@ -116,7 +121,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   }
 
   std::optional<Recorder> recorder;
-  if (!options.recordPath.empty()) recorder.emplace(options.recordPath, scene.dt);
+  if (!options.recordPath.empty()) recorder.emplace(options.recordPath, scene.dt, scene.world.sleeping);
   std::optional<std::ofstream> events;
   if (!options.eventsPath.empty()) events.emplace(openOutput(options.eventsPath, "events"));
 
@@ -182,6 +187,11 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   summary.momentum = sw.world.linearMomentum();
   summary.kineticEnergy = sw.world.kineticEnergy();
   summary.stateHash = stateHash(sw);
+  summary.sleeping = scene.world.sleeping;
+  for (BodyId id : sw.bodies) {
+    if (!sw.world.isValid(id) || sw.world.type(id) != BodyType::Dynamic) continue;
+    ++(sw.world.isAwake(id) ? summary.awakeBodies : summary.asleepBodies);
+  }
   return summary;
 }
 

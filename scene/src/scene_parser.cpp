@@ -189,7 +189,7 @@ BodyType readBodyType(const JsonNode& node) {
 Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::path& baseDir) {
   node.expectObject({"name", "type", "shape", "position", "rotation", "scale", "velocity", "angular_velocity",
                      "mass", "density", "material", "bounciness", "friction", "ccd", "sensor",
-                     "break_impulse"});
+                     "break_impulse", "particle"});
   Body body;
   BodyDef& d = body.def;
   d.name = node.at("name").string();
@@ -227,10 +227,23 @@ Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::p
   if (auto n = node.find("ccd")) body.ccd = n->boolean();
   if (auto n = node.find("sensor")) d.sensor = n->boolean();
   if (auto n = node.find("break_impulse")) body.breakImpulse = n->positive();
+  // Our extension: a point mass (BodyDef::particle), the links of chains and nets.
+  if (auto n = node.find("particle")) d.particle = n->boolean();
+  if (d.particle) {
+    const JsonNode n = node.at("particle");
+    if (d.type != BodyType::Dynamic)
+      n.fail("a particle must be a dynamic body, got a " + std::string(toString(d.type)) + " body");
+    if (d.shape.type() != ShapeType::Sphere)
+      n.fail("a particle's shape must be a sphere, got " + std::string(toString(d.shape.type())));
+    if (d.angularVelocity != Vec3(0.0f))
+      node.at("angular_velocity")
+          .fail("a particle has no angular velocity, got " + node.at("angular_velocity").shown());
+  }
   return body;
 }
 
-DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::string, std::size_t>& names) {
+DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::string, std::size_t>& names,
+                                  const std::vector<Body>& bodies) {
   if (!node.value().is_object()) node.fail("must be a constraint object, got " + node.shown());
   const JsonNode typeNode = node.at("type");
   if (typeNode.string() != "distance")
@@ -240,12 +253,21 @@ DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::stri
   for (const char* key : {"a", "b"}) {
     const JsonNode n = node.at(key);
     const std::string name = n.string();
-    if (!names.contains(name)) n.fail("no body named " + n.shown());
+    if (!names.contains(name)) n.fail("unknown body " + n.shown());
     (key[0] == 'a' ? c.a : c.b) = name;
   }
   if (c.a == c.b) node.at("b").fail("must differ from a, got " + node.at("b").shown());
-  if (auto n = node.find("anchor_a")) c.anchorA = n->vec3();
-  if (auto n = node.find("anchor_b")) c.anchorB = n->vec3();
+  // A particle cannot turn, so an anchor off its centre would have no lever (the World refuses it).
+  const auto readAnchor = [&](const char* key, const std::string& bodyName) -> std::optional<Vec3> {
+    const auto n = node.find(key);
+    if (!n) return std::nullopt;
+    const Vec3 anchor = n->vec3();
+    if (bodies[names.at(bodyName)].def.particle && anchor != Vec3(0.0f))
+      n->fail("a particle's anchor must be its centre [0, 0, 0], got " + n->shown());
+    return anchor;
+  };
+  c.anchorA = readAnchor("anchor_a", c.a);
+  c.anchorB = readAnchor("anchor_b", c.b);
   if (auto n = node.find("length")) c.length = n->nonNegative();
   if (auto n = node.find("compliance")) c.compliance = n->nonNegative();
   return c;
@@ -393,7 +415,8 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
     }
   }
   if (auto n = root.find("constraints")) {
-    for (const JsonNode& c : n->elements()) scene.constraints.push_back(readConstraint(c, names));
+    for (const JsonNode& c : n->elements())
+      scene.constraints.push_back(readConstraint(c, names, scene.bodies));
   }
   return scene;
 }

@@ -1,6 +1,8 @@
 // Scene -> World. The World validates again (it is the API boundary for code too); here its
-// messages get the scene field in front, and what the World does not do yet is refused by name.
+// messages get the scene field in front ("constraints[2]: distance constraint: ...").
 #include <collide/scene/scene.h>
+
+#include <map>
 
 namespace collide::scene {
 
@@ -9,20 +11,41 @@ SceneWorld buildWorld(const Scene& scene) {
   try {
     world.emplace(scene.world);
   } catch (const Error& e) {
-    const std::string field = scene.world.sleeping ? "settings.sleeping" : "settings";
-    throw Error(scene.source + ": " + field + ": " + e.what());
+    throw Error(scene.source + ": settings: " + e.what());
   }
-  if (!scene.constraints.empty()) {
-    // Parsed and validated (names, anchors, length, compliance); the World has no joints yet.
-    throw Error(scene.source + ": constraints[0]: distance constraints are not supported yet by the World");
-  }
-  SceneWorld out{std::move(*world), {}};
+  SceneWorld out{std::move(*world), {}, {}};
   out.bodies.reserve(scene.bodies.size());
+  std::map<std::string, BodyId, std::less<>> byName;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     try {
       out.bodies.push_back(out.world.createBody(scene.bodies[i].def));
     } catch (const Error& e) {
       throw Error(scene.source + ": bodies[" + std::to_string(i) + "]: " + e.what());
+    }
+    byName.emplace(scene.bodies[i].def.name, out.bodies.back());
+  }
+  // After every body: a constraint's default length is the anchors' distance at load time.
+  out.constraints.reserve(scene.constraints.size());
+  for (std::size_t i = 0; i < scene.constraints.size(); ++i) {
+    const DistanceConstraint& c = scene.constraints[i];
+    const std::string field = "constraints[" + std::to_string(i) + "]";
+    const auto body = [&](const std::string& name, const char* key) {
+      const auto it = byName.find(name);
+      if (it == byName.end())  // the parser checks names; a Scene built in code may not have
+        throw Error(scene.source + ": " + field + "." + key + ": unknown body \"" + name + "\"");
+      return it->second;
+    };
+    DistanceConstraintDef def;
+    def.a = body(c.a, "a");
+    def.b = body(c.b, "b");
+    def.localAnchorA = c.anchorA;
+    def.localAnchorB = c.anchorB;
+    def.length = c.length;
+    def.compliance = c.compliance;
+    try {
+      out.constraints.push_back(out.world.createDistanceConstraint(def));
+    } catch (const Error& e) {
+      throw Error(scene.source + ": " + field + ": " + e.what());
     }
   }
   return out;

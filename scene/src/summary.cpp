@@ -39,6 +39,8 @@ std::string formatSummary(const RunSummary& s) {
   add("bodies          %d: %d static, %d kinematic, %d dynamic\n",
       s.staticBodies + s.kinematicBodies + s.dynamicBodies, s.staticBodies, s.kinematicBodies,
       s.dynamicBodies);
+  if (s.sleeping)
+    add("sleeping        %d awake, %d asleep (dynamic bodies at the end)\n", s.awakeBodies, s.asleepBodies);
   if (s.brokenBodies > 0) add("broken          %d bodies removed\n", s.brokenBodies);
   add("contact events  %llu\n", static_cast<unsigned long long>(s.contactEvents));
   add("\n%-24s %14s %16s\n", "pairs", "last step", "total");
@@ -71,6 +73,7 @@ std::string summaryJson(const RunSummary& s) {
       {"bodies",
        {{"static", s.staticBodies}, {"kinematic", s.kinematicBodies}, {"dynamic", s.dynamicBodies}}},
       {"broken_bodies", s.brokenBodies},
+      {"sleeping", {{"enabled", s.sleeping}, {"awake", s.awakeBodies}, {"asleep", s.asleepBodies}}},
       {"contact_events", s.contactEvents},
       {"last_step", statsJson(s.lastStep)},
       {"total", statsJson(s.total)},

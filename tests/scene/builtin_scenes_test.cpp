@@ -1,11 +1,14 @@
 // Every built-in scene goes through the loader and runs; the reference scenes are built as
 // reference-scenes.md specifies.
 #include <collide/scene/builtin_scenes.h>
+#include <collide/scene/reference_scenes.h>
 #include <collide/scene/runner.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace collide::scene {
 namespace {
@@ -56,13 +59,97 @@ TEST(BuiltinScenes, BilliardRackTouches) {
   EXPECT_EQ(s.bodies[5].def.linearVelocity, Vec3(6, 0, 0));
 }
 
-TEST(BuiltinScenes, TerrainHullsAreUnitDiameterPointClouds) {
+// The terrain scene's hulls are built from terrainHullPoints() (the points a Bullet-side builder
+// reuses): every hull vertex is one of its body's generating points, bit for bit, at length 0.5, and
+// the body sits at terrainHullPosition of its lattice cell.
+TEST(BuiltinScenes, TerrainHullsAreTheExposedPoints) {
   const Scene s = loadBuiltinScene("terrain");
   ASSERT_EQ(s.bodies.size(), 2001u);
   EXPECT_EQ(s.bodies[0].def.shape.mesh().triangles().size(), 20000u);
+  const auto hulls = terrainHullPoints();
+  ASSERT_EQ(hulls.size(), 2000u);
   for (std::size_t i = 1; i < s.bodies.size(); i += 97) {
-    for (const Vec3& v : s.bodies[i].def.shape.convexHull().vertices())
+    SCOPED_TRACE(s.bodies[i].def.name);
+    const auto& points = hulls[i - 1];
+    for (const Vec3& v : s.bodies[i].def.shape.convexHull().vertices()) {
       EXPECT_NEAR(glm::length(v), 0.5f, 1e-5f);
+      EXPECT_NE(std::find(points.begin(), points.end(), v), points.end()) << v.x << " " << v.y << " " << v.z;
+    }
+    const int cell = int(i) - 1;
+    EXPECT_EQ(s.bodies[i].def.position, terrainHullPosition(cell / 100, (cell / 20) % 5, cell % 20));
+  }
+  // The lattice's corners: spacing 1.5 centred on x = z = 0, lowest layer at y = 3.
+  EXPECT_EQ(terrainHullPosition(0, 0, 0), Vec3(-14.25f, 3.0f, -14.25f));
+  EXPECT_EQ(terrainHullPosition(19, 4, 19), Vec3(14.25f, 9.0f, 14.25f));
+  EXPECT_DOUBLE_EQ(terrainHeight(0.0, 7.0), 0.0);
+}
+
+// reference-scenes.md's std::normal_distribution(0,1) is the double distribution: the first point
+// is the first three double draws of mt19937(42), normalised to 0.5 (float draws give other values).
+TEST(BuiltinScenes, TerrainPointsAreDoubleDraws) {
+  std::mt19937 rng(42);
+  std::normal_distribution<double> gauss;
+  const double x = gauss(rng);
+  const double y = gauss(rng);
+  const double z = gauss(rng);
+  const double scale = 0.5 / std::sqrt(x * x + y * y + z * z);
+  const Vec3 first = terrainHullPoints()[0][0];
+  EXPECT_EQ(first, Vec3(float(x * scale), float(y * scale), float(z * scale)));
+  // The float distribution draws other numbers from the same engine (it takes 32 bits a value).
+  std::mt19937 rngFloat(42);
+  std::normal_distribution<float> gaussFloat;
+  EXPECT_NE(gaussFloat(rngFloat), float(x));
+}
+
+TEST(BuiltinScenes, ReferenceScenesByIdOrName) {
+  ASSERT_EQ(referenceScenes().size(), 5u);
+  EXPECT_EQ(referenceScenes()[4].id, "R4");
+  EXPECT_EQ(referenceScenes()[4].builtin, "terrain");
+  for (const ReferenceScene& r : referenceScenes()) EXPECT_TRUE(isBuiltinScene(r.builtin));
+  EXPECT_EQ(loadReferenceScene("R3").bodies.size(), loadReferenceScene("pyramid").bodies.size());
+  EXPECT_EQ(loadReferenceScene("B1").source, "builtin:billiards");
+  try {
+    loadReferenceScene("R9");
+    ADD_FAILURE() << "R9 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown reference scene \"R9\""), std::string::npos);
+  }
+}
+
+// The chain scene's rigid links (rope and net) keep their lengths within 1 % from 1 s to 2 s: the
+// rope swings throughout, the net has landed on the ball (at about 0.7 s) and must drape over it.
+// The landing itself stretches net links by up to about 7 % for a few steps (the centre stops at
+// once while the rim still falls at 6 m/s; the rigid joints are soft constraints, see
+// docs/architecture.md, "Distance constraints"), so the first second is not asserted.
+TEST(BuiltinScenes, ChainLinksHoldTheirLength) {
+  const Scene scene = loadBuiltinScene("chain");
+  EXPECT_EQ(scene.constraints.size(), 10u + 2u * 7u * 6u);
+  SceneWorld sw = buildWorld(scene);
+  float worst = 0.0f;
+  for (int step = 1; step <= 120; ++step) {
+    sw.world.step(scene.dt);
+    if (step < 60) continue;
+    for (const JointId link : sw.constraints) {
+      const float length = sw.world.constraintLength(link);
+      worst = std::max(worst, std::abs(sw.world.constraintCurrentLength(link) - length) / length);
+    }
+  }
+  EXPECT_LT(worst, 0.01f);
+  // The net's centre knot rests on top of the ball (radius 0.4 on the ground, knot radius 0.06).
+  std::size_t centre = 0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].def.name == "net_3_3") centre = i;
+  }
+  ASSERT_NE(centre, 0u);
+  EXPECT_NEAR(sw.world.transform(sw.bodies[centre]).position.y, 0.86f, 0.02f);
+  // The rope swung: its last particle started 30 degrees out on the +x side of the hook (x = -1.25).
+  EXPECT_LT(sw.world.transform(sw.bodies[11]).position.x, -1.5f);
+  // Sleeping is on: by 3 s the draped net (its rim on the ground) sleeps, the swinging rope does not.
+  for (int step = 120; step < 180; ++step) sw.world.step(scene.dt);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].def.type != BodyType::Dynamic) continue;
+    const bool net = scene.bodies[i].def.name.starts_with("net_");
+    EXPECT_EQ(sw.world.isAwake(sw.bodies[i]), !net) << scene.bodies[i].def.name;
   }
 }
 

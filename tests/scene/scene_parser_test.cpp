@@ -114,16 +114,16 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   const DistanceConstraint& c = s.constraints[0];
   EXPECT_EQ(c.a, "ball");
   EXPECT_EQ(c.b, "crate");
-  EXPECT_EQ(c.anchorA, Vec3(0, 0.5f, 0));
-  EXPECT_EQ(c.anchorB, Vec3(0.1f, 0, 0));
+  ASSERT_TRUE(c.anchorA.has_value() && c.anchorB.has_value());
+  EXPECT_EQ(*c.anchorA, Vec3(0, 0.5f, 0));
+  EXPECT_EQ(*c.anchorB, Vec3(0.1f, 0, 0));
   ASSERT_TRUE(c.length.has_value());
   EXPECT_FLOAT_EQ(*c.length, 2.5f);
   EXPECT_FLOAT_EQ(c.compliance, 0.001f);
 }
 
 TEST(SceneParser, BodiesReachTheWorld) {
-  Scene s = loadSceneFile(kData + "/every_field.json");
-  s.constraints.clear();  // distance constraints are not in the World yet
+  const Scene s = loadSceneFile(kData + "/every_field.json");
   SceneWorld sw = buildWorld(s);
   ASSERT_EQ(sw.bodies.size(), s.bodies.size());
   EXPECT_EQ(sw.world.def().penetrationResponse, PenetrationResponse::Revert);
@@ -134,6 +134,9 @@ TEST(SceneParser, BodiesReachTheWorld) {
   EXPECT_NEAR(sw.world.mass(sw.bodies[3]), pi * 0.04f * (0.6f + 0.8f / 3.0f) * 2000.0f, 1e-2f);
   EXPECT_EQ(sw.world.transform(sw.bodies[9]).position, Vec3(25, 3, 0));
   EXPECT_EQ(sw.world.linearVelocity(sw.bodies[1]), Vec3(1, 0, -1));
+  ASSERT_EQ(sw.constraints.size(), 1u);
+  EXPECT_EQ(sw.world.constraintCount(), 1u);
+  EXPECT_FLOAT_EQ(sw.world.constraintLength(sw.constraints[0]), 2.5f);
 }
 
 TEST(SceneParser, DefaultsAreTheEngines) {
@@ -213,7 +216,7 @@ TEST(SceneParserErrors, UnknownNames) {
   EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [
       {"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}],
       "constraints": [{"type": "distance", "a": "b", "b": "nobody"}]})"),
-              HasSubstr("constraints[0].b: no body named \"nobody\""));
+              HasSubstr("constraints[0].b: unknown body \"nobody\""));
   EXPECT_THAT(parseError(R"({"format": "collide-scene/2"})"),
               HasSubstr("format: must be \"collide-scene/1\", got \"collide-scene/2\""));
 }
@@ -272,22 +275,37 @@ TEST(SceneParserErrors, DuplicateNames) {
       HasSubstr("bodies[1].name: duplicate name \"b\" (also bodies[0])"));
 }
 
-TEST(SceneWorldErrors, WhatTheWorldDoesNotSupportYetIsNamed) {
-  Scene s = loadSceneFile(kData + "/every_field.json");
-  try {
-    buildWorld(s);
-    ADD_FAILURE() << "distance constraints were accepted";
-  } catch (const Error& e) {
-    EXPECT_THAT(std::string(e.what()),
-                HasSubstr("constraints[0]: distance constraints are not supported yet"));
-  }
-  s = parseScene(R"({"format": "collide-scene/1", "settings": {"sleeping": true}})", "sleepy.json");
-  try {
-    buildWorld(s);
-    ADD_FAILURE() << "sleeping was accepted";
-  } catch (const Error& e) {
-    EXPECT_THAT(std::string(e.what()), HasSubstr("sleepy.json: settings.sleeping: "));
-  }
+TEST(SceneParserErrors, ParticleIsADynamicSphereWithoutSpin) {
+  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "static", "particle": true,
+      "shape": {"type": "sphere", "radius": 0.1}})")),
+              HasSubstr("bodies[0].particle: a particle must be a dynamic body, got a static body"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
+      "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}})")),
+              HasSubstr("bodies[0].particle: a particle's shape must be a sphere, got box"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
+      "angular_velocity": [0, 1, 0], "shape": {"type": "sphere", "radius": 0.1}})")),
+              HasSubstr("bodies[0].angular_velocity: a particle has no angular velocity, got [0,1,0]"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "dynamic", "particle": "yes",
+      "shape": {"type": "sphere", "radius": 0.1}})")),
+              HasSubstr("bodies[0].particle: must be true or false, got \"yes\""));
+  // A particle cannot turn: an anchor off its centre has no lever.
+  EXPECT_THAT(
+      parseError(R"({"format": "collide-scene/1", "bodies": [
+      {"name": "hook", "type": "static", "shape": {"type": "sphere", "radius": 0.1}},
+      {"name": "p", "type": "dynamic", "particle": true, "shape": {"type": "sphere", "radius": 0.1},
+       "position": [0, -1, 0]}],
+      "constraints": [{"type": "distance", "a": "hook", "b": "p", "anchor_b": [0.1, 0, 0]}]})"),
+      HasSubstr("constraints[0].anchor_b: a particle's anchor must be its centre [0, 0, 0], got [0.1,0,0]"));
+}
+
+TEST(SceneParser, ParticleReachesTheWorld) {
+  const Scene s = parseScene(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
+      "shape": {"type": "sphere", "radius": 0.1}, "mass": 0.5})"));
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_TRUE(s.bodies[0].def.particle);
+  const SceneWorld sw = buildWorld(s);
+  EXPECT_TRUE(sw.world.isParticle(sw.bodies[0]));
+  EXPECT_FLOAT_EQ(sw.world.mass(sw.bodies[0]), 0.5f);
 }
 
 }  // namespace

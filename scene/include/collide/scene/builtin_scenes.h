@@ -1,5 +1,5 @@
 // The built-in scenes of `collide run NAME`: the reference scenes of docs/benchmarks (B1 billiards,
-// R1 pile, R2 rain, R3 pyramid, R4 terrain) and demonstrations (proxies, revert, breakable). Each is
+// R1 pile, R2 rain, R3 pyramid, R4 terrain) and demonstrations (proxies, revert, breakable, chain). Each is
 // generated as scene JSON, so it goes through parseScene like a file does and can be exported.
 #pragma once
 

@@ -32,6 +32,10 @@ struct RunSummary {
   int kinematicBodies = 0;
   int dynamicBodies = 0;
   int brokenBodies = 0;
+  // Dynamic bodies at the end (broken ones left out); with sleeping off every one is awake.
+  bool sleeping = false;  // the scene's settings.sleeping
+  int awakeBodies = 0;
+  int asleepBodies = 0;
   BroadPhaseStats lastStep{};
   BroadPhaseStats total{};
   std::uint64_t contactEvents = 0;

@@ -38,8 +38,8 @@ struct Body {
 struct DistanceConstraint {
   std::string a;
   std::string b;
-  Vec3 anchorA{0.0f};  // local points, default the centres
-  Vec3 anchorB{0.0f};
+  std::optional<Vec3> anchorA;  // local points; unset: the centre of mass
+  std::optional<Vec3> anchorB;
   std::optional<float> length;  // default: the distance at load time
   float compliance = 0.0f;      // 0 = rigid
 };
@@ -63,13 +63,15 @@ Scene parseScene(std::string_view text, std::string_view source = "scene",
 // Reads and parses a scene file (OBJ paths relative to the file's folder).
 Scene loadSceneFile(const std::filesystem::path& path);
 
-// A World built from a scene; bodies[i] is the id of scene.bodies[i].
+// A World built from a scene; bodies[i] is the id of scene.bodies[i], constraints[i] of
+// scene.constraints[i].
 struct SceneWorld {
   World world;
   std::vector<BodyId> bodies;
+  std::vector<JointId> constraints;
 };
-// Throws collide::Error naming the field for what the World refuses or does not support yet
-// (distance constraints, sleeping).
+// Throws collide::Error naming the field for what the World refuses ("constraints[2]: distance
+// constraint: a and b: at least one body must be dynamic, ...").
 SceneWorld buildWorld(const Scene& scene);
 
 }  // namespace collide::scene

@@ -1,0 +1,157 @@
+// Scene -> World: distance constraints and sleeping from scene files behave as the World's own
+// (a pendulum keeps its length and swings to the height it started from, default lengths are the
+// anchors' distance at load time, a dropped box falls asleep), and the World's refusals keep the
+// field path.
+#include <collide/scene/runner.h>
+#include <collide/scene/scene.h>
+
+#include <nlohmann/json.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace collide::scene {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A particle bob on a rigid 1.5 m constraint from a static pivot, released 60 degrees from vertical.
+constexpr const char* kPendulum = R"({"format": "collide-scene/1",
+  "bodies": [
+    {"name": "pivot", "type": "static", "shape": {"type": "sphere", "radius": 0.05}, "position": [0, 3, 0]},
+    {"name": "bob", "type": "dynamic", "particle": true, "mass": 1,
+     "shape": {"type": "sphere", "radius": 0.1}, "position": [1.29903811, 2.25, 0]}],
+  "constraints": [{"type": "distance", "a": "pivot", "b": "bob", "length": 1.5}]})";
+
+TEST(SceneWorld, PendulumFromAFileHoldsItsLength) {
+  SceneWorld sw = buildWorld(parseScene(kPendulum, "pendulum.json"));
+  ASSERT_EQ(sw.constraints.size(), 1u);
+  const JointId rope = sw.constraints[0];
+  EXPECT_FLOAT_EQ(sw.world.constraintLength(rope), 1.5f);
+  float worstStretch = 0.0f, leftmost = 1.3f;
+  for (int step = 0; step < 120; ++step) {  // 2 s: most of one period (2.6 s at 60 degrees)
+    sw.world.step(1.0f / 60.0f);
+    worstStretch = std::max(worstStretch, std::abs(sw.world.constraintCurrentLength(rope) - 1.5f) / 1.5f);
+    leftmost = std::min(leftmost, sw.world.transform(sw.bodies[1]).position.x);
+  }
+  EXPECT_LT(worstStretch, 0.01f);
+  // Energy brings the bob to the mirror of its start, x = -1.299; the constraint must not eat it.
+  EXPECT_LT(leftmost, -1.2f);
+}
+
+TEST(SceneWorld, DefaultLengthIsTheAnchorsDistanceAtLoad) {
+  // Anchors are local points: the box turned 90 degrees about z carries its anchor (0.5, 0, 0) to
+  // (2, 1.5, 0); the ceiling's (0, -0.5, 0) is at (0, 2.5, 0): sqrt(2^2 + 1^2) apart. Unset anchors
+  // are centres of mass: the corner tetrahedron's is (0.25, 0.25, 0.25) from its origin.
+  const Scene s = parseScene(R"({"format": "collide-scene/1",
+    "bodies": [
+      {"name": "ceiling", "type": "static", "shape": {"type": "box", "half_extents": [1, 0.5, 1]},
+       "position": [0, 3, 0]},
+      {"name": "crate", "type": "dynamic", "shape": {"type": "box", "half_extents": [0.5, 0.2, 0.2]},
+       "position": [2, 1, 0], "rotation": [0, 0, 0.70710678, 0.70710678]},
+      {"name": "gem", "type": "dynamic", "position": [3, 0, 0],
+       "shape": {"type": "convex_hull", "points": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}}],
+    "constraints": [
+      {"type": "distance", "a": "ceiling", "b": "crate", "anchor_a": [0, -0.5, 0], "anchor_b": [0.5, 0, 0]},
+      {"type": "distance", "a": "ceiling", "b": "gem", "compliance": 0.01}]})");
+  const SceneWorld sw = buildWorld(s);
+  ASSERT_EQ(sw.constraints.size(), 2u);
+  EXPECT_NEAR(sw.world.constraintLength(sw.constraints[0]), std::sqrt(5.0f), 1e-5f);
+  EXPECT_NEAR(sw.world.constraintLength(sw.constraints[1]), glm::length(Vec3(3.25f, -2.75f, 0.25f)), 1e-5f);
+}
+
+// A unit box dropped from 1 m onto the ground: falling at first, resting (hence asleep, after the
+// 0.5 s time to sleep) well within 3 s; with sleeping off the same box stays awake.
+std::string droppedBox(bool sleeping) {
+  return std::string(R"({"format": "collide-scene/1", "settings": {"sleeping": )") +
+         (sleeping ? "true" : "false") + R"(},
+    "bodies": [
+      {"name": "ground", "type": "static", "shape": {"type": "box", "half_extents": [10, 0.5, 10]},
+       "position": [0, -0.5, 0]},
+      {"name": "box", "type": "dynamic", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]},
+       "position": [0, 1.5, 0]}]})";
+}
+
+TEST(SceneWorld, SleepingPutsADroppedBoxToSleep) {
+  for (const bool sleeping : {true, false}) {
+    SCOPED_TRACE(sleeping ? "sleeping on" : "sleeping off");
+    const Scene scene = parseScene(droppedBox(sleeping), "drop.json");
+    EXPECT_EQ(scene.world.sleeping, sleeping);
+    SceneWorld sw = buildWorld(scene);
+    const BodyId box = sw.bodies[1];
+    for (int step = 0; step < 18; ++step) sw.world.step(scene.dt);  // 0.3 s: still falling
+    EXPECT_TRUE(sw.world.isAwake(box));
+    EXPECT_LT(sw.world.linearVelocity(box).y, -2.0f);
+    for (int step = 18; step < 180; ++step) sw.world.step(scene.dt);
+    EXPECT_EQ(sw.world.isAwake(box), !sleeping);
+    EXPECT_NEAR(sw.world.transform(box).position.y, 0.5f, 0.01f);  // resting on the ground
+  }
+}
+
+TEST(SceneWorld, SummaryAndRecordingReportSleepingBodies) {
+  RunOptions options;
+  options.steps = 180;
+  options.recordEvery = 60;
+  options.recordPath = (std::filesystem::temp_directory_path() /
+                        ("collide_scene_test_" + std::to_string(::getpid()) + "_sleep_record.json"))
+                           .string();
+  const RunSummary asleep = runScene(parseScene(droppedBox(true), "drop.json"), options);
+  EXPECT_TRUE(asleep.sleeping);
+  EXPECT_EQ(asleep.awakeBodies, 0);
+  EXPECT_EQ(asleep.asleepBodies, 1);
+  EXPECT_THAT(formatSummary(asleep), HasSubstr("0 awake, 1 asleep"));
+  const auto summary = nlohmann::json::parse(summaryJson(asleep));
+  EXPECT_EQ(summary["sleeping"]["asleep"], 1);
+  // The recording: the box awake in the first frame (t = 0), asleep in the last (t = 3 s).
+  std::ifstream in(options.recordPath);
+  const auto record = nlohmann::json::parse(in);
+  std::filesystem::remove(options.recordPath);
+  ASSERT_EQ(record["frames"].size(), 4u);
+  EXPECT_EQ(record["frames"][0]["bodies"][1]["awake"], true);
+  EXPECT_EQ(record["frames"][3]["bodies"][1]["awake"], false);
+  EXPECT_EQ(record["frames"][3]["bodies"][0]["awake"], false);  // static
+  options.recordPath.clear();
+  const RunSummary awake = runScene(parseScene(droppedBox(false), "drop.json"), options);
+  EXPECT_FALSE(awake.sleeping);
+  EXPECT_EQ(awake.awakeBodies, 1);
+  EXPECT_EQ(awake.asleepBodies, 0);
+}
+
+TEST(SceneWorldErrors, WorldRefusalsNameTheConstraint) {
+  // Two static bodies: nothing the constraint could move. The World refuses, the path stays.
+  try {
+    buildWorld(parseScene(R"({"format": "collide-scene/1", "bodies": [
+        {"name": "a", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+        {"name": "b", "type": "static", "shape": {"type": "sphere", "radius": 1}, "position": [3, 0, 0]},
+        {"name": "c", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}, "position": [6, 0, 0]}],
+        "constraints": [{"type": "distance", "a": "a", "b": "c"}, {"type": "distance", "a": "a", "b": "b"}]})",
+                          "statics.json"));
+    ADD_FAILURE() << "a constraint between two static bodies was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(
+        std::string(e.what()),
+        HasSubstr("statics.json: constraints[1]: distance constraint: a and b: at least one body must be "
+                  "dynamic, got static and static"));
+  }
+  // A Scene assembled in code skips the parser's name check; buildWorld still names the field.
+  Scene s = parseScene(R"({"format": "collide-scene/1", "bodies": [
+      {"name": "a", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}]})",
+                       "code");
+  s.constraints.push_back({"a", "x", std::nullopt, std::nullopt, std::nullopt, 0.0f});
+  try {
+    buildWorld(s);
+    ADD_FAILURE() << "an unknown body name was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(std::string(e.what()), HasSubstr("code: constraints[0].b: unknown body \"x\""));
+  }
+}
+
+}  // namespace
+}  // namespace collide::scene
