@@ -9,8 +9,8 @@
 //      lecture's interpolated impact on new contacts and viscous/damping friction on prolonged ones
 //      (src/response/contact_response.h), when the WorldDef asks for them;
 //   6. ccd (src/dynamics/continuous.cpp, WorldDef::ccd): fast ccd bodies go back to their first
-//      time of impact;
-//   6b. revert (PenetrationResponse::Revert): bodies still penetrating go back to the step's start;
+//      time of impact (docs/ccd.md); then revert (PenetrationResponse::Revert): bodies still
+//      penetrating go back to the step's start;
 //   7. events: begin/end contacts and sensor overlaps, in pair order.
 #include <collide/world.h>
 
