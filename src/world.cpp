@@ -1,4 +1,4 @@
-// The step: broad phase -> narrow phase -> persist -> solve -> (revert) -> events.
+// The step: broad phase -> narrow phase -> persist -> solve -> ccd -> (revert) -> events.
 //   1. proxies: every movable body's box, grown by the speculative distance and the step's motion;
 //   2. broad phase (src/broadphase/): sorted pairs, static-static never produced;
 //   3. narrow phase (src/narrowphase/) per pair that can respond: kinematic/static partners of a
@@ -8,13 +8,16 @@
 //   5. solve (src/dynamics/): the soft step over all bodies and enabled contacts; then the
 //      lecture's interpolated impact on new contacts and viscous/damping friction on prolonged ones
 //      (src/response/contact_response.h), when the WorldDef asks for them;
-//   6. revert (PenetrationResponse::Revert): bodies still penetrating go back to the step's start;
+//   6. ccd (src/dynamics/continuous.cpp, WorldDef::ccd): fast ccd bodies go back to their first
+//      time of impact (docs/ccd.md); then revert (PenetrationResponse::Revert): bodies still
+//      penetrating go back to the step's start;
 //   7. events: begin/end contacts and sensor overlaps, in pair order.
 #include <collide/world.h>
 
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
 #include "dynamics/contact_solver.h"
+#include "dynamics/continuous.h"
 #include "dynamics/joint_solver.h"
 #include "response/contact_response.h"
 
@@ -279,6 +282,7 @@ BodyId World::createBody(const BodyDef& def) {
   r.mask = def.mask;
   r.sensor = def.sensor;
   r.particle = def.particle;
+  r.ccd = def.ccd && !def.sensor;
   try {
     if (def.type == BodyType::Dynamic) {
       MassProperties props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
@@ -294,6 +298,8 @@ BodyId World::createBody(const BodyDef& def) {
       s.inverseMass = 1.0f / r.mass;
     }
     if (def.type != BodyType::Static) {
+      const Vec3 half = localBounds(def.shape).halfExtents() * def.scale;
+      r.minExtent = std::min({half.x, half.y, half.z});
       const BoundingSphere sphere = localBoundingSphere(def.shape);
       r.boundingRadius =
           glm::length(sphere.center * def.scale - r.localCenterOfMass) + sphere.radius * def.scale;
@@ -578,6 +584,7 @@ void World::Impl::step(float dt) {
     r.force = Vec3(0.0f);
     r.torque = Vec3(0.0f);
   }
+  if (def.ccd) detail::solveContinuous(bodies, *broadPhase, def.contact.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
   emitEvents();
   if (def.sleeping) updateSleep(dt);

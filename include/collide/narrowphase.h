@@ -80,6 +80,74 @@ bool collide(const Shape& shapeA, const Transform& transformA, const Shape& shap
 DistanceResult distance(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                         const Transform& transformB);
 
+// ---- Time of impact (continuous collision detection, docs/ccd.md) ----
+
+// A body's motion over one step, as Box2D's b2Sweep: the body turns about a centre (its centre of
+// mass) that moves in a straight line from center0 to center1, while its rotation goes from
+// rotation0 to rotation1 along the shortest arc at constant rate (slerp). localCenter is that centre
+// in the body's frame, in world units (already scaled): the shape's placement at t is
+// {center(t) - rotation(t) * localCenter, rotation(t), scale}.
+struct Sweep {
+  Vec3 localCenter{0.0f};
+  Vec3 center0{0.0f};
+  Vec3 center1{0.0f};
+  Quat rotation0{1.0f, 0.0f, 0.0f, 0.0f};
+  Quat rotation1{1.0f, 0.0f, 0.0f, 0.0f};
+  float scale = 1.0f;
+
+  // A shape that does not move.
+  static Sweep fixed(const Transform& transform);
+  // From the start and end placements of the shape, turning about `localCenter` (body frame,
+  // world units; the origin by default).
+  static Sweep between(const Transform& start, const Transform& end, const Vec3& localCenter = Vec3(0.0f));
+
+  // The placement at t in [0, 1].
+  Transform at(float t) const;
+  // The angle turned over the whole sweep, radians in [0, pi].
+  float angle() const;
+};
+
+struct ToiSettings {
+  // The gap left between the shapes at the returned time: the world uses its linear slop, so the
+  // next step's contact sees them touching without penetration (Catto, GDC 2013). May be negative
+  // (a depth of penetration allowed), as the world does for pairs that start touching.
+  float targetSeparation = 0.005f;
+  // Accepted above the target: the search stops once the gap is below target + tolerance.
+  float tolerance = 0.00125f;
+  // Conservative advancement gives up after this many distance queries, at a time that is still
+  // safe (the gap there is above the target).
+  int maxIterations = 64;
+};
+
+struct ToiResult {
+  enum class State : std::uint8_t {
+    Separated,      // no contact within [0, 1]; t = 1
+    Hit,            // the gap reaches the target at t (within the tolerance)
+    Overlapping,    // closer than target + tolerance already at t = 0; t = 0
+    MaxIterations,  // the search stopped early at t, a pose still apart by more than the target
+  };
+  State state = State::Separated;
+  float t = 1.0f;
+  Vec3 normal{0.0f, 1.0f, 0.0f};  // unit, from A to B at t (when not Separated)
+  Vec3 point{0.0f};               // midway between the two surfaces at t (when not Separated)
+  float separation = 0.0f;        // the signed gap at t (when not Separated)
+  int iterations = 0;             // distance queries (conservative advancement) or 1 (exact sweep)
+
+  // Hit or MaxIterations: both give a safe time at which to stop.
+  bool hit() const { return state == State::Hit || state == State::MaxIterations; }
+};
+
+// The first time in [0, 1] at which A and B, moving by their sweeps, come within
+// settings.targetSeparation of each other (the earliest over a mesh's triangles or a compound's children). Any shapes but two planes: a sphere whose centre moves in
+// a straight line relative to a plane, box, triangle (of a mesh), sphere or capsule that does not
+// turn is swept exactly (a ray against the other shape grown by the radius: the Minkowski sum);
+// everything else by conservative advancement on the distance query, bounding the motion of any
+// point by |delta x| + angle * r_max (Mirtich 1996; Catto, "Continuous Collision", GDC 2013).
+// Meshes and compounds are swept per triangle / child (meshes are two-sided); the earliest hit
+// wins. Throws Error for invalid sweeps or settings, two planes, or a turning plane.
+ToiResult timeOfImpact(const Shape& shapeA, const Sweep& sweepA, const Shape& shapeB, const Sweep& sweepB,
+                       const ToiSettings& settings = {});
+
 // ---- The pair table, for tools and docs. ----
 
 enum class PairAlgorithm : std::uint8_t {

@@ -70,6 +70,9 @@ struct WorldDef {
   PenetrationResponse penetrationResponse = PenetrationResponse::Project;
   // Resting islands sleep (docs/architecture.md, "Islands and sleeping").
   bool sleeping = false;
+  // Continuous collision: bodies with BodyDef::ccd get a time-of-impact pass after the solve
+  // (docs/ccd.md). Off, every body relies on speculative contacts alone.
+  bool ccd = true;
   SleepTuning sleep{};
   ContactTuning contact{};
 };
@@ -97,6 +100,12 @@ struct BodyDef {
   // radius times scale) but that has no inertia, no angular velocity and a rotation that never
   // changes. Cheap links for chains, ropes and cloth-like meshes of distance constraints.
   bool particle = false;
+  // Continuous collision (docs/ccd.md): when WorldDef::ccd is on and the body moves more than half
+  // its smallest extent in a step, it is stopped at its first time of impact against any other
+  // body (static, kinematic or dynamic) instead of passing through thin or turning obstacles that
+  // the speculative contacts miss. Costs a broad-phase query and a time of impact per candidate
+  // for each such fast body; nothing for a slow one. Ignored for sensors.
+  bool ccd = false;
   std::uint64_t userData = 0;
   std::string name;
 };
