@@ -18,6 +18,7 @@ Json proxies();
 Json penetrationDrop(const char* response);
 Json breakable();
 Json chain();
+Json tunneling();
 }  // namespace builtin
 
 namespace {
@@ -45,7 +46,8 @@ const std::vector<Entry>& registry() {
        builtin::breakable},
       {{"chain", "particles and distance constraints: a swinging rope and a net falling over a ball"},
        builtin::chain},
-      // tunneling (needs CCD, issue 7) comes with it.
+      {{"tunneling", "fast small bodies at thin plates, the same shots with ccd on and off"},
+       builtin::tunneling},
   };
   return entries;
 }

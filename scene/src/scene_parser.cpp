@@ -151,7 +151,7 @@ void readSettings(const JsonNode& node, Scene& scene) {
   if (auto n = node.find("broadphase")) {
     w.broadPhase.type = withPath(*n, [&] { return parseBroadPhaseType(n->string()); });
   }
-  if (auto n = node.find("ccd")) scene.ccd = n->boolean();
+  if (auto n = node.find("ccd")) scene.world.ccd = n->boolean();
   if (auto n = node.find("sleeping")) w.sleeping = n->boolean();
   if (auto n = node.find("bounciness_combine")) {
     w.bouncinessCombine = withPath(*n, [&] { return parseCombineRule(n->string()); });
@@ -224,7 +224,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::p
   if (auto n = node.find("density")) d.density = n->positive();
   if (auto n = node.find("bounciness")) d.bounciness = n->unitInterval();
   if (auto n = node.find("friction")) d.friction = n->nonNegative();
-  if (auto n = node.find("ccd")) body.ccd = n->boolean();
+  if (auto n = node.find("ccd")) body.def.ccd = n->boolean();
   if (auto n = node.find("sensor")) d.sensor = n->boolean();
   if (auto n = node.find("break_impulse")) body.breakImpulse = n->positive();
   // Our extension: a point mass (BodyDef::particle), the links of chains and nets.

@@ -36,7 +36,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.steps, 42);
   EXPECT_EQ(s.world.substeps, 6);
   EXPECT_EQ(s.world.broadPhase.type, BroadPhaseType::SweepAndPrune);
-  EXPECT_TRUE(s.ccd);
+  EXPECT_FALSE(s.world.ccd);  // the engine default is true
   EXPECT_FALSE(s.world.sleeping);
   EXPECT_EQ(s.world.bouncinessCombine, CombineRule::Multiply);
   EXPECT_EQ(s.world.frictionCombine, CombineRule::Min);
@@ -71,7 +71,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_EQ(ball.material, "felt");
   EXPECT_FLOAT_EQ(ball.def.bounciness, 0.9f);  // its own value over the material's 0.1
   EXPECT_FLOAT_EQ(ball.def.friction, 0.4f);    // the material's
-  EXPECT_TRUE(ball.ccd);
+  EXPECT_TRUE(ball.def.ccd);
   EXPECT_FALSE(ball.def.sensor);
   EXPECT_EQ(ball.def.userData, 1u);
 
@@ -127,6 +127,7 @@ TEST(SceneParser, BodiesReachTheWorld) {
   SceneWorld sw = buildWorld(s);
   ASSERT_EQ(sw.bodies.size(), s.bodies.size());
   EXPECT_EQ(sw.world.def().penetrationResponse, PenetrationResponse::Revert);
+  EXPECT_FALSE(sw.world.def().ccd);
   EXPECT_EQ(sw.world.name(sw.bodies[1]), "ball");
   EXPECT_FLOAT_EQ(sw.world.mass(sw.bodies[1]), 1.5f);
   // Density 2000 on a capsule r 0.2, half height 0.3: pi r^2 (2 hh + 4/3 r) * 2000.

@@ -29,7 +29,6 @@ struct Body {
   // The shape is built (hulls, meshes and OBJ files already processed).
   BodyDef def;
   std::string material;  // empty when none
-  bool ccd = false;      // stored; continuous detection arrives with issue 7
   // Our extension: a breakable body is removed once the contact impulses it received (the
   // impulses of its contact begin events, N s) add up to more than this (see runner.h).
   std::optional<float> breakImpulse;
@@ -49,7 +48,6 @@ struct Scene {
   WorldDef world;      // gravity, substeps, broad phase, combine rules, models
   float dt = 1.0f / 60.0f;
   int steps = 600;
-  bool ccd = false;  // stored; continuous detection arrives with issue 7
   std::map<std::string, Material> materials;
   std::vector<Body> bodies;
   std::vector<DistanceConstraint> constraints;
