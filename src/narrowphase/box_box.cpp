@@ -129,21 +129,56 @@ struct Frame {
   Vec3 position;
 };
 
+// Writes one face-contact point: `p` is the incident point in the reference frame, `separation`
+// its height over the reference face. The point on the reference face is the incident point moved
+// down the normal, so each point costs one frame transform, not two.
+inline void writeFacePoint(const ClipPoint& p, float separation, const Vec3& normal, const Frame& frame,
+                           bool refIsA, ContactPoint& point) {
+  const Vec3 worldIncident = frame.position + frame.rotation * p.position;
+  const Vec3 worldReference = worldIncident - separation * normal;
+  point.depth = -separation;
+  const auto refCode = static_cast<std::uint32_t>(p.referenceCode);
+  const auto incCode = static_cast<std::uint32_t>(p.incidentCode);
+  if (refIsA) {
+    point.pointOnA = worldReference;
+    point.pointOnB = worldIncident;
+    point.featureId = featurePair(refCode, incCode);
+  } else {
+    point.pointOnA = worldIncident;
+    point.pointOnB = worldReference;
+    point.featureId = featurePair(incCode, refCode);
+  }
+}
+
+// More than four clipped points (a tilted face cut by the side planes): reduced to four as the
+// generic routine does. Apart so that the common case does not initialise the candidates' array.
+[[gnu::noinline]] void reduceFacePoints(const ClipPoint* in, int count, int axis, float sign,
+                                        float planeOffset, const Vec3& normal, const Frame& frame,
+                                        bool refIsA, float margin, Manifold& out) {
+  std::array<ContactPoint, kMaxClip> candidates;
+  int kept = 0;
+  for (int i = 0; i < count; ++i) {
+    const float separation = sign * in[i].position[axis] - planeOffset;
+    if (separation > margin) continue;
+    writeFacePoint(in[i], separation, normal, frame, refIsA, candidates[kept++]);
+  }
+  reduceContacts(std::span<const ContactPoint>(candidates.data(), static_cast<std::size_t>(kept)), out.normal,
+                 out);
+}
+
 // Face contact with the reference face (axis, sign) of the reference box (half extents hr) and
-// the incident box (half extents hi) placed by `inc` in the reference frame. Writes world points
-// through `frame` (the reference box's); refIsA says which box is A.
-bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, int axis, float sign,
-                 const Frame& frame, bool refIsA, float margin, Manifold& out) {
+// the incident box (half extents hi) placed by `inc` in the reference frame (absAxes: |inc.axes|).
+// Writes world points through `frame` (the reference box's); refIsA says which box is A.
+bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, const Mat3& absAxes, int axis,
+                 float sign, const Frame& frame, bool refIsA, float margin, Manifold& out) {
   // The incident face: the incident box's face most anti-parallel to the reference normal.
   int incAxis = 0;
-  float best = -1.0f;
-  for (int j = 0; j < 3; ++j) {
-    const float c = std::abs(inc.axes[j][axis]);
-    if (c > best) {
-      best = c;
-      incAxis = j;
-    }
+  float best = absAxes[0][axis];
+  if (absAxes[1][axis] > best) {
+    best = absAxes[1][axis];
+    incAxis = 1;
   }
+  if (absAxes[2][axis] > best) incAxis = 2;
   const float incSign = sign * inc.axes[incAxis][axis] > 0.0f ? -1.0f : 1.0f;
   const int u = (incAxis + 1) % 3, v = (incAxis + 2) % 3;
   const Vec3 faceCenter = inc.center + (incSign * hi[incAxis]) * inc.axes[incAxis];
@@ -151,17 +186,15 @@ bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, int axis, 
 
   int referenceFace = kPow3[0] + kPow3[1] + kPow3[2];  // 13: all digits 1
   referenceFace += (signDigit(sign) - 1) * kPow3[axis];
-  const int incidentFaceDigit = signDigit(incSign) * kPow3[incAxis];
-  auto corner = [&](float su, float sv) -> ClipPoint {
-    return {faceCenter + su * du + sv * dv, referenceFace,
-            incidentFaceDigit + signDigit(su) * kPow3[u] + signDigit(sv) * kPow3[v]};
-  };
+  const int incidentFaceCode = signDigit(incSign) * kPow3[incAxis];
+  const int plusU = 2 * kPow3[u], plusV = 2 * kPow3[v];
   std::array<ClipPoint, kMaxClip> bufferA, bufferB;
   // In order around the face.
-  bufferA[0] = corner(1.0f, 1.0f);
-  bufferA[1] = corner(-1.0f, 1.0f);
-  bufferA[2] = corner(-1.0f, -1.0f);
-  bufferA[3] = corner(1.0f, -1.0f);
+  const Vec3 pu = faceCenter + du, mu = faceCenter - du;
+  bufferA[0] = {pu + dv, referenceFace, incidentFaceCode + plusU + plusV};
+  bufferA[1] = {mu + dv, referenceFace, incidentFaceCode + plusV};
+  bufferA[2] = {mu - dv, referenceFace, incidentFaceCode};
+  bufferA[3] = {pu - dv, referenceFace, incidentFaceCode + plusU};
   ClipPoint* in = bufferA.data();
   ClipPoint* next = bufferB.data();
   int count = 4;
@@ -171,20 +204,25 @@ bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, int axis, 
   for (int i = 0; i < 4; ++i) {
     inside = inside && std::abs(in[i].position[k1]) <= hr[k1] && std::abs(in[i].position[k2]) <= hr[k2];
   }
-  for (int side = 1; side <= 2 && count > 0 && !inside; ++side) {
-    const int k = (axis + side) % 3;
-    for (const float s : {1.0f, -1.0f}) {
-      const int sideCode = referenceFace + (signDigit(s) - 1) * kPow3[k];
-      count = clipAgainstSide(in, count, k, s, hr[k], sideCode, next);
-      std::swap(in, next);
-      if (count == 0) break;
+  if (!inside) {
+    for (int side = 1; side <= 2 && count > 0; ++side) {
+      const int k = (axis + side) % 3;
+      for (const float s : {1.0f, -1.0f}) {
+        const int sideCode = referenceFace + (signDigit(s) - 1) * kPow3[k];
+        count = clipAgainstSide(in, count, k, s, hr[k], sideCode, next);
+        std::swap(in, next);
+        if (count == 0) break;
+      }
     }
   }
 
   const float planeOffset = hr[axis];
-  auto separationOf = [&](const Vec3& p) { return sign * p[axis] - planeOffset; };
+  std::array<float, kMaxClip> separations;
   bool anyWithin = false;
-  for (int i = 0; i < count && !anyWithin; ++i) anyWithin = separationOf(in[i].position) <= margin;
+  for (int i = 0; i < count; ++i) {
+    separations[i] = sign * in[i].position[axis] - planeOffset;
+    anyWithin = anyWithin || separations[i] <= margin;
+  }
   if (!anyWithin) {
     // Deep or skewed overlaps can leave no clipped point below the reference plane: the incident
     // box's deepest corner stands for the contact (as in the generic routine).
@@ -196,43 +234,24 @@ bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, int axis, 
       code += signDigit(s) * kPow3[m];
     }
     in[0] = {p, referenceFace, code};
+    separations[0] = sign * p[axis] - planeOffset;
     count = 1;
   }
 
   const Vec3 normal = frame.rotation[axis] * sign;  // world, outward from the reference box
-  // Up to four points go straight to the manifold (the resting case); more are reduced.
-  std::array<ContactPoint, kMaxClip> overflow;
-  ContactPoint* candidates = count <= Manifold::kMaxPoints ? out.points.data() : overflow.data();
+  out.normal = refIsA ? normal : -normal;
+  if (count > Manifold::kMaxPoints) {
+    reduceFacePoints(in, count, axis, sign, planeOffset, normal, frame, refIsA, margin, out);
+    return out.count > 0;
+  }
+  // Up to four points go straight to the manifold (the resting case).
   int kept = 0;
   for (int i = 0; i < count; ++i) {
-    const float separation = separationOf(in[i].position);
-    if (separation > margin) continue;
-    Vec3 onReference = in[i].position;
-    onReference[axis] = sign * planeOffset;
-    const Vec3 worldIncident = frame.position + frame.rotation * in[i].position;
-    const Vec3 worldReference = frame.position + frame.rotation * onReference;
-    ContactPoint& point = candidates[kept++];
-    point.depth = -separation;
-    const auto refCode = static_cast<std::uint32_t>(in[i].referenceCode);
-    const auto incCode = static_cast<std::uint32_t>(in[i].incidentCode);
-    if (refIsA) {
-      point.pointOnA = worldReference;
-      point.pointOnB = worldIncident;
-      point.featureId = featurePair(refCode, incCode);
-    } else {
-      point.pointOnA = worldIncident;
-      point.pointOnB = worldReference;
-      point.featureId = featurePair(incCode, refCode);
-    }
+    if (separations[i] > margin) continue;
+    writeFacePoint(in[i], separations[i], normal, frame, refIsA, out.points[kept++]);
   }
-  out.normal = refIsA ? normal : -normal;
-  if (candidates == out.points.data()) {
-    out.count = kept;
-  } else {
-    reduceContacts(std::span<const ContactPoint>(candidates, static_cast<std::size_t>(kept)), out.normal,
-                   out);
-  }
-  return out.count > 0;
+  out.count = kept;
+  return kept > 0;
 }
 
 }  // namespace
@@ -243,38 +262,44 @@ bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape
   const Vec3 hA = shapeA.box().halfExtents * transformA.scale;
   const Vec3 hB = shapeB.box().halfExtents * transformB.scale;
   const Frame frameA{glm::mat3_cast(transformA.rotation), transformA.position};
-  const Frame frameB{glm::mat3_cast(transformB.rotation), transformB.position};
-  // B in A's frame: R's column j is B's axis j, T is B's centre.
-  const Mat3 rotationAT = glm::transpose(frameA.rotation);
-  const Mat3 R = rotationAT * frameB.rotation;
-  const Vec3 T = rotationAT * (frameB.position - frameA.position);
-  Mat3 absR;
-  for (int j = 0; j < 3; ++j) absR[j] = glm::abs(R[j]);
+  const Mat3 rotationB = glm::mat3_cast(transformB.rotation);
+  // B in A's frame, computed once: R's column j is B's axis j (R = Aᵀ B), T is B's centre. Every
+  // axis below is read from R, |R| and T; nothing else is transformed.
+  Mat3 R, absR;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      R[j][i] = glm::dot(frameA.rotation[i], rotationB[j]);
+      absR[j][i] = std::abs(R[j][i]);
+    }
+  }
+  const Vec3 offset = transformB.position - transformA.position;
+  const Vec3 T(glm::dot(frameA.rotation[0], offset), glm::dot(frameA.rotation[1], offset),
+               glm::dot(frameA.rotation[2], offset));
 
-  // 1. A's face axes: e_i.
+  // 1. A's face axes: e_i. Any axis beyond the margin ends the test (most apart pairs stop here).
   float faceASeparation = -1e30f;
   int faceAAxis = 0;
   for (int i = 0; i < 3; ++i) {
     const float rB = hB.x * absR[0][i] + hB.y * absR[1][i] + hB.z * absR[2][i];
     const float separation = std::abs(T[i]) - hA[i] - rB;
+    if (separation > margin) return false;
     if (separation > faceASeparation) {
       faceASeparation = separation;
       faceAAxis = i;
     }
   }
-  if (faceASeparation > margin) return false;
   // 2. B's face axes: R's columns.
   float faceBSeparation = -1e30f;
   int faceBAxis = 0;
   for (int j = 0; j < 3; ++j) {
     const float rA = glm::dot(hA, absR[j]);
     const float separation = std::abs(glm::dot(T, R[j])) - hB[j] - rA;
+    if (separation > margin) return false;
     if (separation > faceBSeparation) {
       faceBSeparation = separation;
       faceBAxis = j;
     }
   }
-  if (faceBSeparation > margin) return false;
   // The reference face, as in collidePolyhedra: a face over a barely better edge pair, the
   // larger face between two faces within the tolerance.
   constexpr float kRelative = 0.98f;
@@ -290,38 +315,53 @@ bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape
   }
   const float faceSeparation = referenceIsB ? faceBSeparation : faceASeparation;
 
-  // 3. Edge axes e_i × R_j, skipping (nearly) parallel edge directions as the generic routine does:
-  // their cross product has no direction, and the face axes cover that case. An edge axis matters
-  // only if it separates by more than the margin (apart) or is clearly better than the reference
-  // face (an edge contact); below that threshold it is not normalised (a division saved per axis).
+  // 3. Edge axes L = e_i × B_j, in closed form from R (Gottschalk et al. 1996, table 1): with b =
+  // B_j in A's frame, L = (…, -b[i2], b[i1]) has length sin(angle) = |(b[i1], b[i2])|, A's radius
+  // along it is hA[i1] |R_i2j| + hA[i2] |R_i1j|, B's is hB[j1] |R_ij2| + hB[j2] |R_ij1| (B's axes are
+  // right-handed: B_j × B_j1 = B_j2) and the centres are T[i2] R_i1j - T[i1] R_i2j apart along it.
+  // (Nearly) parallel edge directions are skipped as the generic routine does: their cross product
+  // has no direction, and the face axes cover that case. An edge axis matters only if it separates
+  // by more than the margin (apart) or is clearly better than the reference face (an edge contact);
+  // the separation stays scaled by |L| for that test (squared, no root) and only an axis that
+  // passes it is normalised.
   const float edgeThreshold = std::min(margin, kRelative * faceSeparation + absolute);
+  const float thresholdSquared = edgeThreshold * edgeThreshold;
   float edgeSeparation = -1e30f;
   int edgeA = 0, edgeB = 0;
   Vec3 edgeAxis(0.0f);
   for (int i = 0; i < 3; ++i) {
-    Vec3 unitA(0.0f);
-    unitA[i] = 1.0f;
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
-      const Vec3 axis = glm::cross(unitA, R[j]);  // length sin(angle between the edges)
-      const float length = glm::length(axis);
-      if (length < 1e-5f) continue;
-      const float rA = glm::dot(hA, glm::abs(axis));
-      float rB = 0.0f;
-      for (int m = 0; m < 3; ++m) rB += hB[m] * std::abs(glm::dot(axis, R[m]));
-      const float along = glm::dot(T, axis);
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const float bi1 = R[j][i1], bi2 = R[j][i2];
+      const float lengthSquared = bi1 * bi1 + bi2 * bi2;
+      if (lengthSquared < 1e-10f) continue;
+      const float rA = hA[i1] * absR[j][i2] + hA[i2] * absR[j][i1];
+      const float rB = hB[j1] * absR[j2][i] + hB[j2] * absR[j1][i];
+      const float along = T[i2] * bi1 - T[i1] * bi2;
       const float scaledSeparation = std::abs(along) - rA - rB;
-      if (scaledSeparation <= edgeThreshold * length) continue;
+      // scaledSeparation <= edgeThreshold * |L|, without the root.
+      const float bound = thresholdSquared * lengthSquared;
+      const float scaledSquared = scaledSeparation * scaledSeparation;
+      const bool below = edgeThreshold >= 0.0f ? (scaledSeparation <= 0.0f || scaledSquared <= bound)
+                                               : (scaledSeparation < 0.0f && scaledSquared >= bound);
+      if (below) continue;
+      const float length = std::sqrt(lengthSquared);
       const float separation = scaledSeparation / length;
-      const Vec3 towardsB = (along < 0.0f ? -1.0f / length : 1.0f / length) * axis;
-      if (separation > edgeSeparation && supportingEdgesCross(i, j, towardsB, R)) {
-        edgeSeparation = separation;
-        edgeA = i;
-        edgeB = j;
-        edgeAxis = towardsB;
-      }
+      if (separation <= edgeSeparation) continue;
+      const float scale = (along < 0.0f ? -1.0f : 1.0f) / length;
+      Vec3 towardsB;
+      towardsB[i] = 0.0f;
+      towardsB[i1] = -bi2 * scale;
+      towardsB[i2] = bi1 * scale;
+      if (!supportingEdgesCross(i, j, towardsB, R)) continue;
+      if (separation > margin) return false;  // a separating axis: nothing more to learn
+      edgeSeparation = separation;
+      edgeA = i;
+      edgeB = j;
+      edgeAxis = towardsB;
     }
   }
-  if (edgeSeparation > margin) return false;
 
   if (edgeSeparation > kRelative * faceSeparation + absolute) {  // -1e30 when no edge axis passed
     // Edge contact: the closest points of the supporting edges (A's along +axis, B's along -axis).
@@ -364,10 +404,11 @@ bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape
     const Mat3 RT = glm::transpose(R);
     const Relative aInB{RT, -(RT * T)};
     const float sign = glm::dot(T, R[faceBAxis]) > 0.0f ? -1.0f : 1.0f;
-    return faceContact(hB, hA, aInB, faceBAxis, sign, frameB, false, margin, out);
+    return faceContact(hB, hA, aInB, glm::transpose(absR), faceBAxis, sign,
+                       Frame{rotationB, transformB.position}, false, margin, out);
   }
   const float sign = T[faceAAxis] >= 0.0f ? 1.0f : -1.0f;
-  return faceContact(hA, hB, Relative{R, T}, faceAAxis, sign, frameA, true, margin, out);
+  return faceContact(hA, hB, Relative{R, T}, absR, faceAAxis, sign, frameA, true, margin, out);
 }
 
 }  // namespace collide::detail

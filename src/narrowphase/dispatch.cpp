@@ -206,9 +206,15 @@ constexpr PairTable buildPairTable() {
 
   // 4. Triangle meshes: per triangle near the other shape, merged.
   for (const ShapeType c : kConvexTypes) {
+    const bool polyhedron = c == T::Box || c == T::Kdop || c == T::ConvexHull;
+    const bool rounded = c == T::Sphere || c == T::Capsule;
     b.add<collideMeshConvex>(
         T::Mesh, c, A::Mesh,
-        "BVH triangles near the shape, each by GJK/EPA as a 3-point polytope; merged to four");
+        polyhedron ? "BVH triangles near the shape, each by triangle SAT with clipping; internal edges "
+                     "replaced by face contacts; merged to four"
+        : rounded  ? "BVH triangles near the shape, each by closest points of the core (a capsule's segment "
+                     "clipped on a face); internal edges replaced by face contacts; merged to four"
+                   : "BVH triangles near the shape, each by GJK/EPA as a 3-point polytope; merged to four");
   }
   b.add<collidePlaneMesh>(T::Plane, T::Mesh, A::Mesh, "mesh vertices below the surface, reduced to four");
   b.add<collideMeshMesh>(T::Mesh, T::Mesh, A::Mesh,

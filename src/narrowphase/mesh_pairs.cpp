@@ -6,6 +6,9 @@
 //     the idea of Jolt's active edges): a contact whose normal belongs to an edge or vertex
 //     inside a flat patch or on a concave fold is replaced by the triangle's face contact, and
 //     clipped points on such edges are left to the neighbours, whose points span the region.
+//   - Spheres and capsules: closest points of the core and each triangle, with the same
+//     internal-edge handling; a capsule lying on a face gets its two clipped ends
+//     (triangle_rounded.cpp).
 //   - Other convex shapes: each triangle is a three-point polytope for GJK/EPA (meshes are
 //     two-sided surfaces); one point per triangle.
 #include <vector>
@@ -80,7 +83,7 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
                             const Transform& trianglesTransform, const Shape& convex,
                             const Transform& convexTransform, float margin, Manifold& out) {
   std::vector<NormalContact> contacts;
-  if (isPolyhedron(convex)) {
+  if (isPolyhedron(convex) || isRoundedForTriangles(convex)) {
     // Loose triangles: no adjacency, every edge active.
     std::vector<SatTriangle> placed(triangles.size());
     for (std::size_t i = 0; i < triangles.size(); ++i) {
@@ -91,7 +94,11 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
         placed[i].vertexFeature[k] = static_cast<std::uint16_t>(kMeshVertex | ((3 * i + k) & kMeshIndex));
       }
     }
-    collideTrianglesPolyhedron(placed, convex, convexTransform, margin, contacts);
+    if (isPolyhedron(convex)) {
+      collideTrianglesPolyhedron(placed, convex, convexTransform, margin, contacts);
+    } else {
+      collideTrianglesRounded(placed, convex, convexTransform, margin, contacts);
+    }
     return mergeContacts(contacts, margin, out);
   }
   const ConvexSupport support = makeConvexSupport(convex, convexTransform);
@@ -107,12 +114,16 @@ bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const S
   const TriangleMesh& mesh = shapeA.mesh();
   const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
   std::vector<NormalContact> contacts;
-  if (isPolyhedron(shapeB)) {
+  if (isPolyhedron(shapeB) || isRoundedForTriangles(shapeB)) {
     thread_local std::vector<SatTriangle> triangles;
     triangles.clear();
     mesh.forEachTriangleOverlapping(
         bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, transformA)); });
-    collideTrianglesPolyhedron(triangles, shapeB, transformB, margin, contacts);
+    if (isPolyhedron(shapeB)) {
+      collideTrianglesPolyhedron(triangles, shapeB, transformB, margin, contacts);
+    } else {
+      collideTrianglesRounded(triangles, shapeB, transformB, margin, contacts);
+    }
     return mergeContacts(contacts, margin, out);
   }
   // Other convex shapes: contacts carry the triangle index as their whole feature id.

@@ -96,6 +96,13 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
                                 const Transform& transform, float margin,
                                 std::vector<NormalContact>& contacts);
 
+// Contacts of each triangle (A) with a sphere or capsule (B), normal from the triangle: closest
+// points of the core and the triangle, a capsule's clipped segment on a face, and the mesh's
+// internal edges replaced by face contacts (triangle_rounded.cpp). Appends to `contacts`.
+bool isRoundedForTriangles(const Shape& shape);
+void collideTrianglesRounded(std::span<const SatTriangle> triangles, const Shape& shape,
+                             const Transform& transform, float margin, std::vector<NormalContact>& contacts);
+
 bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
