@@ -1,8 +1,13 @@
 // The commands of the `collide` tool, one file each; main.cpp wires them to the command line.
 #pragma once
 
+#include <collide/scene/scene.h>
+
 #include <optional>
 #include <string>
+
+// A scene file, or else a built-in scene of that name (`collide run` and `collide bench`).
+collide::scene::Scene loadSceneArgument(const std::string& argument);
 
 // `collide`: one proxy of every type and what it answers.
 int printProxyTable();
@@ -17,6 +22,14 @@ struct RunArguments {
 };
 // `collide run`: runs a scene and prints the summary.
 int runCommand(const RunArguments& arguments);
+
+struct BenchArguments {
+  std::string scene = "pyramid";  // a file or a built-in name
+  int runs = 3;
+  std::optional<int> steps;
+};
+// `collide bench`: times collide alone on a scene, ms per step, median over runs.
+int benchCommand(const BenchArguments& arguments);
 
 // `collide scenes [--export NAME]`.
 int scenesCommand(const std::string& exportName);

@@ -1,5 +1,5 @@
-// The collide command line (CLI11): the proxy table, the pair table, scene runs, the built-in
-// scenes and proxy fitting. Errors print "collide: message" and exit non-zero.
+// The collide command line (CLI11): the proxy table, the pair table, scene runs and timings, the
+// built-in scenes and proxy fitting. Errors print "collide: message" and exit non-zero.
 #include "commands.h"
 
 #include <collide/collide.h>
@@ -30,6 +30,17 @@ int main(int argc, char** argv) try {
   runApp->add_option("--events", run.events, "write contact events to this JSON Lines file");
   runApp->add_option("--json", run.json, "write the summary to this JSON file");
 
+  BenchArguments bench;
+  CLI::App* benchApp =
+      app.add_subcommand("bench", "time collide alone on a scene: ms per step, median over runs");
+  benchApp->add_option("scene", bench.scene, "scene file (collide-scene/1 JSON) or built-in name")
+      ->capture_default_str();
+  benchApp->add_option("--runs", bench.runs, "runs, each on a freshly built world")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  benchApp->add_option("--steps", bench.steps, "steps per run (default: the scene's settings.steps)")
+      ->check(CLI::PositiveNumber);
+
   std::string exportName;
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, or export one as JSON");
   scenes->add_option("--export", exportName, "write this built-in scene's JSON to stdout");
@@ -44,6 +55,7 @@ int main(int argc, char** argv) try {
     return 0;
   }
   if (runApp->parsed()) return runCommand(run);
+  if (benchApp->parsed()) return benchCommand(bench);
   if (scenes->parsed()) return scenesCommand(exportName);
   if (fit->parsed()) return fitCommand(meshPath);
   return printProxyTable();

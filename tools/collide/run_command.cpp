@@ -13,14 +13,17 @@
 
 using namespace collide;
 
-int runCommand(const RunArguments& arguments) {
+scene::Scene loadSceneArgument(const std::string& argument) {
   // A file wins over a built-in of the same name; something path-like that does not exist is a
   // missing file, anything else an unknown built-in (whose message lists the built-ins).
-  const std::filesystem::path path(arguments.scene);
+  const std::filesystem::path path(argument);
   const bool pathLike = path.has_parent_path() || path.has_extension();
-  const scene::Scene loaded = std::filesystem::exists(path) || pathLike
-                                  ? scene::loadSceneFile(path)
-                                  : scene::loadBuiltinScene(arguments.scene);
+  return std::filesystem::exists(path) || pathLike ? scene::loadSceneFile(path)
+                                                   : scene::loadBuiltinScene(argument);
+}
+
+int runCommand(const RunArguments& arguments) {
+  const scene::Scene loaded = loadSceneArgument(arguments.scene);
   scene::RunOptions options;
   options.steps = arguments.steps;
   options.recordPath = arguments.record;

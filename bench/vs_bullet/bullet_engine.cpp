@@ -1,0 +1,244 @@
+// The Bullet side of collide_vs_bullet: a scene::Scene translated body by body into Bullet 3.24
+// (single precision, like collide), with Bullet's default settings everywhere the scene says
+// nothing. What the translation has to decide:
+//  - Pose: Bullet places a body by its centre of mass, collide by its shape's origin. A hull whose
+//    centroid is off its origin is given to Bullet with its points shifted by the centroid, and the
+//    body placed at origin + R * centroid, so both engines hold the same solid at the same place.
+//  - Inertia: Bullet's own (calculateLocalInertia: exact for boxes and spheres, the bounding box's
+//    for a hull), as Bullet users get it by default.
+//  - Margins: Bullet's defaults (0.04 m around hulls, inside boxes, none on triangle meshes).
+//  - Materials: Bullet multiplies the two bodies' friction (and restitution). The scene's pair
+//    values (e.g. friction 0.5 per pair, averaged) are reproduced by giving every dynamic body
+//    sqrt(pair value) and every static body pairValue(dynamic, static) / sqrt(dynamic pair value);
+//    a scene whose dynamic bodies differ in a material value cannot be mapped this way and is
+//    refused with an Error instead of being silently approximated.
+#include "engines.h"
+
+#include <collide/error.h>
+#include <collide/shapes.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <tuple>
+
+namespace collide::bench {
+
+namespace {
+
+btVector3 toBt(const Vec3& v) { return {v.x, v.y, v.z}; }
+Vec3 fromBt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+btQuaternion toBt(const Quat& q) { return {q.x, q.y, q.z, q.w}; }
+Quat fromBt(const btQuaternion& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+float combine(CombineRule rule, float a, float b) {
+  switch (rule) {
+    case CombineRule::Average:
+      return 0.5f * (a + b);
+    case CombineRule::Min:
+      return std::min(a, b);
+    case CombineRule::Max:
+      return std::max(a, b);
+    case CombineRule::Multiply:
+      return a * b;
+  }
+  return a;
+}
+
+// Per-body values whose products are the scene's pair values (see the file comment).
+std::vector<float> productValues(const scene::Scene& scene, CombineRule rule, float BodyDef::*field,
+                                 const char* what) {
+  std::set<float> dynamicValues;
+  for (const scene::Body& b : scene.bodies) {
+    if (b.def.type == BodyType::Dynamic) dynamicValues.insert(b.def.*field);
+  }
+  std::vector<float> values(scene.bodies.size(), 0.0f);
+  if (dynamicValues.empty()) return values;
+  if (dynamicValues.size() > 1) {
+    throw Error(scene.source + ": Bullet side: the dynamic bodies have " +
+                std::to_string(dynamicValues.size()) + " different " + what +
+                " values; Bullet's product rule cannot reproduce their pair values");
+  }
+  const float d = *dynamicValues.begin();
+  const float dynamicValue = std::sqrt(combine(rule, d, d));
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDef& def = scene.bodies[i].def;
+    if (def.type == BodyType::Dynamic) {
+      values[i] = dynamicValue;
+    } else {
+      const float pair = combine(rule, d, def.*field);
+      if (dynamicValue == 0.0f && pair != 0.0f) {
+        throw Error(scene.source + ": Bullet side: " + what + " pair value " + std::to_string(pair) +
+                    " against a static body cannot be made from a dynamic value of 0");
+      }
+      values[i] = dynamicValue == 0.0f ? 0.0f : pair / dynamicValue;
+    }
+  }
+  return values;
+}
+
+void countTick(btDynamicsWorld* world, btScalar) { ++*static_cast<int*>(world->getWorldUserInfo()); }
+
+// Members in construction order; the world goes first on destruction (it unregisters the bodies'
+// broad-phase proxies), the bodies and shapes after it.
+struct BulletWorld {
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> meshes;
+  std::vector<std::vector<btScalar>> meshVertices;
+  std::vector<std::vector<int>> meshIndices;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;  // per scene body
+  std::vector<Vec3> localCenters;                    // per scene body: centre of mass in the shape frame
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+  int ticks = 0;
+};
+
+// One Bullet shape per distinct sphere or box (as Bullet users share them); hulls and meshes are
+// one per body, as in the scene.
+class ShapeMaker {
+ public:
+  explicit ShapeMaker(BulletWorld& w) : w_(w) {}
+
+  btCollisionShape* make(const scene::Scene& scene, std::size_t index, Vec3& localCenter) {
+    const BodyDef& def = scene.bodies[index].def;
+    const Shape& shape = def.shape;
+    const float s = def.scale;
+    localCenter = Vec3(0.0f);
+    switch (shape.type()) {
+      case ShapeType::Sphere:
+        return shared(std::make_tuple(0, s * shape.sphere().radius, 0.0f, 0.0f),
+                      [&] { return new btSphereShape(s * shape.sphere().radius); });
+      case ShapeType::Box: {
+        const Vec3 h = s * shape.box().halfExtents;
+        return shared(std::make_tuple(1, h.x, h.y, h.z), [&] { return new btBoxShape(toBt(h)); });
+      }
+      case ShapeType::Capsule:
+        return own(new btCapsuleShape(s * shape.capsule().radius, 2.0f * s * shape.capsule().halfHeight));
+      case ShapeType::Cylinder:
+        return own(new btCylinderShape(btVector3(s * shape.cylinder().radius, s * shape.cylinder().halfHeight,
+                                                 s * shape.cylinder().radius)));
+      case ShapeType::Plane:
+        return own(new btStaticPlaneShape(toBt(shape.plane().normal), shape.plane().distance * s));
+      case ShapeType::ConvexHull: {
+        const ConvexHull& hull = shape.convexHull();
+        if (def.type == BodyType::Dynamic) localCenter = s * hull.centroid();
+        auto* bt = new btConvexHullShape();
+        for (const Vec3& v : hull.vertices()) bt->addPoint(toBt(s * v - localCenter), false);
+        bt->recalcLocalAabb();
+        return own(bt);
+      }
+      case ShapeType::Mesh: {
+        if (def.type == BodyType::Dynamic) {
+          throw Error(scene.source + ": Bullet side: body '" + def.name +
+                      "': a dynamic triangle mesh is not supported");
+        }
+        const TriangleMesh& mesh = shape.mesh();
+        std::vector<btScalar>& vertices = w_.meshVertices.emplace_back();
+        std::vector<int>& indices = w_.meshIndices.emplace_back();
+        for (const Vec3& v : mesh.vertices()) {
+          vertices.insert(vertices.end(), {s * v.x, s * v.y, s * v.z});
+        }
+        for (const MeshTriangle& t : mesh.triangles()) {
+          indices.insert(indices.end(), {int(t.v[0]), int(t.v[1]), int(t.v[2])});
+        }
+        auto& array = w_.meshes.emplace_back(std::make_unique<btTriangleIndexVertexArray>(
+            int(mesh.triangles().size()), indices.data(), int(3 * sizeof(int)), int(mesh.vertices().size()),
+            vertices.data(), int(3 * sizeof(btScalar))));
+        return own(new btBvhTriangleMeshShape(array.get(), true));
+      }
+      default:
+        throw Error(scene.source + ": Bullet side: body '" + def.name + "': shape type " +
+                    std::string(toString(shape.type())) + " is not translated");
+    }
+  }
+
+ private:
+  btCollisionShape* own(btCollisionShape* shape) {
+    w_.shapes.emplace_back(shape);
+    return shape;
+  }
+  template <class Make>
+  btCollisionShape* shared(const std::tuple<int, float, float, float>& key, Make make) {
+    auto it = cache_.find(key);
+    if (it != cache_.end()) return it->second;
+    return cache_[key] = own(make());
+  }
+
+  BulletWorld& w_;
+  std::map<std::tuple<int, float, float, float>, btCollisionShape*> cache_;
+};
+
+}  // namespace
+
+EngineRun runBullet(const scene::Scene& scene, int steps) {
+  using Clock = std::chrono::steady_clock;
+  if (scene.world.sleeping)
+    throw Error(scene.source + ": Bullet side: only scenes without sleeping are compared");
+  EngineRun run;
+  const auto buildStart = Clock::now();
+  auto w = std::make_unique<BulletWorld>();
+  w->world.setGravity(toBt(scene.world.gravity));
+  w->world.setInternalTickCallback(countTick, &w->ticks);
+  const std::vector<float> friction =
+      productValues(scene, scene.world.frictionCombine, &BodyDef::friction, "friction");
+  const std::vector<float> restitution =
+      productValues(scene, scene.world.bouncinessCombine, &BodyDef::bounciness, "bounciness");
+  ShapeMaker maker(*w);
+  w->localCenters.resize(scene.bodies.size());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDef& def = scene.bodies[i].def;
+    if (def.type == BodyType::Kinematic)
+      throw Error(scene.source + ": Bullet side: kinematic bodies are not translated");
+    btCollisionShape* shape = maker.make(scene, i, w->localCenters[i]);
+    const bool dynamic = def.type == BodyType::Dynamic;
+    btScalar mass = 0.0f;
+    if (dynamic) mass = def.mass ? *def.mass : massProperties(def.shape, def.density, def.scale).mass;
+    btVector3 inertia(0.0f, 0.0f, 0.0f);
+    if (dynamic) shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+    info.m_startWorldTransform =
+        btTransform(toBt(def.rotation), toBt(def.position + def.rotation * w->localCenters[i]));
+    info.m_friction = friction[i];
+    info.m_restitution = restitution[i];
+    auto& body = w->bodies.emplace_back(std::make_unique<btRigidBody>(info));
+    if (dynamic) {
+      body->setActivationState(DISABLE_DEACTIVATION);
+      body->setLinearVelocity(toBt(def.linearVelocity));
+      body->setAngularVelocity(toBt(def.angularVelocity));
+    }
+    w->world.addRigidBody(body.get());
+  }
+  run.buildMs = std::chrono::duration<double, std::milli>(Clock::now() - buildStart).count();
+
+  const btScalar dt = scene.dt;
+  const double cpuStart = processCpuSeconds();
+  const auto start = Clock::now();
+  for (int i = 0; i < steps; ++i) w->world.stepSimulation(dt, 1, dt);
+  const double wallMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  const double cpuMs = 1e3 * (processCpuSeconds() - cpuStart);
+  run.internalSteps = w->ticks;
+  run.wallMsPerStep = steps > 0 ? wallMs / steps : 0.0;
+  run.cpuMsPerStep = steps > 0 ? cpuMs / steps : 0.0;
+
+  run.poses.resize(scene.bodies.size());
+  run.masses.resize(scene.bodies.size(), 0.0);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const btRigidBody& body = *w->bodies[i];
+    const btTransform& t = body.getWorldTransform();
+    const Quat rotation = fromBt(t.getRotation());
+    run.poses[i] = {fromBt(t.getOrigin()) - rotation * w->localCenters[i], rotation,
+                    fromBt(body.getLinearVelocity())};
+    run.masses[i] = body.getInvMass() > 0.0f ? 1.0 / body.getInvMass() : 0.0;
+  }
+  return run;
+}
+
+}  // namespace collide::bench
