@@ -44,7 +44,7 @@ struct ContactConstraint {
 
 struct SolverSettings {
   Vec3 gravity{0.0f};
-  int substeps = 4;
+  int substeps = 6;
   ContactTuning tuning;
   bool friction = true;
 };

@@ -72,13 +72,32 @@ StandingResult runStanding(const std::vector<Vec3>& centres, int steps) {
   return result;
 }
 
-// Disabled until they pass (no loosened thresholds); run with --gtest_also_run_disabled_tests. Figures
-// after matching renamed contact points by position (Release, 600 steps of 1/60 s): the 10-stack's
-// top box ends (-0.21, -2.60, -0.37) cm off, the R3 pyramid's (0.09, -6.46, -0.54) cm (before: 4.2 cm
-// low and 4.6 cm off in z; 8.6 cm low and 4.9 cm off in z). The sag is the soft contact's spring: at
-// rest each contact is compressed by load / (effective mass * omega^2), which for the stack is
-// sum over contacts of 2 * 9.81 * k / (2 pi 30 Hz)^2, k = 1..9 boxes above = 2.5 cm. Attempts to
-// remove that give, and why they are not in (docs/architecture.md, "Stacking: what was tried").
+// The stack's sag is the soft contacts' steady state: a resting point carrying force F is compressed
+// by F / (m_eff omega^2) (in steady state the biased solve adds no impulse, whatever the damping ratio).
+// A unit cube's corner point has m_eff = 1/8 against another cube (inverse masses 1 + 1 plus the
+// turning terms 3 + 3) and 1/4 against the ground (whose spring is twice the hertz); each of the four
+// points of the contact under k boxes carries k g / 4. Summed over the stack: (2 (1 + ... + 9) + 2.5)
+// g / omega^2. A measured sag that differs means the solver is not at rest or not the model it claims.
+TEST(Stacking, TenBoxStackSagsByTheSoftContactsPrediction) {
+  ASSERT_TRUE(boxBoxHasFaceManifold()) << "box-box needs SAT with clipping";
+  std::vector<Vec3> centres;
+  for (int i = 0; i < 10; ++i) centres.emplace_back(0.0f, 0.5f + static_cast<float>(i), 0.0f);
+  const StandingResult r = runStanding(centres, 600);
+  const WorldDef def;
+  const float h = kDt / static_cast<float>(def.substeps);
+  const float omega = 2.0f * kPi * std::min(def.contact.hertz, 0.25f / h);
+  const float predicted = (90.0f + 2.5f) * 9.81f / (omega * omega);
+  std::printf("stack sag %g m, predicted %g m\n", -r.topDisplacement.y, predicted);
+  EXPECT_NEAR(-r.topDisplacement.y, predicted, 0.05f * predicted);
+  EXPECT_LT(r.largestFinalSpeed, 1e-2f);  // no jitter
+}
+
+// Disabled until they pass with a margin (no loosened thresholds); run with
+// --gtest_also_run_disabled_tests. Release, 600 steps of 1/60 s, with the defaults (90 Hz, damping
+// ratio 0.5, 6 substeps, 2 relax passes): the 10-stack's top box ends (0.98, -0.28, 0.40) cm off, the
+// R3 pyramid's (0.53, -0.87, -0.65) cm; both under 1 cm but the sideways walk (x, z) is chaotic in the
+// settings (0.1 to 1.5 cm across nearby ones), so a pass would be luck. The sag (y) is the soft
+// contact's spring and now small; the walk is what is left (docs/architecture.md, "Stacking").
 TEST(Stacking, DISABLED_TenBoxStackStandsForTenSeconds) {
   ASSERT_TRUE(boxBoxHasFaceManifold()) << "box-box needs SAT with clipping";
   std::vector<Vec3> centres;
