@@ -64,9 +64,9 @@ Json billiards() {
   Json doc = referenceDocument();
   // min: ball-ball bounce 0.95, ball-cushion 0.8, ball-cloth 0.
   doc["settings"]["bounciness_combine"] = "min";
-  doc["materials"] = {{"ball", {{"bounciness", num(0.95)}, {"friction", num(0.2)}}},
-                      {"cloth", {{"bounciness", 0}, {"friction", num(0.2)}}},
-                      {"cushion", {{"bounciness", num(0.8)}, {"friction", num(0.2)}}}};
+  doc["materials"] = {{"ball", {{"bounciness", num(0.95)}, {"friction", num(0.5)}}},
+                      {"cloth", {{"bounciness", 0}, {"friction", num(0.5)}}},
+                      {"cushion", {{"bounciness", num(0.8)}, {"friction", num(0.5)}}}};
   Json& bodies = doc["bodies"];
   Json table =
       body("table", "static", {{"type", "plane"}, {"normal", vec(0, 1, 0)}, {"distance", 0}}, vec(0, 0, 0));

@@ -3,6 +3,8 @@
 // positions move by the new velocities. Sleeping bodies are skipped.
 #include "dynamics/body_storage.h"
 
+#include <cmath>
+
 namespace collide::detail {
 
 namespace {
@@ -37,7 +39,15 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3&
   return inverseInertia * l2;
 }
 
+// The solver carries contact anchors along with each body's rotation over the step and reads the
+// current separation from them; past a quarter turn per substep that reading is meaningless (a
+// gap that is not there, or none where there is one) and a spinning body sinks through or is
+// flung out. Box2D v3 bounds the turn per substep the same way (b2_maxRotation); Jolt bounds the
+// angular speed. 0.25 pi per substep is 283 rad/s at 60 Hz with 6 substeps.
+constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
+
 void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h) {
+  const float maxAngularSpeed = kMaxRotationPerSubstep / h;
   const std::size_t n = bodies.states.size();
   for (std::size_t i = 0; i < n; ++i) {
     const BodyRecord& record = bodies.records[i];
@@ -50,6 +60,10 @@ void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h) {
       const Vec3 bodyOmega = glm::conjugate(s.rotation) * s.angularVelocity;
       s.angularVelocity =
           s.rotation * gyroscopicStep(record.inertiaLocal, record.inverseInertiaLocal, bodyOmega, h);
+      const float speedSquared = glm::dot(s.angularVelocity, s.angularVelocity);
+      if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
+        s.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
+      }
     }
   }
 }

@@ -103,5 +103,25 @@ TEST(Gyroscopic, SpinAboutAPrincipalAxisIsSteady) {
   EXPECT_NEAR(w.z, 7.0f, 1e-4f);
 }
 
+// A body spun faster than a quarter turn per substep is slowed to that bound (the solver's anchors
+// are carried with the rotation and mean nothing past it; Box2D v3's b2_maxRotation), about the same
+// axis; below the bound nothing changes.
+TEST(Gyroscopic, AngularSpeedIsBoundedByAQuarterTurnPerSubstep) {
+  World world(WorldDef{.gravity = Vec3(0.0f)});
+  BodyDef def;
+  def.shape = Sphere{0.5f};
+  def.angularVelocity = Vec3(3000.0f, 4000.0f, 0.0f);  // 5000 rad/s
+  const BodyId fast = world.createBody(def);
+  def.position = Vec3(5.0f, 0.0f, 0.0f);
+  def.angularVelocity = Vec3(0.0f, 0.0f, 200.0f);
+  const BodyId slow = world.createBody(def);
+  world.step(kDt);
+  const float bound = 0.25f * kPi * float(world.def().substeps) / kDt;
+  const Vec3 w = world.angularVelocity(fast);
+  EXPECT_NEAR(glm::length(w), bound, 1e-3f * bound);
+  EXPECT_NEAR(w.x / w.y, 0.75f, 1e-5f);
+  EXPECT_EQ(world.angularVelocity(slow), Vec3(0.0f, 0.0f, 200.0f));
+}
+
 }  // namespace
 }  // namespace collide
