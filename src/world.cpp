@@ -18,6 +18,7 @@
 #include "dynamics/body_storage.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/continuous.h"
+#include "dynamics/fault_guard.h"
 #include "dynamics/joint_solver.h"
 #include "response/contact_response.h"
 
@@ -76,6 +77,7 @@ struct World::Impl {
   std::size_t jointCount = 0;
   std::vector<ContactEvent> contactEvents;
   std::vector<SensorEvent> sensorEvents;
+  std::vector<FaultEvent> faultEvents;
   // End events of destroyed bodies' contacts, handed out with the next step's events.
   std::vector<ContactEvent> pendingContactEvents;
   std::vector<SensorEvent> pendingSensorEvents;
@@ -114,16 +116,23 @@ struct World::Impl {
   // a stack never has half its boxes frozen), and restarts an awake body's rest timer.
   void wake(std::uint32_t index) {
     BodyRecord& r = bodies.records[index];
-    if (!r.alive || r.type != BodyType::Dynamic) return;
+    if (!r.alive || r.type != BodyType::Dynamic || r.faulted) return;
     r.sleepTime = 0.0f;
     if (r.awake) return;
     const std::uint32_t root = r.island;
     for (BodyRecord& other : bodies.records) {
-      if (other.alive && other.type == BodyType::Dynamic && !other.awake && other.island == root) {
+      if (other.alive && other.type == BodyType::Dynamic && !other.awake && !other.faulted &&
+          other.island == root) {
         other.awake = true;
         other.sleepTime = 0.0f;
       }
     }
+  }
+
+  // The user gave the body a new state: a body frozen by the fault guard comes back.
+  void wakeByUser(std::uint32_t index) {
+    detail::unfreezeBody(bodies.records[index], bodies.states[index]);
+    wake(index);
   }
 
   std::uint32_t findRoot(std::uint32_t i) {
@@ -386,7 +395,7 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) 
   s.centerOfMass = position + s.rotation * r.localCenterOfMass;
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
   w.broadPhase->update(r.proxy, w.proxyBounds(i, 0.0f));
-  w.wake(i);
+  w.wakeByUser(i);
 }
 
 Vec3 World::linearVelocity(BodyId id) const {
@@ -401,7 +410,7 @@ void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
   if (!isFinite(velocity))
     throw Error("world: setLinearVelocity: velocity must be finite, got " + formatVec(velocity));
   if (impl_->bodies.records[i].type == BodyType::Static) return;  // static bodies never move
-  impl_->wake(i);
+  impl_->wakeByUser(i);
   impl_->bodies.states[i].linearVelocity = velocity;
 }
 
@@ -416,7 +425,7 @@ void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
                   formatVec(velocity));
     return;
   }
-  impl_->wake(i);
+  impl_->wakeByUser(i);
   impl_->bodies.states[i].angularVelocity = velocity;
 }
 
@@ -456,7 +465,7 @@ bool World::isAwake(BodyId id) const {
   return r.type != BodyType::Static && r.awake;
 }
 
-void World::wakeBody(BodyId id) { impl_->wake(impl_->resolve(id, "wakeBody")); }
+void World::wakeBody(BodyId id) { impl_->wakeByUser(impl_->resolve(id, "wakeBody")); }
 
 float World::mass(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "mass")].mass; }
 Vec3 World::centerOfMass(BodyId id) const {
@@ -566,6 +575,7 @@ void World::Impl::step(float dt) {
   sensorEvents.assign(pendingSensorEvents.begin(), pendingSensorEvents.end());
   pendingContactEvents.clear();
   pendingSensorEvents.clear();
+  faultEvents.clear();
   for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
     const BodyRecord& r = bodies.records[i];
     if (r.alive && r.type != BodyType::Static && r.awake) broadPhase->update(r.proxy, proxyBounds(i, dt));
@@ -586,6 +596,7 @@ void World::Impl::step(float dt) {
   }
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, def.contact.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
+  detail::guardFiniteStates(bodies, faultEvents);
   emitEvents();
   if (def.sleeping) updateSleep(dt);
 
@@ -625,6 +636,7 @@ void World::Impl::solve(float dt) {
   const float rigidHertz = 2.0f * std::min(def.contact.hertz, 0.25f / h);
   for (int i = 0; i < def.substeps; ++i) {
     detail::integrateVelocities(bodies, settings.gravity, h);
+    detail::guardFiniteStates(bodies, faultEvents);  // before a bad velocity reaches a contact
     detail::warmStartJoints(bodies, joints);
     detail::warmStartContacts(bodies, contacts, constraints);
     detail::solveJoints(bodies, joints, h, rigidHertz, true);
@@ -636,6 +648,7 @@ void World::Impl::solve(float dt) {
     // (docs/architecture.md, "Stacking": the measured table).
     for (int pass = 0; pass < kContactRelaxPasses; ++pass)
       detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, false);
+    detail::guardFiniteStates(bodies, faultEvents);
   }
   detail::applyRestitution(bodies, contacts, constraints, settings.tuning.restitutionThreshold);
 }
@@ -857,13 +870,13 @@ void World::Impl::revertPenetrating() {
       continue;
     if (now.maxDepth() <= def.contact.linearSlop) continue;
     const Vec3 n = now.normal;
-    if (ra.type == BodyType::Dynamic) {
+    if (ra.type == BodyType::Dynamic && !ra.faulted) {
       sa.centerOfMass = sa.centerOfMass0;
       sa.rotation = sa.rotation0;
       sa.inverseInertiaWorld = detail::worldInverseInertia(ra.inverseInertiaLocal, sa.rotation);
       sa.linearVelocity -= std::max(0.0f, glm::dot(sa.linearVelocity, n)) * n;  // A moving into B
     }
-    if (rb.type == BodyType::Dynamic) {
+    if (rb.type == BodyType::Dynamic && !rb.faulted) {
       sb.centerOfMass = sb.centerOfMass0;
       sb.rotation = sb.rotation0;
       sb.inverseInertiaWorld = detail::worldInverseInertia(rb.inverseInertiaLocal, sb.rotation);
@@ -900,6 +913,7 @@ const BroadPhaseStats& World::lastStats() const { return impl_->lastStats; }
 const BroadPhaseStats& World::totalStats() const { return impl_->totalStats; }
 std::span<const ContactEvent> World::contactEvents() const { return impl_->contactEvents; }
 std::span<const SensorEvent> World::sensorEvents() const { return impl_->sensorEvents; }
+std::span<const FaultEvent> World::faultEvents() const { return impl_->faultEvents; }
 std::size_t World::touchingContactCount() const { return impl_->touchingCount; }
 
 Vec3 World::linearMomentum() const {

@@ -169,6 +169,17 @@ struct SensorEvent {
   BodyId visitor;
 };
 
+// A body whose state stopped being finite during the last step (an accumulated force that
+// overflowed, a NaN from a degenerate contact). The world does not let it spread to what it
+// touches: the body is put back where it was at the start of the step, stopped, and frozen as an
+// immovable obstacle (isAwake() false, forces and impulses ignored) until setTransform,
+// setLinearVelocity, setAngularVelocity or wakeBody gives it a new state.
+struct FaultEvent {
+  static constexpr std::uint8_t kPosition = 1, kRotation = 2, kLinearVelocity = 4, kAngularVelocity = 8;
+  BodyId body;
+  std::uint8_t fields = 0;  // the parts of the state that were non-finite (bits above)
+};
+
 // Called for each contact before the solve (normal from a to b); return false to disable it for
 // this step (one-way platforms).
 using PreSolveCallback = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
@@ -242,6 +253,8 @@ class World {
   // Events of the last step, in a deterministic order.
   std::span<const ContactEvent> contactEvents() const;
   std::span<const SensorEvent> sensorEvents() const;
+  // Bodies frozen by the last step because their state became non-finite (see FaultEvent).
+  std::span<const FaultEvent> faultEvents() const;
   // The number of touching (non-sensor) contact pairs after the last step.
   std::size_t touchingContactCount() const;
 

@@ -43,13 +43,14 @@ struct BodyRecord {
   std::uint32_t layer = 1;
   std::uint32_t mask = kAllLayers;
   bool sensor = false;
-  bool particle = false;  // point mass: no inertia, the rotation never changes
-  bool ccd = false;       // BodyDef::ccd (never for sensors)
+  bool particle = false;   // point mass: no inertia, the rotation never changes
+  bool ccd = false;        // BodyDef::ccd (never for sensors)
   float minExtent = 0.0f;  // half the smallest side of the local box, scaled: "fast" is relative to it
   // Sleeping (WorldDef::sleeping): a sleeping body is skipped by integration and the solver.
   bool awake = true;
   float sleepTime = 0.0f;    // s spent below the sleep thresholds
   std::uint32_t island = 0;  // the island's root body when it fell asleep
+  bool faulted = false;      // frozen by the fault guard (dynamics/fault_guard.h)
   bool alive = false;
   std::uint32_t generation = 1;
   ProxyId proxy;
