@@ -222,6 +222,8 @@ void writeScreenshot(App& app) {
 }
 
 int run(const Options& options) {
+  // The scene first: a bad name or file is reported without needing a display.
+  (void)loadSceneArgument(options.scene);
   glfwSetErrorCallback(
       [](int code, const char* text) { std::fprintf(stderr, "GLFW error %d: %s\n", code, text); });
   if (!glfwInit()) throw Error("viewer: GLFW cannot start (no display? run under xvfb-run -a)");

@@ -54,7 +54,37 @@ def read_png(path):
     return width, height, channels, rows
 
 
+def write_flat_png(path, width, height, rgb):
+    """A PNG of one colour (filter 0 on every row), for the self-test."""
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    raw = b"".join(b"\x00" + bytes(rgb) * width for _ in range(height))
+    with open(path, "wb") as out:
+        out.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+                  + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def self_test():
+    """The check must fail on a flat image and on a wrong size: run it as a subprocess on both."""
+    import os
+    import subprocess
+    import tempfile
+    with tempfile.TemporaryDirectory() as folder:
+        flat = os.path.join(folder, "flat.png")
+        write_flat_png(flat, 64, 32, (41, 46, 54))
+        blank = subprocess.run([sys.executable, __file__, flat, "64", "32"], capture_output=True, text=True)
+        size = subprocess.run([sys.executable, __file__, flat, "65", "32"], capture_output=True, text=True)
+    if blank.returncode == 0 or "looks blank" not in blank.stderr:
+        sys.exit("self-test: a flat image passed the check")
+    if size.returncode == 0 or "expected 65x32" not in size.stderr:
+        sys.exit("self-test: a wrong size passed the check")
+    print("self-test: flat image and wrong size rejected")
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        self_test()
+        return
     path, want_width, want_height = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
     width, height, channels, rows = read_png(path)
     if (width, height) != (want_width, want_height):
