@@ -1,0 +1,320 @@
+// collide-viewer [SCENE]: the interactive testbed. Shows a scene (a built-in name or a scene file,
+// as `collide run` takes) stepping live, with a panel to pause, step, restart and switch scenes,
+// and the step's timing and pair counters. `--screenshot FILE --frames N` renders N steps into a
+// hidden window and writes a PNG, which is how the viewer is tested headless (under xvfb-run).
+#include "gl.h"
+#include "orbit_camera.h"
+#include "renderer.h"
+#include "viewer_scene.h"
+
+#include <collide/error.h>
+#include <collide/scene/builtin_scenes.h>
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <stb_image_write.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+using namespace collide;
+using namespace collide::viewer;
+
+namespace {
+
+struct Options {
+  std::string scene = "proxies";
+  std::string screenshot;  // empty: interactive
+  int frames = 120;
+  int width = 1280;
+  int height = 720;
+  bool noUi = false;
+  DebugDraw debug;
+};
+
+// The same rule as `collide run`: an existing file or something path-like is a scene file,
+// anything else a built-in name (whose error lists the built-ins).
+scene::Scene loadSceneArgument(const std::string& argument) {
+  const std::filesystem::path path(argument);
+  const bool pathLike = path.has_parent_path() || path.has_extension();
+  return std::filesystem::exists(path) || pathLike ? scene::loadSceneFile(path)
+                                                   : scene::loadBuiltinScene(argument);
+}
+
+// The state the panel shows and changes.
+struct App {
+  Options options;
+  GLFWwindow* window = nullptr;
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<ViewerScene> scene;
+  std::string sceneName;
+  OrbitCamera camera;
+  bool playing = true;
+  bool stepOnce = false;
+  double stepMs = 0.0;  // smoothed
+  double lastStepMs = 0.0;
+  std::string error;  // the last scene that failed to load, shown in the panel
+  double lastX = 0.0, lastY = 0.0;
+
+  void load(const std::string& name, bool reframe) {
+    // Load first, so that a scene that fails leaves the current one running.
+    scene::Scene loaded = loadSceneArgument(name);
+    scene.reset();
+    renderer->clearMeshes();
+    scene = std::make_unique<ViewerScene>(std::move(loaded), *renderer);
+    sceneName = name;
+    stepMs = lastStepMs = 0.0;
+    if (reframe) camera.frame(scene->bounds());
+  }
+
+  void step() {
+    lastStepMs = scene->step();
+    stepMs = scene->stepCount() == 1 ? lastStepMs : 0.9 * stepMs + 0.1 * lastStepMs;
+  }
+
+  void panel() {
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::Begin("collide", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::SetNextItemWidth(200.0f);
+    if (ImGui::BeginCombo("scene", sceneName.c_str())) {
+      for (const scene::BuiltinScene& builtin : scene::builtinScenes()) {
+        const std::string name(builtin.name);
+        if (ImGui::Selectable(name.c_str(), name == sceneName)) {
+          try {
+            load(name, true);
+            error.clear();
+          } catch (const Error& e) {
+            error = e.what();
+          }
+        }
+        if (ImGui::IsItemHovered()) {
+          ImGui::SetTooltip("%.*s", int(builtin.description.size()), builtin.description.data());
+        }
+      }
+      ImGui::EndCombo();
+    }
+    if (ImGui::Button(playing ? "Pause" : "Play")) playing = !playing;
+    ImGui::SameLine();
+    if (ImGui::Button("Step")) stepOnce = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Restart")) {
+      try {
+        load(sceneName, false);
+      } catch (const Error& e) {
+        error = e.what();
+      }
+    }
+    if (!error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
+    const World& world = scene->world();
+    ImGui::Separator();
+    ImGui::Text("step %d  (t = %.2f s, dt = %.4f s)", scene->stepCount(),
+                scene->stepCount() * scene->scene().dt, scene->scene().dt);
+    ImGui::Text("%.3f ms per step (last %.3f)", stepMs, lastStepMs);
+    ImGui::Text("bodies %zu   touching pairs %zu", world.bodyCount(), world.touchingContactCount());
+    const BroadPhaseStats& stats = world.lastStats();
+    if (ImGui::BeginTable("stats", 2)) {
+      const auto row = [](const char* label, unsigned long long value) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(label);
+        ImGui::TableNextColumn();
+        ImGui::Text("%llu", value);
+      };
+      row("proxies", stats.proxies);
+      row("potential pairs", stats.potentialPairs);
+      row("box tests", stats.boxTests);
+      row("kept pairs", stats.keptPairs);
+      row("narrow-phase tests", stats.narrowPhaseTests);
+      row("contact pairs", stats.contactPairs);
+      ImGui::EndTable();
+    }
+    ImGui::Separator();
+    ImGui::Checkbox("contact points and normals", &options.debug.contacts);
+    ImGui::Checkbox("bounding boxes", &options.debug.aabbs);
+    ImGui::TextDisabled("left drag: orbit, right drag: pan, wheel: zoom");
+    ImGui::End();
+  }
+
+  void handleMouse() {
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window, &x, &y);
+    const float dx = float(x - lastX), dy = float(y - lastY);
+    lastX = x;
+    lastY = y;
+    if (ImGui::GetIO().WantCaptureMouse) return;
+    int width = 0, height = 0;
+    glfwGetWindowSize(window, &width, &height);
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera.orbit(dx, dy);
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+        glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) {
+      camera.pan(dx, dy, float(height));
+    }
+  }
+
+  void render(int width, int height, bool ui) {
+    glViewport(0, 0, width, height);
+    glClearColor(0.16f, 0.18f, 0.21f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const glm::mat4 viewProjection =
+        camera.projection(float(width) / float(std::max(height, 1))) * camera.view();
+    const Vec3 light = glm::normalize(Vec3(-0.35f, -1.0f, -0.55f));
+    renderer->drawMeshes(scene->instances(renderer->meshCount()), viewProjection, light);
+    renderer->drawLines(scene->debugLines(options.debug), viewProjection);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (ui) panel();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  }
+};
+
+void scrollCallback(GLFWwindow* window, double dx, double dy) {
+  ImGui_ImplGlfw_ScrollCallback(window, dx, dy);
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  static_cast<App*>(glfwGetWindowUserPointer(window))->camera.zoom(float(dy));
+}
+
+// Renders into an offscreen framebuffer of the requested size (a hidden window's own buffer is
+// not guaranteed to be kept), then reads it back bottom-up and writes it top-down.
+void writeScreenshot(App& app) {
+  const int width = app.options.width, height = app.options.height;
+  GLuint framebuffer = 0, colour = 0, depth = 0;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glGenRenderbuffers(1, &colour);
+  glBindRenderbuffer(GL_RENDERBUFFER, colour);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  glGenRenderbuffers(1, &depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw Error("viewer: the offscreen framebuffer is incomplete");
+  }
+  // The panel needs a frame to measure itself before it is drawn in place.
+  for (int frame = 0; frame < app.options.frames; ++frame) {
+    app.step();
+    app.render(width, height, !app.options.noUi);
+  }
+  if (app.options.frames == 0) app.render(width, height, !app.options.noUi);
+  app.render(width, height, !app.options.noUi);
+  std::vector<unsigned char> pixels(std::size_t(width) * height * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteRenderbuffers(1, &depth);
+  glDeleteRenderbuffers(1, &colour);
+  glDeleteFramebuffers(1, &framebuffer);
+  stbi_flip_vertically_on_write(1);
+  if (!stbi_write_png(app.options.screenshot.c_str(), width, height, 3, pixels.data(), width * 3)) {
+    throw Error("viewer: screenshot " + app.options.screenshot + ": cannot be written");
+  }
+  std::printf("%s: %dx%d, scene %s after %d steps\n", app.options.screenshot.c_str(), width, height,
+              app.sceneName.c_str(), app.scene->stepCount());
+}
+
+int run(const Options& options) {
+  // The scene first: a bad name or file is reported without needing a display.
+  (void)loadSceneArgument(options.scene);
+  glfwSetErrorCallback(
+      [](int code, const char* text) { std::fprintf(stderr, "GLFW error %d: %s\n", code, text); });
+  if (!glfwInit()) throw Error("viewer: GLFW cannot start (no display? run under xvfb-run -a)");
+  struct GlfwGuard {
+    ~GlfwGuard() { glfwTerminate(); }
+  } glfwGuard;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  const bool headless = !options.screenshot.empty();
+  if (headless) glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  if (!headless) glfwWindowHint(GLFW_SAMPLES, 4);
+  App app;
+  app.options = options;
+  app.window = glfwCreateWindow(options.width, options.height, "collide viewer", nullptr, nullptr);
+  if (!app.window) throw Error("viewer: cannot open an OpenGL 3.3 core window");
+  glfwMakeContextCurrent(app.window);
+  glfwSwapInterval(1);
+  glfwSetWindowUserPointer(app.window, &app);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(app.window, true);
+  glfwSetScrollCallback(app.window, scrollCallback);  // chains to ImGui's
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  int status = 0;
+  try {
+    app.renderer = std::make_unique<Renderer>();
+    app.load(options.scene, true);
+    if (headless) {
+      writeScreenshot(app);
+    } else {
+      glEnable(GL_MULTISAMPLE);
+      while (!glfwWindowShouldClose(app.window)) {
+        glfwPollEvents();
+        app.handleMouse();
+        if (app.playing || app.stepOnce) app.step();
+        app.stepOnce = false;
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(app.window, &width, &height);
+        app.render(width, height, !app.options.noUi);
+        glfwSwapBuffers(app.window);
+      }
+    }
+  } catch (...) {
+    app.scene.reset();
+    app.renderer.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(app.window);
+    throw;
+  }
+  app.scene.reset();
+  app.renderer.reset();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(app.window);
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App cli{"collide-viewer: an interactive testbed for collide scenes"};
+  cli.add_option("scene", options.scene, "a built-in scene (collide scenes lists them) or a scene file")
+      ->capture_default_str();
+  cli.add_option("--screenshot", options.screenshot, "render headless and write this PNG, then exit");
+  cli.add_option("--frames", options.frames, "steps before the screenshot")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cli.add_option("--width", options.width, "window or image width")
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+  cli.add_option("--height", options.height, "window or image height")
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+  cli.add_flag("--no-ui", options.noUi, "hide the panel");
+  cli.add_flag("--contacts", options.debug.contacts, "draw contact points and normals");
+  cli.add_flag("--aabbs", options.debug.aabbs, "draw the bodies' bounding boxes");
+  CLI11_PARSE(cli, argc, argv);
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "collide-viewer: %s\n", e.what());
+    return 1;
+  }
+}

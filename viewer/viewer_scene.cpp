@@ -1,0 +1,202 @@
+#include "viewer_scene.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <chrono>
+#include <cstdio>
+
+namespace collide::viewer {
+namespace {
+
+glm::mat4 toMatrix(const Transform& transform) {
+  glm::mat4 m = glm::mat4_cast(transform.rotation);
+  m[0] *= transform.scale;
+  m[1] *= transform.scale;
+  m[2] *= transform.scale;
+  m[3] = glm::vec4(transform.position, 1.0f);
+  return m;
+}
+
+// Primitives with equal parameters share a mesh; polyhedra and meshes are shared by pointer.
+std::string meshKey(const Shape& shape) {
+  char key[160];
+  switch (shape.type()) {
+    case ShapeType::Sphere:
+      std::snprintf(key, sizeof(key), "sphere %a", shape.sphere().radius);
+      break;
+    case ShapeType::Capsule:
+      std::snprintf(key, sizeof(key), "capsule %a %a", shape.capsule().radius, shape.capsule().halfHeight);
+      break;
+    case ShapeType::Cylinder:
+      std::snprintf(key, sizeof(key), "cylinder %a %a", shape.cylinder().radius, shape.cylinder().halfHeight);
+      break;
+    case ShapeType::Box: {
+      const Vec3 h = shape.box().halfExtents;
+      std::snprintf(key, sizeof(key), "box %a %a %a", h.x, h.y, h.z);
+      break;
+    }
+    case ShapeType::Ellipsoid: {
+      const Vec3 r = shape.ellipsoid().radii;
+      std::snprintf(key, sizeof(key), "ellipsoid %a %a %a", r.x, r.y, r.z);
+      break;
+    }
+    case ShapeType::Plane: {
+      const Plane& p = shape.plane();
+      std::snprintf(key, sizeof(key), "plane %a %a %a %a", p.normal.x, p.normal.y, p.normal.z, p.distance);
+      break;
+    }
+    case ShapeType::ConvexHull:
+      std::snprintf(key, sizeof(key), "hull %p", static_cast<const void*>(&shape.convexHull()));
+      break;
+    case ShapeType::Kdop:
+      std::snprintf(key, sizeof(key), "kdop %p", static_cast<const void*>(&shape.kdop()));
+      break;
+    case ShapeType::Mesh:
+      std::snprintf(key, sizeof(key), "mesh %p", static_cast<const void*>(&shape.mesh()));
+      break;
+    case ShapeType::Compound:
+      key[0] = '\0';
+      break;
+  }
+  return key;
+}
+
+// A calm palette for dynamic bodies; static ones are grey, kinematic ones blue-grey.
+glm::vec4 bodyColour(BodyType type, ShapeType shape, std::size_t index) {
+  static constexpr float kPalette[][3] = {{0.90f, 0.55f, 0.30f}, {0.35f, 0.65f, 0.90f}, {0.55f, 0.80f, 0.40f},
+                                          {0.90f, 0.80f, 0.35f}, {0.75f, 0.50f, 0.85f}, {0.90f, 0.45f, 0.50f},
+                                          {0.40f, 0.80f, 0.75f}};
+  if (shape == ShapeType::Plane) return {0.62f, 0.64f, 0.66f, 0.0f};  // checkerboard
+  if (type == BodyType::Static) return {0.60f, 0.60f, 0.62f, 0.0f};   // checkerboard: ground shows scale
+  if (type == BodyType::Kinematic) return {0.50f, 0.58f, 0.72f, 1.0f};
+  // A multiplicative hash spreads neighbouring bodies (a pyramid's cubes) over the palette.
+  const std::size_t pick = (index * 2654435761u >> 7) % std::size(kPalette);
+  return {kPalette[pick][0], kPalette[pick][1], kPalette[pick][2], 1.0f};
+}
+
+void addBox(std::vector<LineVertex>& lines, const Aabb& box, const Vec3& colour) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int corner = 0; corner < 4; ++corner) {
+      Vec3 from = box.min;
+      from[a] = (corner & 1) ? box.max[a] : box.min[a];
+      from[b] = (corner & 2) ? box.max[b] : box.min[b];
+      Vec3 to = from;
+      to[axis] = box.max[axis];
+      lines.push_back({from, colour});
+      lines.push_back({to, colour});
+    }
+  }
+}
+
+}  // namespace
+
+ViewerScene::ViewerScene(scene::Scene scene, Renderer& renderer)
+    : scene_(std::move(scene)), built_(std::make_unique<scene::SceneWorld>(scene::buildWorld(scene_))) {
+  // The pre-solve callback sees every manifold of the step: the only place the World hands out
+  // its contact points. It keeps them for debug drawing and never disables a contact.
+  std::shared_ptr<std::vector<Contact>> contacts = contacts_;
+  built_->world.setPreSolveCallback([contacts](BodyId, BodyId, const Manifold& manifold) {
+    for (int i = 0; i < manifold.count; ++i)
+      contacts->push_back({manifold.points[i].midpoint(), manifold.normal});
+    return true;
+  });
+  for (std::size_t i = 0; i < built_->bodies.size(); ++i) {
+    const BodyId id = built_->bodies[i];
+    DrawnBody body;
+    body.id = id;
+    const Shape& shape = built_->world.shape(id);
+    addParts(shape, glm::mat4(1.0f), renderer, body.parts);
+    body.colour = bodyColour(built_->world.type(id), shape.type(), i);
+    bodies_.push_back(std::move(body));
+  }
+}
+
+void ViewerScene::addParts(const Shape& shape, const glm::mat4& local, Renderer& renderer,
+                           std::vector<Part>& parts) {
+  if (shape.type() == ShapeType::Compound) {
+    for (const Compound::Child& child : shape.compound().children()) {
+      addParts(child.shape, local * toMatrix(child.transform), renderer, parts);
+    }
+    return;
+  }
+  const std::string key = meshKey(shape);
+  auto found = meshKeys_.find(key);
+  if (found == meshKeys_.end()) found = meshKeys_.emplace(key, renderer.addMesh(shapeMesh(shape))).first;
+  parts.push_back({found->second, local});
+}
+
+double ViewerScene::step() {
+  contacts_->clear();
+  const auto start = std::chrono::steady_clock::now();
+  built_->world.step(scene_.dt);
+  const auto stop = std::chrono::steady_clock::now();
+  ++steps_;
+  return std::chrono::duration<double, std::milli>(stop - start).count();
+}
+
+Aabb ViewerScene::bounds() const {
+  // The moving bodies are what the scene is about: frame them, unless there are none (a large
+  // static ground would otherwise shrink them to a few pixels).
+  bool anyMoving = false;
+  for (const DrawnBody& body : bodies_) {
+    anyMoving = anyMoving || (world().isValid(body.id) && world().type(body.id) != BodyType::Static);
+  }
+  Aabb box = Aabb::empty();
+  for (const DrawnBody& body : bodies_) {
+    if (!world().isValid(body.id)) continue;
+    if (anyMoving && world().type(body.id) == BodyType::Static) continue;
+    const Shape& shape = world().shape(body.id);
+    if (shape.type() == ShapeType::Plane) continue;
+    const Aabb b = worldBounds(shape, world().transform(body.id));
+    box.min = glm::min(box.min, b.min);
+    box.max = glm::max(box.max, b.max);
+  }
+  if (box.min.x > box.max.x) return {Vec3(-5.0f), Vec3(5.0f)};
+  return box;
+}
+
+std::vector<std::vector<Instance>> ViewerScene::instances(int meshCount) const {
+  std::vector<std::vector<Instance>> out(static_cast<std::size_t>(meshCount));
+  for (const DrawnBody& body : bodies_) {
+    if (!world().isValid(body.id)) continue;
+    const glm::mat4 model = toMatrix(world().transform(body.id));
+    // Resting bodies are drawn darker, so that sleeping islands show.
+    const bool dimmed = world().type(body.id) == BodyType::Dynamic && !world().isAwake(body.id);
+    const glm::vec4 colour = dimmed ? glm::vec4(glm::vec3(body.colour) * 0.6f, body.colour.a) : body.colour;
+    for (const Part& part : body.parts) {
+      if (part.mesh < meshCount)
+        out[static_cast<std::size_t>(part.mesh)].push_back({model * part.local, colour});
+    }
+  }
+  return out;
+}
+
+std::vector<LineVertex> ViewerScene::debugLines(const DebugDraw& options) const {
+  std::vector<LineVertex> lines;
+  if (options.aabbs) {
+    for (const DrawnBody& body : bodies_) {
+      if (!world().isValid(body.id)) continue;
+      const Shape& shape = world().shape(body.id);
+      if (shape.type() == ShapeType::Plane) continue;
+      addBox(lines, worldBounds(shape, world().transform(body.id)), Vec3(0.2f, 0.9f, 0.3f));
+    }
+  }
+  if (options.contacts) {
+    const Vec3 red(1.0f, 0.2f, 0.2f), yellow(1.0f, 0.9f, 0.2f);
+    constexpr float kCross = 0.05f, kNormal = 0.3f;
+    for (const Contact& c : *contacts_) {
+      for (int axis = 0; axis < 3; ++axis) {
+        Vec3 d(0.0f);
+        d[axis] = kCross;
+        lines.push_back({c.point - d, red});
+        lines.push_back({c.point + d, red});
+      }
+      lines.push_back({c.point, yellow});
+      lines.push_back({c.point + kNormal * c.normal, yellow});
+    }
+  }
+  return lines;
+}
+
+}  // namespace collide::viewer
