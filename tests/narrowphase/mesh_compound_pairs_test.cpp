@@ -9,37 +9,15 @@
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/test_helpers.h"
+#include "shapes/flat_grid.h"
 
 using namespace collide;
 using namespace collide::test;
 
-namespace {
-
-// An n × n grid of unit quads on y = 0, centred on the origin, two triangles each, facing +y.
-Shape flatGrid(int n) {
-  std::vector<Vec3> vertices;
-  std::vector<MeshTriangle> triangles;
-  const float offset = 0.5f * float(n);
-  for (int z = 0; z <= n; ++z) {
-    for (int x = 0; x <= n; ++x) vertices.emplace_back(float(x) - offset, 0.0f, float(z) - offset);
-  }
-  auto index = [&](int x, int z) { return static_cast<std::uint32_t>(z * (n + 1) + x); };
-  for (int z = 0; z < n; ++z) {
-    for (int x = 0; x < n; ++x) {
-      // Counter-clockwise seen from +y.
-      triangles.push_back({{index(x, z), index(x, z + 1), index(x + 1, z + 1)}});
-      triangles.push_back({{index(x, z), index(x + 1, z + 1), index(x + 1, z)}});
-    }
-  }
-  return TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
-}
-
-}  // namespace
-
 TEST(MeshPairs, SphereRollingAcrossAFlatGridAlwaysPushesStraightUp) {
   // A sphere sunk 0.05 into the grid, moved in small steps across quad edges, diagonals and
   // vertices: the contact normal (mesh A to sphere B) is +y and the depth 0.05 everywhere.
-  const Shape grid = flatGrid(6);
+  const Shape grid = test::flatGrid(6);
   const float radius = 0.5f, depth = 0.05f;
   Manifold m;
   int contacts = 0;
@@ -58,7 +36,7 @@ TEST(MeshPairs, SphereRollingAcrossAFlatGridAlwaysPushesStraightUp) {
 TEST(MeshPairs, BoxRestingOnAFlatGridGivesFourStableCorners) {
   // A box face-down on the grid, sunk 0.02, its corners inside four different quads: four
   // points, normal +y, each at a bottom corner of the box; the same ids under small wobbles.
-  const Shape grid = flatGrid(6);
+  const Shape grid = test::flatGrid(6);
   const Vec3 h(0.7f, 0.3f, 0.6f);
   const float depth = 0.02f;
   const Vec3 centre(0.1f, h.y - depth, -0.15f);
@@ -93,7 +71,7 @@ TEST(MeshPairs, BoxSlidingAcrossAFlatGridAlwaysPushesStraightUp) {
   // A box turned 20° about y, sunk 0.03, moved in small steps across quad edges, diagonals and
   // vertices, and slightly tilted: the normal stays +y (internal edges give no side normal), the
   // deepest point is the lowest corner, and there are four points (the bottom corners).
-  const Shape grid = flatGrid(6);
+  const Shape grid = test::flatGrid(6);
   const Vec3 h(0.4f, 0.25f, 0.3f);
   const float depth = 0.03f;
   std::mt19937 rng(12);
@@ -120,7 +98,7 @@ TEST(MeshPairs, InternalEdgeGivesTheFaceNormalWhereLooseTrianglesBump) {
   // 0.08: deeper than it overlaps either triangle sideways (0.06 and 0.04), so for each triangle alone the
   // horizontal axis across the shared edge separates best, and the deepest of those contacts is a
   // side normal: a bump. The mesh knows the edge is flat: +y, depth 0.08.
-  const Shape grid = flatGrid(6);
+  const Shape grid = test::flatGrid(6);
   const Vec3 h(0.05f, 0.2f, 0.05f);
   const Transform tb = at({0.01f, h.y - 0.08f, 0.5f});
   Manifold m;
@@ -141,7 +119,7 @@ TEST(MeshPairs, InternalEdgeGivesTheFaceNormalWhereLooseTrianglesBump) {
 TEST(MeshPairs, TheMeshOutlineStillPushesSideways) {
   // The grid's outline edge x = 3 is active: a box beside the grid, its side 0.01 over the edge
   // and straddling the surface (0.25 above and below), is pushed out along +x by 0.01.
-  const Shape grid = flatGrid(6);
+  const Shape grid = test::flatGrid(6);
   const Vec3 h(0.4f, 0.25f, 0.3f);
   Manifold m;
   ASSERT_TRUE(collide::collide(grid, Transform::identity(), Box{h}, at({3.0f + h.x - 0.01f, 0.0f, 0.2f}), m));

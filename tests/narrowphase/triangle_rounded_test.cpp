@@ -14,6 +14,7 @@
 #include "narrowphase/convex_support.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/test_helpers.h"
+#include "shapes/flat_grid.h"
 
 namespace collide {
 namespace {
@@ -22,24 +23,6 @@ using test::at;
 using test::axisAngle;
 using test::randomRotation;
 using test::randomUnit;
-
-// An n × n grid of unit quads on y = 0 centred on the origin, two triangles each, facing +y.
-Shape meshFloor(int n) {
-  std::vector<Vec3> vertices;
-  std::vector<MeshTriangle> triangles;
-  const float offset = 0.5f * float(n);
-  for (int z = 0; z <= n; ++z) {
-    for (int x = 0; x <= n; ++x) vertices.emplace_back(float(x) - offset, 0.0f, float(z) - offset);
-  }
-  auto index = [&](int x, int z) { return static_cast<std::uint32_t>(z * (n + 1) + x); };
-  for (int z = 0; z < n; ++z) {
-    for (int x = 0; x < n; ++x) {
-      triangles.push_back({{index(x, z), index(x, z + 1), index(x + 1, z + 1)}});
-      triangles.push_back({{index(x, z), index(x + 1, z + 1), index(x + 1, z)}});
-    }
-  }
-  return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)));
-}
 
 float degreesBetween(const Vec3& a, const Vec3& b) {
   return glm::degrees(std::acos(std::clamp(glm::dot(a, b) / (glm::length(a) * glm::length(b)), -1.0f, 1.0f)));
@@ -149,7 +132,7 @@ TEST(TriangleRounded, CapsuleLyingOnTheFloorGetsTwoPointsWithStableIds) {
   // A capsule (radius 0.2, half height 0.6) lying along a horizontal direction, sunk 0.01 into the
   // floor: one point under each end, depth 0.01, normal up. Moved over many triangles and turned
   // about y, the two ids (the floor's flat patch, each capsule end) never change.
-  const Shape floor = meshFloor(10);
+  const Shape floor = test::flatGrid(10);
   const Shape capsule = Capsule{0.2f, 0.6f};
   const Quat lying = axisAngle({0, 0, 1}, 90.0f);
   std::mt19937 rng(8);
@@ -188,7 +171,7 @@ TEST(TriangleRounded, SphereOverInternalEdgesAndVerticesPushesStraightUp) {
   // A sphere sunk into the flat floor anywhere, in particular right beside an internal edge or
   // vertex, where the triangle next door finds its nearest point on that edge and a normal tilted
   // towards the sphere's centre: one contact, straight up, as deep as the sphere is sunk.
-  const Shape floor = meshFloor(4);
+  const Shape floor = test::flatGrid(4);
   const Shape sphere = Sphere{0.3f};
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);

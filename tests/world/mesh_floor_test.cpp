@@ -1,5 +1,6 @@
 // A box on a static triangle-mesh floor in the World: the mesh–box cell's clipped four-point
 // manifold and its internal-edge handling (src/narrowphase/mesh_pairs.cpp, docs/narrowphase.md).
+#include "shapes/flat_grid.h"
 #include "world/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -15,24 +16,11 @@ namespace {
 
 constexpr float kDt = 1.0f / 60.0f;
 
-// An n × n grid of unit quads on y = 0 centred on the origin, two triangles each, facing +y.
+// The flat tessellated floor (test::flatGrid), static and frictionless.
 BodyDef meshFloor(int n) {
-  std::vector<Vec3> vertices;
-  std::vector<MeshTriangle> triangles;
-  const float offset = 0.5f * float(n);
-  for (int z = 0; z <= n; ++z) {
-    for (int x = 0; x <= n; ++x) vertices.emplace_back(float(x) - offset, 0.0f, float(z) - offset);
-  }
-  auto index = [&](int x, int z) { return static_cast<std::uint32_t>(z * (n + 1) + x); };
-  for (int z = 0; z < n; ++z) {
-    for (int x = 0; x < n; ++x) {
-      triangles.push_back({{index(x, z), index(x, z + 1), index(x + 1, z + 1)}});
-      triangles.push_back({{index(x, z), index(x + 1, z + 1), index(x + 1, z)}});
-    }
-  }
   BodyDef def;
   def.type = BodyType::Static;
-  def.shape = Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)));
+  def.shape = Shape(test::flatGrid(n));
   def.friction = 0.0f;
   return def;
 }
