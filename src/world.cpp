@@ -48,6 +48,8 @@ std::string formatFloat(float value) {
   return out.str();
 }
 
+}  // namespace
+
 float combine(CombineRule rule, float a, float b) {
   switch (rule) {
     case CombineRule::Average:
@@ -61,8 +63,6 @@ float combine(CombineRule rule, float a, float b) {
   }
   return a;
 }
-
-}  // namespace
 
 struct World::Impl {
   WorldDef def;

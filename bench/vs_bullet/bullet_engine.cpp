@@ -36,20 +36,6 @@ Vec3 fromBt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
 btQuaternion toBt(const Quat& q) { return {q.x, q.y, q.z, q.w}; }
 Quat fromBt(const btQuaternion& q) { return {q.w(), q.x(), q.y(), q.z()}; }
 
-float combine(CombineRule rule, float a, float b) {
-  switch (rule) {
-    case CombineRule::Average:
-      return 0.5f * (a + b);
-    case CombineRule::Min:
-      return std::min(a, b);
-    case CombineRule::Max:
-      return std::max(a, b);
-    case CombineRule::Multiply:
-      return a * b;
-  }
-  return a;
-}
-
 // Per-body values whose products are the scene's pair values (see the file comment).
 std::vector<float> productValues(const scene::Scene& scene, CombineRule rule, float BodyDef::*field,
                                  const char* what) {

@@ -41,6 +41,8 @@ CombineRule parseCombineRule(std::string_view name);
 ImpactModel parseImpactModel(std::string_view name);
 FrictionModel parseFrictionModel(std::string_view name);
 PenetrationResponse parsePenetrationResponse(std::string_view name);
+// The pair's value from the two bodies' values (bounciness, friction) under `rule`.
+float combine(CombineRule rule, float a, float b);
 
 // The contact constraint's tuning (Catto, "Solver2D" 2024 / Box2D v3 soft step). Box2D's defaults
 // are 30 Hz and damping ratio 10 at 4 substeps; ours are stiffer so stacks stand (see below).
