@@ -16,10 +16,10 @@
 
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
-#include "dynamics/contact_solver.h"
 #include "dynamics/continuous.h"
 #include "dynamics/fault_guard.h"
 #include "dynamics/joint_solver.h"
+#include "dynamics/solver.h"
 #include "response/contact_response.h"
 
 #include <algorithm>
@@ -71,7 +71,7 @@ struct World::Impl {
   std::vector<ProxyPair> pairs;
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
-  std::vector<detail::ContactConstraint> constraints;
+  detail::StepSolver stepSolver;
   std::vector<DistanceJoint> joints;
   std::vector<std::uint32_t> freeJoints;
   std::size_t jointCount = 0;
@@ -211,6 +211,10 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
   check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
   check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
+  check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)");
+  if (t.relaxPasses < 0)
+    throw Error("world: contact.relaxPasses out of range (must be >= 0), got " +
+                std::to_string(t.relaxPasses));
   const SleepTuning& sleep = def.sleep;
   const auto checkSleep = [](float value, bool ok, const char* field) {
     if (!isFinite(value) || !ok)
@@ -586,10 +590,10 @@ void World::Impl::step(float dt) {
 
   solve(dt);
   if (def.impactModel == ImpactModel::Interpolated) {
-    detail::applyInterpolatedImpacts(bodies, contacts, constraints, def.contact.restitutionThreshold,
-                                     def.contact.linearSlop);
+    detail::applyInterpolatedImpacts(bodies, contacts, stepSolver.solvedContacts(),
+                                     def.contact.restitutionThreshold, def.contact.linearSlop);
   }
-  detail::applyProlongedFriction(bodies, contacts, constraints, def.frictionModel, dt);
+  detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   for (BodyRecord& r : bodies.records) {
     r.force = Vec3(0.0f);
     r.torque = Vec3(0.0f);
@@ -608,49 +612,16 @@ void World::Impl::step(float dt) {
   totalStats.contactPairs += lastStats.contactPairs;
 }
 
-namespace {
-constexpr int kContactRelaxPasses = 2;
-}  // namespace
-
-// The soft step (Catto, "Solver2D" 2024; Box2D v3's b2SolverStage order): per substep integrate
-// velocities, warm start, solve with the position bias, integrate positions, relax without it.
-// Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
-// last word on penetration.
+// The soft step (src/dynamics/solver.h): the substep loop over the awake bodies, contacts and joints.
 void World::Impl::solve(float dt) {
-  detail::SolverSettings settings;
+  detail::StepSettings settings;
   settings.gravity = def.gravity;
   settings.substeps = def.substeps;
+  settings.relaxPasses = def.contact.relaxPasses;
   settings.tuning = def.contact;
   // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
   settings.friction = def.frictionModel == FrictionModel::Coulomb;
-  const float h = dt / static_cast<float>(def.substeps);
-  for (BodyState& s : bodies.states) {
-    s.centerOfMass0 = s.centerOfMass;
-    s.rotation0 = s.rotation;
-  }
-  for (DistanceJoint& joint : joints) {
-    joint.active = joint.alive && (isAwakeDynamic(joint.bodyA) || isAwakeDynamic(joint.bodyB));
-  }
-  detail::prepareContacts(bodies, contacts, constraints, settings, h);
-  // Box2D v3: rigid joints correct at twice the (capped) contact stiffness.
-  const float rigidHertz = 2.0f * std::min(def.contact.hertz, 0.25f / h);
-  for (int i = 0; i < def.substeps; ++i) {
-    detail::integrateVelocities(bodies, settings.gravity, h);
-    detail::guardFiniteStates(bodies, faultEvents);  // before a bad velocity reaches a contact
-    detail::warmStartJoints(bodies, joints);
-    detail::warmStartContacts(bodies, contacts, constraints);
-    detail::solveJoints(bodies, joints, h, rigidHertz, true);
-    detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, true);
-    detail::integratePositions(bodies, h);
-    detail::solveJoints(bodies, joints, h, rigidHertz, false);
-    // Two relax passes: with stiff, lightly damped contacts (the defaults hold a stack's sag under
-    // 1 cm) one pass leaves the boxes of a stack shivering at up to 1.6 cm/s; the second removes it
-    // (docs/architecture.md, "Stacking": the measured table).
-    for (int pass = 0; pass < kContactRelaxPasses; ++pass)
-      detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, false);
-    detail::guardFiniteStates(bodies, faultEvents);
-  }
-  detail::applyRestitution(bodies, contacts, constraints, settings.tuning.restitutionThreshold);
+  stepSolver.solve(bodies, contacts, joints, settings, dt, faultEvents);
 }
 
 ContactEvent World::Impl::makeEvent(const Contact& c, ContactEvent::Type type) const {
@@ -756,7 +727,7 @@ void World::Impl::narrowPhase(float dt) {
       if (!c.wasTouching) c.friction = 0.0f;
     }
     if (previous) {
-      detail::matchContactPoints(*previous, c, def.contact.linearSlop);
+      detail::inheritContact(*previous, c, def.contact.linearSlop);
     } else {
       c.points = {};
     }
@@ -858,8 +829,8 @@ void World::Impl::updateSleep(float dt) {
 
 void World::Impl::revertPenetrating() {
   // Simple version of the lecture's "revert": one re-test per solved contact at the new poses.
-  for (const detail::ContactConstraint& k : constraints) {
-    const Contact& c = contacts[k.contactIndex];
+  for (const std::uint32_t index : stepSolver.solvedContacts()) {
+    const Contact& c = contacts[index];
     BodyRecord& ra = bodies.records[c.bodyA];
     BodyRecord& rb = bodies.records[c.bodyB];
     BodyState& sa = bodies.states[c.bodyA];

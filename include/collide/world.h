@@ -58,6 +58,12 @@ struct ContactTuning {
   float restitutionThreshold = 1.0f;  // m/s: slower impacts do not bounce (resting contacts stay quiet)
   float linearSlop = 0.005f;          // m: the penetration allowed (and the "touching" tolerance of events)
   float speculativeDistance = 0.02f;  // m: contacts are created this far apart (plus the step's motion)
+  // Passes without the position bias after each substep's position update (Box2D v3's relax), so
+  // that push-out does not turn into bounce.
+  int relaxPasses = 1;
+  // A sticking friction patch holds its place (a point fixed in each body); when the two points
+  // drift apart farther than this (m) along the surface, the anchor is taken again where the patch is.
+  float frictionAnchorReach = 0.02f;
 };
 
 // When a body counts as resting (Box2D's sleep tolerances and time to sleep).

@@ -54,10 +54,19 @@ void matchContactPoints(const Contact& previous, Contact& current, float matchDi
     state = ContactPointState{};
     if (match[i] >= 0) {
       state.normalImpulse = previous.points[match[i]].normalImpulse;
-      state.tangentImpulse = previous.points[match[i]].tangentImpulse;
       state.prolonged = true;
     }
   }
+}
+
+void inheritContact(const Contact& previous, Contact& current, float matchDistance) {
+  matchContactPoints(previous, current, matchDistance);
+  current.frictionImpulse = previous.frictionImpulse;
+  current.twistImpulse = previous.twistImpulse;
+  current.stickLocalA = previous.stickLocalA;
+  current.stickLocalB = previous.stickLocalB;
+  current.stuck = previous.stuck;
+  current.sliding = previous.sliding;
 }
 
 }  // namespace collide::detail

@@ -21,8 +21,7 @@
 namespace collide::detail {
 
 struct ContactPointState {
-  float normalImpulse = 0.0f;  // per substep, accumulated (warm start)
-  std::array<float, 2> tangentImpulse{0.0f, 0.0f};
+  float normalImpulse = 0.0f;       // per substep, accumulated (warm start)
   float totalNormalImpulse = 0.0f;  // everything applied this step (events)
   float maxNormalImpulse = 0.0f;    // did the point act this step (restitution)
   float relativeVelocity = 0.0f;    // normal relative velocity before the solve (restitution, events)
@@ -46,12 +45,25 @@ struct Contact {
   bool touching = false;          // after this step's narrow phase
   bool wasTouching = false;       // after last step's
   int consecutiveSteps = 0;       // steps in a row with points (lecture: friction from the second step)
+  // The friction patch (dynamics/contact_solver.h), kept across steps: its impulse as a world vector
+  // (the tangent basis is rebuilt every step), the twist about the normal, and the static anchor in
+  // each body's frame (from the centre of mass) with whether it holds.
+  Vec3 frictionImpulse{0.0f};
+  float twistImpulse = 0.0f;
+  Vec3 stickLocalA{0.0f};
+  Vec3 stickLocalB{0.0f};
+  bool stuck = false;    // the anchor is set
+  bool sliding = false;  // the patch reached the friction bound last step: re-anchor
 };
 
 // Copies the accumulated impulses of `previous`'s points onto `current`'s matching points and marks
 // them prolonged. current.manifold must already hold the new points. A point whose id finds no
 // partner takes the nearest unmatched old point within matchDistance (m), if any.
 void matchContactPoints(const Contact& previous, Contact& current, float matchDistance = 0.0f);
+
+// The whole contact carried over from last step: the points matched as above, and the friction
+// patch's impulses and static anchor.
+void inheritContact(const Contact& previous, Contact& current, float matchDistance);
 
 inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
   return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;

@@ -19,7 +19,7 @@ struct BodyState {
   Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
   Vec3 linearVelocity{0.0f};
   Vec3 angularVelocity{0.0f};
-  Mat3 inverseInertiaWorld{0.0f};  // R I^-1 R^T, refreshed after every position update
+  Mat3 inverseInertiaWorld{0.0f};  // R I^-1 R^T, refreshed at the end of every step
   float inverseMass = 0.0f;
   // Where the step started: the solver measures current separations from these (Catto's
   // "relative positions": anchors move with the body's change of pose, not re-queried).
@@ -84,15 +84,5 @@ inline Mat3 worldInverseInertia(const Mat3& inverseInertiaLocal, const Quat& rot
   const Mat3 r = glm::mat3_cast(rotation);
   return r * inverseInertiaLocal * glm::transpose(r);
 }
-
-// One implicit-midpoint step of torque-free rotation in the body frame; returns the new body-frame
-// angular velocity (see integrate.cpp).
-Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& bodyOmega, float h);
-// Velocity step of one substep: gravity, the accumulated force/torque and the gyroscopic term
-// (awake dynamic bodies only).
-void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h);
-// Position step of one substep: centre of mass by v, rotation by the quaternion derivative
-// q' = 1/2 (0, w) q, renormalised; dynamic and kinematic bodies.
-void integratePositions(BodyStorage& bodies, float h);
 
 }  // namespace collide::detail
