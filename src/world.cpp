@@ -18,6 +18,7 @@
 #include "dynamics/body_storage.h"
 #include "dynamics/continuous.h"
 #include "dynamics/fault_guard.h"
+#include "dynamics/integrate.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver.h"
 #include "response/contact_response.h"
@@ -212,6 +213,8 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
   check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
   check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)");
+  check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
+  check(t.manifoldCacheAngle, t.manifoldCacheAngle >= 0.0f, "manifoldCacheAngle (must be >= 0)");
   if (t.relaxPasses < 0)
     throw Error("world: contact.relaxPasses out of range (must be >= 0), got " +
                 std::to_string(t.relaxPasses));
@@ -307,6 +310,7 @@ BodyId World::createBody(const BodyDef& def) {
       if (!def.particle) {
         r.inertiaLocal = props.inertia * massScale;
         r.inverseInertiaLocal = glm::inverse(r.inertiaLocal);
+        r.isotropicInertia = detail::isIsotropic(r.inertiaLocal);
       }
       s.inverseMass = 1.0f / r.mass;
     }
@@ -609,6 +613,7 @@ void World::Impl::step(float dt) {
   totalStats.keptPairs += lastStats.keptPairs;
   totalStats.boxTests += lastStats.boxTests;
   totalStats.narrowPhaseTests += lastStats.narrowPhaseTests;
+  totalStats.reusedManifolds += lastStats.reusedManifolds;
   totalStats.contactPairs += lastStats.contactPairs;
 }
 
@@ -646,6 +651,7 @@ void World::Impl::narrowPhase(float dt) {
   contacts.clear();
   lastStats = broadPhase->lastStats();
   std::uint64_t tests = 0;
+  std::uint64_t reused = 0;
   std::size_t j = 0;
   const auto endVanished = [&](const Contact& old) {
     // Contacts of destroyed bodies were erased; a generation mismatch means the slot was reused.
@@ -698,11 +704,22 @@ void World::Impl::narrowPhase(float dt) {
     }
     const BodyState& sa = bodies.states[ia];
     const BodyState& sb = bodies.states[ib];
-    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
+    const Transform ta = detail::bodyTransform(ra, sa);
+    const Transform tb = detail::bodyTransform(rb, sb);
     Contact& c = contacts.emplace_back();
     ++tests;
-    collide::collide(ra.shape, detail::bodyTransform(ra, sa), rb.shape, detail::bodyTransform(rb, sb),
-                     c.manifold, margin);
+    // A pair that has not moved relative to itself since its manifold was computed (a resting
+    // stack, a crate on the terrain) gets that manifold placed again (Jolt's body pair cache).
+    if (previous && !sensor &&
+        detail::reuseManifold(previous->cache, previous->manifold, ta, tb, def.contact.manifoldCacheDistance,
+                              def.contact.manifoldCacheAngle, c.manifold)) {
+      c.cache = previous->cache;
+      ++reused;
+    } else {
+      const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
+      collide::collide(ra.shape, ta, rb.shape, tb, c.manifold, margin);
+      if (c.manifold.count > 0 && !sensor) detail::storeManifold(c.manifold, ta, tb, c.cache);
+    }
     if (c.manifold.count == 0) {
       contacts.pop_back();
       if (previous) endVanished(*previous);
@@ -739,6 +756,7 @@ void World::Impl::narrowPhase(float dt) {
   }
   while (j < previousContacts.size()) endVanished(previousContacts[j++]);
   lastStats.narrowPhaseTests = tests;
+  lastStats.reusedManifolds = reused;
 }
 
 // Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).

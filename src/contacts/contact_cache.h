@@ -28,6 +28,27 @@ struct ContactPointState {
   bool prolonged = false;           // matched a point of last step's manifold
 };
 
+// A manifold as it was computed, in the bodies' own frames, with B's pose in A's frame then (Jolt's
+// body pair cache). While the two bodies keep that relative pose within the world's tolerance, the
+// manifold can be placed again at their new poses instead of being computed: the points are the
+// same material points, the depths follow from where they are now.
+struct ManifoldCache {
+  Vec3 normal{0.0f};  // in A's frame
+  std::array<Vec3, Manifold::kMaxPoints> pointsOnA{};  // in A's frame
+  std::array<Vec3, Manifold::kMaxPoints> pointsOnB{};  // in B's frame
+  Vec3 relativePosition{0.0f};                         // B's origin in A's frame
+  Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};        // conj(qA) qB
+  bool valid = false;
+};
+
+// Fills the cache from a manifold just computed at these transforms.
+void storeManifold(const Manifold& manifold, const Transform& a, const Transform& b, ManifoldCache& cache);
+// If B's pose relative to A is within `distance` (m) and `angle` (rad) of the cached one, writes the
+// cached manifold placed at these transforms (same points and ids, depths measured anew) and
+// returns true.
+bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
+                   float distance, float angle, Manifold& out);
+
 struct Contact {
   std::uint64_t key = 0;  // proxy a index << 32 | proxy b index
   std::uint32_t bodyA = 0;
@@ -35,6 +56,7 @@ struct Contact {
   std::uint32_t generationA = 0;
   std::uint32_t generationB = 0;
   Manifold manifold;
+  ManifoldCache cache;
   std::array<ContactPointState, Manifold::kMaxPoints> points{};
   float friction = 0.0f;
   float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model

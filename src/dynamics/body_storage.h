@@ -36,6 +36,8 @@ struct BodyRecord {
   Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
   Mat3 inertiaLocal{0.0f};       // about the centre of mass, body axes (zero for particles)
   Mat3 inverseInertiaLocal{0.0f};
+  // I = lambda 1 (spheres, cubes, regular polyhedra...): w x (I w) = 0, so no gyroscopic term.
+  bool isotropicInertia = true;
   float mass = 0.0f;
   float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
   float bounciness = 0.0f;

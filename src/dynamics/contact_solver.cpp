@@ -28,7 +28,7 @@ struct BodyW {
 
 const SolverBody kRestingBody{};
 
-BodyW gather(const std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index) {
+COLLIDE_INLINE BodyW gather(const std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index) {
   const SolverBody* b[kLanes];
   for (int i = 0; i < kLanes; ++i) b[i] = index[i] >= 0 ? &bodies[index[i]] : &kRestingBody;
   BodyW out;
@@ -48,7 +48,7 @@ BodyW gather(const std::vector<SolverBody>& bodies, const std::array<std::int32_
 }
 
 // The contact solver changes velocities only; lanes of bodies it must not write are skipped.
-void scatter(std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index,
+COLLIDE_INLINE void scatter(std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index,
              const std::array<bool, kLanes>& write, const BodyW& body) {
   FloatW v0 = body.v.x, v1 = body.v.y, v2 = body.v.z, v3 = zeroW();
   FloatW w0 = body.w.x, w1 = body.w.y, w2 = body.w.z, w3 = zeroW();
@@ -65,7 +65,7 @@ void scatter(std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLa
 }
 
 // conj(q) v q for unit q: v seen in the frame before the rotation q.
-Vec3W rotateInverse(const BodyW& q, const Vec3W& v) {
+COLLIDE_INLINE Vec3W rotateInverse(const BodyW& q, const Vec3W& v) {
   const Vec3W u{-q.qx, -q.qy, -q.qz};
   const Vec3W t = splat(2.0f) * cross(u, v);
   return v + q.qw * t + cross(u, t);
@@ -73,24 +73,15 @@ Vec3W rotateInverse(const BodyW& q, const Vec3W& v) {
 
 // The small-angle rotation vector of q (2 x its vector part, on the shortest arc): the static
 // anchors are kept only while the bodies barely turn, where this is exact to second order.
-Vec3W smallRotation(const BodyW& q) {
+COLLIDE_INLINE Vec3W smallRotation(const BodyW& q) {
   const FloatW negative = greaterW(zeroW(), q.qw);
   const FloatW two = selectW(negative, splat(-2.0f), splat(2.0f));
   return {two * q.qx, two * q.qy, two * q.qz};
 }
 
-void applyLinear(BodyW& a, BodyW& b, const ContactBatch& c, FloatW impulse, const Vec3W& direction) {
+COLLIDE_INLINE void applyLinear(BodyW& a, BodyW& b, const ContactBatch& c, FloatW impulse, const Vec3W& direction) {
   addScaled(a.v, -(impulse * c.inverseMassA), direction);
   addScaled(b.v, impulse * c.inverseMassB, direction);
-}
-
-float effectiveMass(float inverseMassA, float inverseMassB, const Mat3& inverseInertiaA,
-                    const Mat3& inverseInertiaB, const Vec3& rA, const Vec3& rB, const Vec3& direction) {
-  const Vec3 rnA = glm::cross(rA, direction);
-  const Vec3 rnB = glm::cross(rB, direction);
-  const float k = inverseMassA + inverseMassB + glm::dot(rnA, inverseInertiaA * rnA) +
-                  glm::dot(rnB, inverseInertiaB * rnB);
-  return k > 0.0f ? 1.0f / k : 0.0f;
 }
 
 }  // namespace
@@ -123,30 +114,30 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   colorConstraints(writtenBodies_, bodies.size(), colorOf_, colorBits_);
 
   // Batches: each colour in order, four contacts a batch; then the overflow, one contact a batch.
+  // A counting sort by colour keeps the contact order within each colour (determinism).
+  std::array<std::uint32_t, kGraphColors + 2> start{};
+  for (const std::uint8_t color : colorOf_) ++start[color + 1];
+  for (int color = 0; color <= kGraphColors; ++color) start[color + 1] += start[color];
   order_.resize(solvedContacts.size());
-  std::size_t placed = 0;
+  {
+    std::array<std::uint32_t, kGraphColors + 2> next = start;
+    for (std::size_t i = 0; i < solvedContacts.size(); ++i) order_[next[colorOf_[i]]++] = solvedContacts[i];
+  }
+  solvedContacts.swap(order_);
   batches.clear();
-  const auto emptyBatch = [&]() -> ContactBatch& {
-    ContactBatch& batch = batches.emplace_back();
-    std::memset(static_cast<void*>(&batch), 0, sizeof(ContactBatch));
-    batch.bodyA.fill(kNoSolverBody);
-    batch.bodyB.fill(kNoSolverBody);
-    batch.contact.fill(-1);
-    return batch;
-  };
   for (int color = 0; color <= kGraphColors; ++color) {
-    int lane = kLanes;
-    for (std::size_t i = 0; i < solvedContacts.size(); ++i) {
-      if (colorOf_[i] != color) continue;
-      if (lane == kLanes || color == kOverflowColor) {
-        emptyBatch();
-        lane = 0;
-      }
-      batches.back().contact[lane++] = static_cast<std::int32_t>(solvedContacts[i]);
-      order_[placed++] = solvedContacts[i];
+    const std::uint32_t perBatch = color == kOverflowColor ? 1 : kLanes;
+    for (std::uint32_t first = start[color]; first < start[color + 1]; first += perBatch) {
+      ContactBatch& batch = batches.emplace_back();
+      std::memset(static_cast<void*>(&batch), 0, sizeof(ContactBatch));
+      batch.bodyA.fill(kNoSolverBody);
+      batch.bodyB.fill(kNoSolverBody);
+      batch.contact.fill(-1);
+      const std::uint32_t last = std::min(first + perBatch, start[color + 1]);
+      for (std::uint32_t i = first; i < last; ++i)
+        batch.contact[i - first] = static_cast<std::int32_t>(solvedContacts[i]);
     }
   }
-  solvedContacts.assign(order_.begin(), order_.begin() + static_cast<std::ptrdiff_t>(placed));
 
   for (ContactBatch& c : batches) {
     for (int lane = 0; lane < kLanes; ++lane) {
@@ -202,10 +193,13 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
         setLane(p.anchorB, lane, rB);
         setLane(p.crossA, lane, crossA);
         setLane(p.crossB, lane, crossB);
-        setLane(p.turnA, lane, iA * crossA);
-        setLane(p.turnB, lane, iB * crossB);
+        const Vec3 turnA = iA * crossA;
+        const Vec3 turnB = iB * crossB;
+        setLane(p.turnA, lane, turnA);
+        setLane(p.turnB, lane, turnB);
         laneOf(p.baseSeparation, lane) = -mp.depth - glm::dot(rB - rA, n);
-        laneOf(p.normalMass, lane) = effectiveMass(mA, mB, iA, iB, rA, rB, n);
+        const float kn = mA + mB + glm::dot(crossA, turnA) + glm::dot(crossB, turnB);
+        laneOf(p.normalMass, lane) = kn > 0.0f ? 1.0f / kn : 0.0f;
         laneOf(p.normalImpulse, lane) = state.normalImpulse;
         const Vec3 dv = vB + glm::cross(wB, rB) - vA - glm::cross(wA, rA);
         laneOf(p.approachVelocity, lane) = glm::dot(dv, n);
@@ -221,22 +215,26 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
       setLane(c.tangent2CrossA, lane, t2A);
       setLane(c.tangent1CrossB, lane, t1B);
       setLane(c.tangent2CrossB, lane, t2B);
-      setLane(c.tangent1TurnA, lane, iA * t1A);
-      setLane(c.tangent2TurnA, lane, iA * t2A);
-      setLane(c.tangent1TurnB, lane, iB * t1B);
-      setLane(c.tangent2TurnB, lane, iB * t2B);
-      const float k11 = mA + mB + glm::dot(t1A, iA * t1A) + glm::dot(t1B, iB * t1B);
-      const float k12 = glm::dot(t1, t2) * (mA + mB) + glm::dot(t1A, iA * t2A) + glm::dot(t1B, iB * t2B);
-      const float k22 = mA + mB + glm::dot(t2A, iA * t2A) + glm::dot(t2B, iB * t2B);
+      const Vec3 u1A = iA * t1A, u2A = iA * t2A;
+      const Vec3 u1B = iB * t1B, u2B = iB * t2B;
+      setLane(c.tangent1TurnA, lane, u1A);
+      setLane(c.tangent2TurnA, lane, u2A);
+      setLane(c.tangent1TurnB, lane, u1B);
+      setLane(c.tangent2TurnB, lane, u2B);
+      // The tangents are orthonormal, so the linear part of the off-diagonal term vanishes.
+      const float k11 = mA + mB + glm::dot(t1A, u1A) + glm::dot(t1B, u1B);
+      const float k12 = glm::dot(t1A, u2A) + glm::dot(t1B, u2B);
+      const float k22 = mA + mB + glm::dot(t2A, u2A) + glm::dot(t2B, u2B);
       const float det = k11 * k22 - k12 * k12;
       if (det > 0.0f) {
         laneOf(c.tangentMass11, lane) = k22 / det;
         laneOf(c.tangentMass12, lane) = -k12 / det;
         laneOf(c.tangentMass22, lane) = k11 / det;
       }
-      setLane(c.twistTurnA, lane, iA * n);
-      setLane(c.twistTurnB, lane, iB * n);
-      const float kt = glm::dot(n, iA * n) + glm::dot(n, iB * n);
+      const Vec3 twistA = iA * n, twistB = iB * n;
+      setLane(c.twistTurnA, lane, twistA);
+      setLane(c.twistTurnB, lane, twistB);
+      const float kt = glm::dot(n, twistA) + glm::dot(n, twistB);
       laneOf(c.twistMass, lane) = kt > 0.0f ? 1.0f / kt : 0.0f;
       float radius = 0.0f;
       for (int k = 0; k < count; ++k) radius += glm::length(contact.manifold.points[k].midpoint() - centroid);

@@ -1,6 +1,7 @@
 // See integrate.h. Sleeping bodies are not in the step.
 #include "dynamics/integrate.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace collide::detail {
@@ -44,6 +45,23 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3&
 // angular speed. 0.25 pi per substep is 283 rad/s at 60 Hz with 6 substeps.
 constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 
+bool isIsotropic(const Mat3& inertia) {
+  const float scale = std::max({std::abs(inertia[0][0]), std::abs(inertia[1][1]), std::abs(inertia[2][2])});
+  const float tolerance = 1e-6f * scale;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const float expected = i == j ? inertia[0][0] : 0.0f;
+      if (std::abs(inertia[i][j] - expected) > tolerance) return false;
+    }
+  return true;
+}
+
+// A rotation slower than this per substep (rad) keeps its angular velocity as it is: the gyroscopic
+// change of w per substep is at most about h |w| |w| (times the inertia's anisotropy), so below
+// 1e-4 rad per substep it is below 1e-4 of w itself, less than the contact solver's own error. This
+// skips the Newton solve for every resting body.
+constexpr float kGyroscopicMinTurn = 1e-4f;
+
 void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
                          const BodyStorage& storage, const Vec3& gravity, float h) {
   const float maxAngularSpeed = kMaxRotationPerSubstep / h;
@@ -55,15 +73,16 @@ void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<Solv
     b.linearVelocity += h * (gravity + info.inverseMass * record.force);
     if (info.particle) continue;
     b.angularVelocity += h * (info.inverseInertiaWorld * record.torque);
-    if (b.angularVelocity != Vec3(0.0f)) {
+    const float turn2 = h * h * glm::dot(b.angularVelocity, b.angularVelocity);
+    if (!record.isotropicInertia && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {
       const Quat rotation = b.deltaRotation * storage.states[info.body].rotation0;
       const Vec3 bodyOmega = glm::conjugate(rotation) * b.angularVelocity;
       b.angularVelocity =
           rotation * gyroscopicStep(record.inertiaLocal, record.inverseInertiaLocal, bodyOmega, h);
-      const float speedSquared = glm::dot(b.angularVelocity, b.angularVelocity);
-      if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
-        b.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
-      }
+    }
+    const float speedSquared = glm::dot(b.angularVelocity, b.angularVelocity);
+    if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
+      b.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
     }
   }
 }

@@ -15,6 +15,14 @@
 #define COLLIDE_SIMD_SSE2 0
 #endif
 
+// The solver's small helpers must be inlined into its loops (GCC otherwise keeps gather and scatter
+// out of line, a call per batch and body).
+#if defined(__GNUC__)
+#define COLLIDE_INLINE inline __attribute__((always_inline))
+#else
+#define COLLIDE_INLINE inline
+#endif
+
 namespace collide::detail {
 
 inline constexpr int kLanes = 4;
