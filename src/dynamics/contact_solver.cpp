@@ -28,7 +28,8 @@ struct BodyW {
 
 const SolverBody kRestingBody{};
 
-COLLIDE_INLINE BodyW gather(const std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index) {
+COLLIDE_INLINE BodyW gather(const std::vector<SolverBody>& bodies,
+                            const std::array<std::int32_t, kLanes>& index) {
   const SolverBody* b[kLanes];
   for (int i = 0; i < kLanes; ++i) b[i] = index[i] >= 0 ? &bodies[index[i]] : &kRestingBody;
   BodyW out;
@@ -49,7 +50,7 @@ COLLIDE_INLINE BodyW gather(const std::vector<SolverBody>& bodies, const std::ar
 
 // The contact solver changes velocities only; lanes of bodies it must not write are skipped.
 COLLIDE_INLINE void scatter(std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index,
-             const std::array<bool, kLanes>& write, const BodyW& body) {
+                            const std::array<bool, kLanes>& write, const BodyW& body) {
   FloatW v0 = body.v.x, v1 = body.v.y, v2 = body.v.z, v3 = zeroW();
   FloatW w0 = body.w.x, w1 = body.w.y, w2 = body.w.z, w3 = zeroW();
   transpose(v0, v1, v2, v3);
@@ -79,7 +80,8 @@ COLLIDE_INLINE Vec3W smallRotation(const BodyW& q) {
   return {two * q.qx, two * q.qy, two * q.qz};
 }
 
-COLLIDE_INLINE void applyLinear(BodyW& a, BodyW& b, const ContactBatch& c, FloatW impulse, const Vec3W& direction) {
+COLLIDE_INLINE void applyLinear(BodyW& a, BodyW& b, const ContactBatch& c, FloatW impulse,
+                                const Vec3W& direction) {
   addScaled(a.v, -(impulse * c.inverseMassA), direction);
   addScaled(b.v, impulse * c.inverseMassB, direction);
 }
@@ -93,11 +95,14 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   pushOutSpeed_ = settings.tuning.pushOutSpeed;
   restitutionThreshold_ = settings.tuning.restitutionThreshold;
   anchorReach_ = settings.tuning.frictionAnchorReach;
-  // Stiffness is capped at a quarter of the substep rate so the spring stays resolvable (Box2D v3).
-  const float hertz = std::min(settings.tuning.hertz, 0.25f / h);
-  const Softness soft = makeSoftness(hertz, settings.tuning.dampingRatio, h);
-  // A one-way pair has half the effective mass to move: a stiffer spring gives the same response.
-  const Softness oneWaySoft = makeSoftness(2.0f * hertz, settings.tuning.dampingRatio, h);
+  // Every spring is capped at a quarter of the substep rate (h omega <= pi / 2), where Gauss-Seidel
+  // still resolves it; stiffer, coupled points overshoot and stacks shiver (docs/architecture.md).
+  const float maxHertz = kMaxHertzPerSubstepRate / h;
+  const Softness soft =
+      makeSoftness(std::min(settings.tuning.hertz, maxHertz), settings.tuning.dampingRatio, h);
+  // A one-way pair has half the effective mass to move: Box2D v3 doubles its stiffness, within the cap.
+  const Softness oneWaySoft =
+      makeSoftness(std::min(2.0f * settings.tuning.hertz, maxHertz), settings.tuning.dampingRatio, h);
 
   // The contacts to solve and the solver bodies each may write.
   solvedContacts.clear();

@@ -43,6 +43,10 @@ struct Softness {
 };
 Softness makeSoftness(float hertz, float dampingRatio, float h);
 
+// The stiffest spring the solver uses, as a fraction of the substep rate 1/h: contacts, one-way
+// contacts and rigid joints alike (h omega = pi / 2).
+inline constexpr float kMaxHertzPerSubstepRate = 0.25f;
+
 // One normal point of a batch, four lanes.
 struct BatchPoint {
   Vec3W anchorA, anchorB;  // from each centre of mass to the contact point, world, at the step start

@@ -3,6 +3,7 @@
 #include "dynamics/fault_guard.h"
 #include "dynamics/integrate.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace collide::detail {
@@ -93,8 +94,9 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
   contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h);
   JointSolverView view{bodies_, infos_, solverOf_, storage};
   prepareJoints(view, joints);
-  // Box2D v3: rigid joints correct at twice the (capped) contact stiffness.
-  const float rigidHertz = 2.0f * std::min(settings.tuning.hertz, 0.25f / h);
+  // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
+  // joint past it made a net draped over a ball shiver instead of sleeping).
+  const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
   for (int i = 0; i < settings.substeps; ++i) {
     integrateVelocities(bodies_, infos_, storage, settings.gravity, h);
     guard();  // before a bad velocity reaches a contact
