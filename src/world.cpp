@@ -966,6 +966,20 @@ std::optional<RayCastResult> World::castRay(const Ray& ray, LayerMask mask) cons
   return best;
 }
 
+std::vector<BodyPair> World::broadPhasePairs() const {
+  const Impl& w = *impl_;
+  std::vector<BodyPair> out;
+  out.reserve(w.pairs.size());
+  for (const ProxyPair& pair : w.pairs) {
+    if (!w.broadPhase->contains(pair.a) || !w.broadPhase->contains(pair.b)) continue;  // destroyed since
+    out.push_back({w.idOf(static_cast<std::uint32_t>(w.broadPhase->userValue(pair.a))),
+                   w.idOf(static_cast<std::uint32_t>(w.broadPhase->userValue(pair.b)))});
+  }
+  return out;
+}
+
+const BroadPhase& World::broadPhase() const { return *impl_->broadPhase; }
+
 Vec3 World::linearMomentum() const {
   Vec3 p(0.0f);
   for (std::size_t i = 0; i < impl_->bodies.records.size(); ++i) {

@@ -19,6 +19,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace collide {
 
@@ -191,6 +192,13 @@ struct RayCastResult {
   std::uint32_t subShape = 0;  // triangle index for a mesh, child index for a compound
 };
 
+// Two bodies, as World::broadPhasePairs hands them out.
+struct BodyPair {
+  BodyId a;
+  BodyId b;
+  friend bool operator==(const BodyPair&, const BodyPair&) = default;
+};
+
 // Called for each contact before the solve (normal from a to b); return false to disable it for
 // this step (one-way platforms).
 using PreSolveCallback = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
@@ -278,6 +286,14 @@ class World {
   // or a NaN or negative maxDistance throws Error. A ray that starts inside a solid shape hits it
   // at distance 0 with normal -direction (as collide::rayCast).
   std::optional<RayCastResult> castRay(const Ray& ray, LayerMask mask = kAllLayers) const;
+  // The pairs the broad phase kept in the last step (proxy boxes overlapping, static-static never),
+  // in its order (by proxy index); pairs with a body destroyed since are left out. For drawing and
+  // inspection: it allocates.
+  std::vector<BodyPair> broadPhasePairs() const;
+  // The broad phase, read-only: its box queries, and visitNodes for drawing its structure. A body's
+  // proxy box holds its shape grown by the contact tuning's speculative distance (by the step's
+  // predicted motion too, from the start of a step), so between steps it holds where the body is.
+  const BroadPhase& broadPhase() const;
 
   // Sum over dynamic bodies.
   Vec3 linearMomentum() const;

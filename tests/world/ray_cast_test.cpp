@@ -1,5 +1,5 @@
 // World::castRay (picking through the broad phase) against a brute-force cast over every body, on
-// each broad-phase type.
+// each broad-phase type, and World::broadPhasePairs against pairs worked out by hand.
 #include <collide/world.h>
 #include <gtest/gtest.h>
 
@@ -184,3 +184,21 @@ INSTANTIATE_TEST_SUITE_P(EveryBroadPhase, WorldRayCast,
                          ::testing::Values(BroadPhaseType::Tree, BroadPhaseType::SweepAndPrune,
                                            BroadPhaseType::Grid, BroadPhaseType::BruteForce),
                          [](const auto& info) { return std::string(toString(info.param)); });
+
+// Ground plane (index 0) under three balls that sink 5 cm into it: a and b overlap, c is far from
+// both. The plane's box is unbounded sideways and below y = 0, so every ball pairs with it.
+TEST(WorldBroadPhasePairs, AreTheKeptPairsAsBodyIdsAndDropDestroyedBodies) {
+  World world(zeroGravityWorld());
+  const BodyId ground = world.createBody(groundPlane());
+  const BodyId a = world.createBody(sphereBody(Vec3(0.0f, 0.45f, 0.0f), 0.5f, 1.0f));
+  const BodyId b = world.createBody(sphereBody(Vec3(0.9f, 0.45f, 0.0f), 0.5f, 1.0f));
+  const BodyId c = world.createBody(sphereBody(Vec3(10.0f, 0.45f, 0.0f), 0.5f, 1.0f));
+  EXPECT_TRUE(world.broadPhasePairs().empty());  // no step yet
+  world.step(1.0f / 60.0f);
+  const std::vector<BodyPair> expected{{ground, a}, {ground, b}, {ground, c}, {a, b}};
+  EXPECT_EQ(world.broadPhasePairs(), expected);
+  EXPECT_EQ(world.lastStats().keptPairs, expected.size());
+  world.destroyBody(b);
+  const std::vector<BodyPair> left{{ground, a}, {ground, c}};
+  EXPECT_EQ(world.broadPhasePairs(), left);
+}
