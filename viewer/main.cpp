@@ -26,6 +26,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace collide;
@@ -465,8 +466,13 @@ int main(int argc, char** argv) {
   cli.add_flag("--contacts", options.debug.contacts, "draw contact points and normals");
   cli.add_flag("--aabbs", options.debug.aabbs, "draw the bodies' bounding boxes");
   cli.add_flag("--tree", options.debug.broadPhaseNodes, "draw the broad phase's tree nodes (or grid cells)");
+  std::pair<int, int> depths{options.debug.firstDepth, options.debug.lastDepth};
+  cli.add_option("--depths", depths, "with --tree: the first and last tree depth drawn (root 0)")
+      ->check(CLI::NonNegativeNumber);
   cli.add_flag("--pairs", options.debug.pairs, "draw the pairs the broad phase kept");
   CLI11_PARSE(cli, argc, argv);
+  options.debug.firstDepth = depths.first;
+  options.debug.lastDepth = depths.second;
   try {
     return run(options);
   } catch (const std::exception& e) {

@@ -113,9 +113,21 @@ ViewerScene::ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& 
       contacts->push_back({manifold.points[i].midpoint(), manifold.normal});
     return true;
   });
+  std::vector<float> radii, staticRadii;
   for (std::size_t i = 0; i < built_->bodies.size(); ++i) {
     const BodyId id = built_->bodies[i];
-    addBody(id, bodyColour(built_->world.type(id), built_->world.shape(id).type(), i));
+    const Shape& shape = built_->world.shape(id);
+    addBody(id, bodyColour(built_->world.type(id), shape.type(), i));
+    if (shape.type() == ShapeType::Plane) continue;
+    const Aabb box = worldBounds(shape, built_->world.transform(id));
+    (built_->world.type(id) == BodyType::Static ? staticRadii : radii)
+        .push_back(0.5f * glm::length(box.max - box.min));
+  }
+  // The median moving body's bounding radius (a static one's if nothing moves).
+  std::vector<float>& sizes = radii.empty() ? staticRadii : radii;
+  if (!sizes.empty()) {
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    typicalRadius_ = sizes[sizes.size() / 2];
   }
 }
 
@@ -217,7 +229,8 @@ std::vector<LineVertex> ViewerScene::debugLines(const DebugDraw& options) const 
   if (options.pairs) addPairLines(lines);
   if (options.contacts) {
     const Vec3 red(1.0f, 0.2f, 0.2f), yellow(1.0f, 0.9f, 0.2f);
-    constexpr float kCross = 0.05f, kNormal = 0.3f;
+    // Sized by the bodies: a 30 cm normal hides a billiard ball and vanishes next to a house.
+    const float kNormal = 0.6f * typicalRadius_, kCross = 0.1f * typicalRadius_;
     for (const Contact& c : *contacts_) {
       for (int axis = 0; axis < 3; ++axis) {
         Vec3 d(0.0f);

@@ -90,6 +90,7 @@ class ViewerScene {
   std::unordered_map<std::string, int> meshKeys_;
   std::shared_ptr<std::vector<Contact>> contacts_ = std::make_shared<std::vector<Contact>>();
   int steps_ = 0;
+  float typicalRadius_ = 0.5f;  // of the scene's bodies: sizes the contact marks
 };
 
 }  // namespace collide::viewer
