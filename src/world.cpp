@@ -194,6 +194,7 @@ struct World::Impl {
   void updateSleep(float dt);
   float speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const;
   void revertPenetrating();
+  void refreshEscapedProxies();
   void emitEvents();
   ContactEvent makeEvent(const Contact& c, ContactEvent::Type type) const;
 };
@@ -605,6 +606,7 @@ void World::Impl::step(float dt) {
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, def.contact.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
   detail::guardFiniteStates(bodies, faultEvents);
+  refreshEscapedProxies();
   emitEvents();
   if (def.sleeping) updateSleep(dt);
 
@@ -874,6 +876,19 @@ void World::Impl::revertPenetrating() {
   }
 }
 
+// The proxies were grown by the motion the step predicted; an impulse (a hit, a constraint) can
+// carry a body out of its box. Queries between steps (castRay) read these boxes, so a body that
+// escaped gets a box where it is now. The next step updates every awake body's box anyway, so the
+// pairs it finds do not depend on this.
+void World::Impl::refreshEscapedProxies() {
+  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
+    const BodyRecord& r = bodies.records[i];
+    if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
+    const Aabb now = worldBounds(r.shape, detail::bodyTransform(r, bodies.states[i]));
+    if (!broadPhase->bounds(r.proxy).contains(now)) broadPhase->update(r.proxy, proxyBounds(i, 0.0f));
+  }
+}
+
 void World::Impl::emitEvents() {
   touchingCount = 0;
   for (Contact& c : contacts) {
@@ -904,6 +919,55 @@ std::span<const ContactEvent> World::contactEvents() const { return impl_->conta
 std::span<const SensorEvent> World::sensorEvents() const { return impl_->sensorEvents; }
 std::span<const FaultEvent> World::faultEvents() const { return impl_->faultEvents; }
 std::size_t World::touchingContactCount() const { return impl_->touchingCount; }
+
+std::optional<RayCastResult> World::castRay(const Ray& ray, LayerMask mask) const {
+  const Impl& w = *impl_;
+  if (!isFinite(ray.origin))
+    throw Error("world: castRay: origin must be finite, got " + formatVec(ray.origin));
+  const float length = glm::length(ray.direction);
+  if (!isFinite(ray.direction) || !(length > 0.0f) || !std::isfinite(length)) {
+    throw Error("world: castRay: direction must be finite and non-zero, got " + formatVec(ray.direction));
+  }
+  if (std::isnan(ray.maxDistance) || ray.maxDistance < 0.0f) {
+    throw Error("world: castRay: maxDistance must be >= 0, got " + formatFloat(ray.maxDistance));
+  }
+  Ray unit = ray;
+  unit.direction = ray.direction / length;
+  std::optional<RayCastResult> best;
+  std::uint32_t bestIndex = 0;
+  // Each candidate's shape is cast over the whole ray (not clipped to the best so far), so that an
+  // equal distance is seen and the tie goes to the lower index whatever order the boxes come in;
+  // the broad phase still prunes every box entered beyond the best hit.
+  w.broadPhase->rayCast(unit, mask, [&](ProxyId proxy, float) {
+    const auto index = static_cast<std::uint32_t>(w.broadPhase->userValue(proxy));
+    const BodyRecord& r = w.bodies.records[index];
+    if (!r.sensor) {
+      const std::optional<RayHit> hit =
+          rayCast(r.shape, detail::bodyTransform(r, w.bodies.states[index]), unit);
+      if (hit && (!best || hit->distance < best->distance ||
+                  (hit->distance == best->distance && index < bestIndex))) {
+        best = RayCastResult{w.idOf(index), hit->distance, hit->point, hit->normal, hit->subShape};
+        bestIndex = index;
+      }
+    }
+    return best ? best->distance : unit.maxDistance;
+  });
+  return best;
+}
+
+std::vector<BodyPair> World::broadPhasePairs() const {
+  const Impl& w = *impl_;
+  std::vector<BodyPair> out;
+  out.reserve(w.pairs.size());
+  for (const ProxyPair& pair : w.pairs) {
+    if (!w.broadPhase->contains(pair.a) || !w.broadPhase->contains(pair.b)) continue;  // destroyed since
+    out.push_back({w.idOf(static_cast<std::uint32_t>(w.broadPhase->userValue(pair.a))),
+                   w.idOf(static_cast<std::uint32_t>(w.broadPhase->userValue(pair.b)))});
+  }
+  return out;
+}
+
+const BroadPhase& World::broadPhase() const { return *impl_->broadPhase; }
 
 Vec3 World::linearMomentum() const {
   Vec3 p(0.0f);

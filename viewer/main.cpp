@@ -1,11 +1,15 @@
 // collide-viewer [SCENE]: the interactive testbed. Shows a scene (a built-in name or a scene file,
 // as `collide run` takes) stepping live, with a panel to pause, step, restart and switch scenes,
-// and the step's timing and pair counters. `--screenshot FILE --frames N` renders N steps into a
+// edit every world setting, draw the broad phase, and the step's timing and pair counters; the
+// mouse drags bodies and shoots spheres. `--screenshot FILE --frames N` renders N steps into a
 // hidden window and writes a PNG, which is how the viewer is tested headless (under xvfb-run).
+#include "camera_report.h"
 #include "gl.h"
+#include "interaction.h"
 #include "orbit_camera.h"
 #include "renderer.h"
 #include "viewer_scene.h"
+#include "world_settings_panel.h"
 
 #include <collide/error.h>
 #include <collide/scene/builtin_scenes.h>
@@ -16,11 +20,13 @@
 #include <stb_image_write.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace collide;
@@ -28,9 +34,13 @@ using namespace collide::viewer;
 
 namespace {
 
+constexpr Vec3 kBackground(0.16f, 0.18f, 0.21f);
+
 struct Options {
   std::string scene = "proxies";
   std::string screenshot;  // empty: interactive
+  std::string cameraJson;  // with --screenshot: the camera and the bodies, for the pixel test
+  std::string broadPhase;  // empty: the scene's
   int frames = 120;
   int width = 1280;
   int height = 720;
@@ -59,18 +69,52 @@ struct App {
   bool stepOnce = false;
   double stepMs = 0.0;  // smoothed
   double lastStepMs = 0.0;
-  std::string error;  // the last scene that failed to load, shown in the panel
+  std::string error;  // the last scene or settings the World refused, shown in the panel
+
+  // The settings the next restart builds the World with: the scene's until edited.
+  WorldDef settings;
+  float dt = 1.0f / 60.0f;
+  bool settingsEdited = false;  // differ from the running World's
+
+  MouseSpring spring;
+  SphereShot shot;
+  enum class MouseMode { None, Orbit, Drag };
+  MouseMode mouseMode = MouseMode::None;
+  bool leftWasDown = false;
+  int shotsRequested = 0;  // space presses since the last frame (a callback: a tap is shorter than a frame)
   double lastX = 0.0, lastY = 0.0;
 
-  void load(const std::string& name, bool reframe) {
-    // Load first, so that a scene that fails leaves the current one running.
+  // Loads the scene and builds its World (with the edited settings when `keepSettings`). Builds
+  // first, so that a scene or settings the World refuses leave the current scene running.
+  void load(const std::string& name, bool reframe, bool keepSettings) {
     scene::Scene loaded = loadSceneArgument(name);
+    if (keepSettings) {
+      loaded.world = settings;
+      loaded.dt = dt;
+    } else if (!options.broadPhase.empty()) {
+      loaded.world.broadPhase.type = parseBroadPhaseType(options.broadPhase);
+    }
+    scene::SceneWorld built = scene::buildWorld(loaded);
+    spring.forget();  // its bodies belong to the World being replaced
+    mouseMode = MouseMode::None;
     scene.reset();
     renderer->clearMeshes();
-    scene = std::make_unique<ViewerScene>(std::move(loaded), *renderer);
+    scene = std::make_unique<ViewerScene>(std::move(loaded), std::move(built), *renderer);
     sceneName = name;
+    settings = scene->scene().world;
+    dt = scene->scene().dt;
+    settingsEdited = false;
     stepMs = lastStepMs = 0.0;
     if (reframe) camera.frame(scene->bounds());
+  }
+
+  void tryLoad(const std::string& name, bool reframe, bool keepSettings) {
+    try {
+      load(name, reframe, keepSettings);
+      error.clear();
+    } catch (const Error& e) {
+      error = e.what();
+    }
   }
 
   void step() {
@@ -78,21 +122,22 @@ struct App {
     stepMs = scene->stepCount() == 1 ? lastStepMs : 0.9 * stepMs + 0.1 * lastStepMs;
   }
 
+  Ray cursorRay() const {
+    int width = 0, height = 0;
+    glfwGetWindowSize(window, &width, &height);
+    return camera.rayThrough(float(lastX), float(lastY), float(width), float(height));
+  }
+
   void panel() {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    // As wide as its widgets, at most as tall as the window (it scrolls then).
+    ImGui::SetNextWindowSizeConstraints(ImVec2(300, 0), ImVec2(600, ImGui::GetIO().DisplaySize.y - 20));
     ImGui::Begin("collide", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::SetNextItemWidth(200.0f);
     if (ImGui::BeginCombo("scene", sceneName.c_str())) {
       for (const scene::BuiltinScene& builtin : scene::builtinScenes()) {
         const std::string name(builtin.name);
-        if (ImGui::Selectable(name.c_str(), name == sceneName)) {
-          try {
-            load(name, true);
-            error.clear();
-          } catch (const Error& e) {
-            error = e.what();
-          }
-        }
+        if (ImGui::Selectable(name.c_str(), name == sceneName)) tryLoad(name, true, false);
         if (ImGui::IsItemHovered()) {
           ImGui::SetTooltip("%.*s", int(builtin.description.size()), builtin.description.data());
         }
@@ -103,20 +148,27 @@ struct App {
     ImGui::SameLine();
     if (ImGui::Button("Step")) stepOnce = true;
     ImGui::SameLine();
-    if (ImGui::Button("Restart")) {
-      try {
-        load(sceneName, false);
-      } catch (const Error& e) {
-        error = e.what();
-      }
+    if (ImGui::Button("Restart")) tryLoad(sceneName, false, true);
+    if (!error.empty()) {
+      ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
+      ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
+      ImGui::PopTextWrapPos();
     }
-    if (!error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
+    statistics();
+    if (ImGui::CollapsingHeader("Debug drawing", ImGuiTreeNodeFlags_DefaultOpen)) debugDrawing();
+    if (ImGui::CollapsingHeader("Mouse and shots", ImGuiTreeNodeFlags_DefaultOpen)) mouseAndShots();
+    if (ImGui::CollapsingHeader("World settings")) worldSettings();
+    ImGui::End();
+  }
+
+  void statistics() {
     const World& world = scene->world();
     ImGui::Separator();
     ImGui::Text("step %d  (t = %.2f s, dt = %.4f s)", scene->stepCount(),
                 scene->stepCount() * scene->scene().dt, scene->scene().dt);
     ImGui::Text("%.3f ms per step (last %.3f)", stepMs, lastStepMs);
     ImGui::Text("bodies %zu   touching pairs %zu", world.bodyCount(), world.touchingContactCount());
+    ImGui::Text("broad phase: %s", std::string(toString(world.def().broadPhase.type)).c_str());
     const BroadPhaseStats& stats = world.lastStats();
     if (ImGui::BeginTable("stats", 2)) {
       const auto row = [](const char* label, unsigned long long value) {
@@ -134,38 +186,128 @@ struct App {
       row("contact pairs", stats.contactPairs);
       ImGui::EndTable();
     }
-    ImGui::Separator();
-    ImGui::Checkbox("contact points and normals", &options.debug.contacts);
-    ImGui::Checkbox("bounding boxes", &options.debug.aabbs);
-    ImGui::TextDisabled("left drag: orbit, right drag: pan, wheel: zoom");
-    ImGui::End();
   }
 
-  void handleMouse() {
+  void debugDrawing() {
+    DebugDraw& debug = options.debug;
+    ImGui::Checkbox("contact points and normals", &debug.contacts);
+    ImGui::Checkbox("bounding boxes", &debug.aabbs);
+    ImGui::Checkbox("pairs the broad phase kept", &debug.pairs);
+    const BroadPhaseType type = scene->world().def().broadPhase.type;
+    if (type == BroadPhaseType::Tree) {
+      ImGui::Checkbox("broad-phase tree", &debug.broadPhaseNodes);
+      if (debug.broadPhaseNodes) {
+        const int deepest = scene->broadPhaseDepth();
+        ImGui::SameLine();
+        ImGui::Checkbox("static tree too", &debug.staticTree);
+        ImGui::SetNextItemWidth(200.0f);
+        ImGui::DragIntRange2("depths", &debug.firstDepth, &debug.lastDepth, 0.1f, 0, deepest, "from %d",
+                             "to %d");
+        ImGui::TextDisabled("root 0, deepest %d; colour by depth", deepest);
+      }
+    } else if (type == BroadPhaseType::Grid) {
+      ImGui::Checkbox("broad-phase grid cells", &debug.broadPhaseNodes);
+    } else {
+      ImGui::TextDisabled("(%s keeps no boxes of its own to draw)", std::string(toString(type)).c_str());
+    }
+  }
+
+  void mouseAndShots() {
+    ImGui::TextDisabled("left drag on a body: pull it; elsewhere: orbit");
+    ImGui::TextDisabled("right drag: pan; wheel: zoom");
+    ImGui::TextDisabled("space: shoot a sphere at the cursor");
+    ImGui::PushItemWidth(160.0f);
+    ImGui::SliderFloat("spring hertz", &spring.hertz, 0.5f, 20.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SliderFloat("spring damping", &spring.dampingRatio, 0.0f, 2.0f, "%.2f",
+                       ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SliderFloat("shot speed (m/s)", &shot.speed, 1.0f, 500.0f, "%.0f",
+                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SliderFloat("shot radius (m)", &shot.radius, 0.02f, 1.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SliderFloat("shot spin (rad/s)", &shot.spin, 0.0f, 500.0f, "%.0f", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::PopItemWidth();
+    ImGui::Checkbox("shot ccd", &shot.ccd);
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "BodyDef::ccd on the shot. Speculative contacts alone stop straight shots;\n"
+          "small fast spinning ones tunnel without ccd (docs/ccd.md; the tunneling scene).");
+    }
+    if (shot.ccd && !scene->world().def().ccd) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "(the world's ccd is off)");
+    }
+    if (ImGui::Button("Shoot at the centre")) {
+      scene->shoot(Ray{camera.eye(), camera.forward(), 1e30f}, shot);
+    }
+    ImGui::SameLine();
+    ImGui::Text("%zu shots (at most %zu)", scene->shotCount(), ViewerScene::kMaxShots);
+  }
+
+  void worldSettings() {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
+    ImGui::TextDisabled(
+        "The World fixes its settings when it is created: Restart rebuilds it from the "
+        "scene with these.");
+    ImGui::PopTextWrapPos();
+    settingsEdited |= editWorldSettings(settings, dt);
+    if (ImGui::Button(settingsEdited ? "Restart with these *" : "Restart with these"))
+      tryLoad(sceneName, false, true);
+    ImGui::SameLine();
+    if (ImGui::Button("The scene's settings")) {
+      tryLoad(sceneName, false, false);
+    }
+  }
+
+  // Left drag: on a dynamic body it pulls the body (MouseSpring), elsewhere it orbits. Space shoots.
+  void handleInput() {
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(window, &x, &y);
     const float dx = float(x - lastX), dy = float(y - lastY);
     lastX = x;
     lastY = y;
-    if (ImGui::GetIO().WantCaptureMouse) return;
+    const ImGuiIO& io = ImGui::GetIO();
     int width = 0, height = 0;
     glfwGetWindowSize(window, &width, &height);
-    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera.orbit(dx, dy);
-    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
-        glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) {
+    World& world = scene->world();
+
+    const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    if (left && !leftWasDown && !io.WantCaptureMouse) {
+      mouseMode = spring.grab(world, cursorRay(), camera.forward()) ? MouseMode::Drag : MouseMode::Orbit;
+    }
+    if (!left && leftWasDown) {
+      if (mouseMode == MouseMode::Drag) spring.release(world);
+      mouseMode = MouseMode::None;
+    }
+    leftWasDown = left;
+    if (mouseMode == MouseMode::Orbit) camera.orbit(dx, dy);
+    if (mouseMode == MouseMode::Drag) {
+      spring.drag(world, cursorRay(), camera.forward());
+      if (!spring.active()) mouseMode = MouseMode::None;  // the body went away
+    }
+    if (!io.WantCaptureMouse && (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                                 glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)) {
       camera.pan(dx, dy, float(height));
     }
+
+    for (; shotsRequested > 0; --shotsRequested) scene->shoot(cursorRay(), shot);
   }
 
   void render(int width, int height, bool ui) {
     glViewport(0, 0, width, height);
-    glClearColor(0.16f, 0.18f, 0.21f, 1.0f);
+    glClearColor(kBackground.r, kBackground.g, kBackground.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::mat4 viewProjection =
         camera.projection(float(width) / float(std::max(height, 1))) * camera.view();
     const Vec3 light = glm::normalize(Vec3(-0.35f, -1.0f, -0.55f));
     renderer->drawMeshes(scene->instances(renderer->meshCount()), viewProjection, light);
-    renderer->drawLines(scene->debugLines(options.debug), viewProjection);
+    std::vector<LineVertex> lines = scene->debugLines(options.debug);
+    if (spring.active()) {
+      // The spring: from the grabbed point to the cursor's point, white.
+      const Vec3 white(1.0f);
+      lines.push_back({spring.grabbedPoint(scene->world()), white});
+      lines.push_back({spring.target(), white});
+    }
+    renderer->drawLines(lines, viewProjection);
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -179,6 +321,12 @@ void scrollCallback(GLFWwindow* window, double dx, double dy) {
   ImGui_ImplGlfw_ScrollCallback(window, dx, dy);
   if (ImGui::GetIO().WantCaptureMouse) return;
   static_cast<App*>(glfwGetWindowUserPointer(window))->camera.zoom(float(dy));
+}
+
+void keyCallback(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  ImGui_ImplGlfw_KeyCallback(window, key, scancode, action, mods);
+  if (key != GLFW_KEY_SPACE || action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  ++static_cast<App*>(glfwGetWindowUserPointer(window))->shotsRequested;
 }
 
 // Renders into an offscreen framebuffer of the requested size (a hidden window's own buffer is
@@ -219,11 +367,15 @@ void writeScreenshot(App& app) {
   }
   std::printf("%s: %dx%d, scene %s after %d steps\n", app.options.screenshot.c_str(), width, height,
               app.sceneName.c_str(), app.scene->stepCount());
+  if (!app.options.cameraJson.empty()) {
+    writeCameraReport(app.options.cameraJson, app.camera, width, height, kBackground, *app.scene);
+  }
 }
 
 int run(const Options& options) {
   // The scene first: a bad name or file is reported without needing a display.
   (void)loadSceneArgument(options.scene);
+  if (!options.broadPhase.empty()) (void)parseBroadPhaseType(options.broadPhase);
   glfwSetErrorCallback(
       [](int code, const char* text) { std::fprintf(stderr, "GLFW error %d: %s\n", code, text); });
   if (!glfwInit()) throw Error("viewer: GLFW cannot start (no display? run under xvfb-run -a)");
@@ -250,20 +402,28 @@ int run(const Options& options) {
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(app.window, true);
-  glfwSetScrollCallback(app.window, scrollCallback);  // chains to ImGui's
+  glfwSetScrollCallback(app.window, scrollCallback);  // both chain to ImGui's
+  glfwSetKeyCallback(app.window, keyCallback);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
-  int status = 0;
+  const auto shutdown = [&] {
+    app.scene.reset();
+    app.renderer.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(app.window);
+  };
   try {
     app.renderer = std::make_unique<Renderer>();
-    app.load(options.scene, true);
+    app.load(options.scene, true, false);
     if (headless) {
       writeScreenshot(app);
     } else {
       glEnable(GL_MULTISAMPLE);
       while (!glfwWindowShouldClose(app.window)) {
         glfwPollEvents();
-        app.handleMouse();
+        app.handleInput();
         if (app.playing || app.stepOnce) app.step();
         app.stepOnce = false;
         int width = 0, height = 0;
@@ -273,21 +433,11 @@ int run(const Options& options) {
       }
     }
   } catch (...) {
-    app.scene.reset();
-    app.renderer.reset();
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
-    glfwDestroyWindow(app.window);
+    shutdown();
     throw;
   }
-  app.scene.reset();
-  app.renderer.reset();
-  ImGui_ImplOpenGL3_Shutdown();
-  ImGui_ImplGlfw_Shutdown();
-  ImGui::DestroyContext();
-  glfwDestroyWindow(app.window);
-  return status;
+  shutdown();
+  return 0;
 }
 
 }  // namespace
@@ -307,10 +457,22 @@ int main(int argc, char** argv) {
   cli.add_option("--height", options.height, "window or image height")
       ->check(CLI::Range(16, 8192))
       ->capture_default_str();
+  cli.add_option("--camera-json", options.cameraJson,
+                 "with --screenshot: also write the camera and every body's centre, size and colour as JSON")
+      ->needs(cli.get_option("--screenshot"));
+  cli.add_option("--broad-phase", options.broadPhase,
+                 "override the scene's broad phase: tree, sap, grid, brute");
   cli.add_flag("--no-ui", options.noUi, "hide the panel");
   cli.add_flag("--contacts", options.debug.contacts, "draw contact points and normals");
   cli.add_flag("--aabbs", options.debug.aabbs, "draw the bodies' bounding boxes");
+  cli.add_flag("--tree", options.debug.broadPhaseNodes, "draw the broad phase's tree nodes (or grid cells)");
+  std::pair<int, int> depths{options.debug.firstDepth, options.debug.lastDepth};
+  cli.add_option("--depths", depths, "with --tree: the first and last tree depth drawn (root 0)")
+      ->check(CLI::NonNegativeNumber);
+  cli.add_flag("--pairs", options.debug.pairs, "draw the pairs the broad phase kept");
   CLI11_PARSE(cli, argc, argv);
+  options.debug.firstDepth = depths.first;
+  options.debug.lastDepth = depths.second;
   try {
     return run(options);
   } catch (const std::exception& e) {

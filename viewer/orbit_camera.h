@@ -28,6 +28,23 @@ struct OrbitCamera {
     return glm::perspective(fovY, aspect, std::max(0.01f, 0.01f * distance), 1000.0f + 10.0f * distance);
   }
 
+  // Unit, from the eye to the target.
+  Vec3 forward() const { return glm::normalize(target - eye()); }
+
+  // The ray from the eye through a point of the viewport (x to the right, y down, in the same
+  // units as width and height: window coordinates for the cursor), as the projection draws it.
+  Ray rayThrough(float x, float y, float width, float height) const {
+    const float ndcX = 2.0f * x / std::max(width, 1.0f) - 1.0f;
+    const float ndcY = 1.0f - 2.0f * y / std::max(height, 1.0f);
+    const glm::mat4 v = view();
+    const Vec3 right(v[0][0], v[1][0], v[2][0]);
+    const Vec3 up(v[0][1], v[1][1], v[2][1]);
+    const float halfHeight = std::tan(0.5f * fovY);
+    const float aspect = std::max(width, 1.0f) / std::max(height, 1.0f);
+    const Vec3 direction = forward() + ndcX * halfHeight * aspect * right + ndcY * halfHeight * up;
+    return Ray{eye(), glm::normalize(direction), 1e30f};
+  }
+
   void orbit(float dx, float dy) {
     yaw -= 0.008f * dx;
     pitch = std::clamp(pitch + 0.008f * dy, -1.55f, 1.55f);

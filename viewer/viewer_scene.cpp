@@ -2,6 +2,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -89,10 +90,21 @@ void addBox(std::vector<LineVertex>& lines, const Aabb& box, const Vec3& colour)
   }
 }
 
+// Colours by tree depth: the root warm, deeper levels cycling through cooler hues.
+Vec3 depthColour(int depth) {
+  static constexpr float kLevels[][3] = {{1.00f, 0.45f, 0.25f}, {1.00f, 0.80f, 0.25f}, {0.55f, 0.95f, 0.30f},
+                                         {0.25f, 0.90f, 0.80f}, {0.35f, 0.60f, 1.00f}, {0.75f, 0.45f, 1.00f},
+                                         {1.00f, 0.45f, 0.80f}};
+  const auto& c = kLevels[static_cast<std::size_t>(depth) % std::size(kLevels)];
+  return {c[0], c[1], c[2]};
+}
+
 }  // namespace
 
-ViewerScene::ViewerScene(scene::Scene scene, Renderer& renderer)
-    : scene_(std::move(scene)), built_(std::make_unique<scene::SceneWorld>(scene::buildWorld(scene_))) {
+ViewerScene::ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& renderer)
+    : scene_(std::move(scene)),
+      renderer_(renderer),
+      built_(std::make_unique<scene::SceneWorld>(std::move(built))) {
   // The pre-solve callback sees every manifold of the step: the only place the World hands out
   // its contact points. It keeps them for debug drawing and never disables a contact.
   std::shared_ptr<std::vector<Contact>> contacts = contacts_;
@@ -101,29 +113,56 @@ ViewerScene::ViewerScene(scene::Scene scene, Renderer& renderer)
       contacts->push_back({manifold.points[i].midpoint(), manifold.normal});
     return true;
   });
+  std::vector<float> radii, staticRadii;
   for (std::size_t i = 0; i < built_->bodies.size(); ++i) {
     const BodyId id = built_->bodies[i];
-    DrawnBody body;
-    body.id = id;
     const Shape& shape = built_->world.shape(id);
-    addParts(shape, glm::mat4(1.0f), renderer, body.parts);
-    body.colour = bodyColour(built_->world.type(id), shape.type(), i);
-    bodies_.push_back(std::move(body));
+    addBody(id, bodyColour(built_->world.type(id), shape.type(), i));
+    if (shape.type() == ShapeType::Plane) continue;
+    const Aabb box = worldBounds(shape, built_->world.transform(id));
+    (built_->world.type(id) == BodyType::Static ? staticRadii : radii)
+        .push_back(0.5f * glm::length(box.max - box.min));
+  }
+  // The median moving body's bounding radius (a static one's if nothing moves).
+  std::vector<float>& sizes = radii.empty() ? staticRadii : radii;
+  if (!sizes.empty()) {
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    typicalRadius_ = sizes[sizes.size() / 2];
   }
 }
 
-void ViewerScene::addParts(const Shape& shape, const glm::mat4& local, Renderer& renderer,
-                           std::vector<Part>& parts) {
+void ViewerScene::addBody(BodyId id, const glm::vec4& colour) {
+  DrawnBody body;
+  body.id = id;
+  addParts(built_->world.shape(id), glm::mat4(1.0f), body.parts);
+  body.colour = colour;
+  bodies_.push_back(std::move(body));
+}
+
+void ViewerScene::addParts(const Shape& shape, const glm::mat4& local, std::vector<DrawnBody::Part>& parts) {
   if (shape.type() == ShapeType::Compound) {
     for (const Compound::Child& child : shape.compound().children()) {
-      addParts(child.shape, local * toMatrix(child.transform), renderer, parts);
+      addParts(child.shape, local * toMatrix(child.transform), parts);
     }
     return;
   }
   const std::string key = meshKey(shape);
   auto found = meshKeys_.find(key);
-  if (found == meshKeys_.end()) found = meshKeys_.emplace(key, renderer.addMesh(shapeMesh(shape))).first;
+  if (found == meshKeys_.end()) found = meshKeys_.emplace(key, renderer_.addMesh(shapeMesh(shape))).first;
   parts.push_back({found->second, local});
+}
+
+BodyId ViewerScene::shoot(const Ray& ray, const SphereShot& shot) {
+  if (shots_.size() >= kMaxShots) {
+    const BodyId oldest = shots_.front();
+    shots_.pop_front();
+    if (world().isValid(oldest)) world().destroyBody(oldest);
+    std::erase_if(bodies_, [&](const DrawnBody& body) { return body.id == oldest; });
+  }
+  const BodyId id = shootSphere(world(), ray, shot);
+  shots_.push_back(id);
+  addBody(id, {0.95f, 0.95f, 0.90f, 1.0f});  // off-white: no scene body has it
+  return id;
 }
 
 double ViewerScene::step() {
@@ -156,15 +195,19 @@ Aabb ViewerScene::bounds() const {
   return box;
 }
 
+glm::vec4 ViewerScene::drawnColour(const DrawnBody& body) const {
+  // Resting bodies are drawn darker, so that sleeping islands show.
+  const bool dimmed = world().type(body.id) == BodyType::Dynamic && !world().isAwake(body.id);
+  return dimmed ? glm::vec4(glm::vec3(body.colour) * 0.6f, body.colour.a) : body.colour;
+}
+
 std::vector<std::vector<Instance>> ViewerScene::instances(int meshCount) const {
   std::vector<std::vector<Instance>> out(static_cast<std::size_t>(meshCount));
   for (const DrawnBody& body : bodies_) {
     if (!world().isValid(body.id)) continue;
     const glm::mat4 model = toMatrix(world().transform(body.id));
-    // Resting bodies are drawn darker, so that sleeping islands show.
-    const bool dimmed = world().type(body.id) == BodyType::Dynamic && !world().isAwake(body.id);
-    const glm::vec4 colour = dimmed ? glm::vec4(glm::vec3(body.colour) * 0.6f, body.colour.a) : body.colour;
-    for (const Part& part : body.parts) {
+    const glm::vec4 colour = drawnColour(body);
+    for (const DrawnBody::Part& part : body.parts) {
       if (part.mesh < meshCount)
         out[static_cast<std::size_t>(part.mesh)].push_back({model * part.local, colour});
     }
@@ -182,9 +225,12 @@ std::vector<LineVertex> ViewerScene::debugLines(const DebugDraw& options) const 
       addBox(lines, worldBounds(shape, world().transform(body.id)), Vec3(0.2f, 0.9f, 0.3f));
     }
   }
+  if (options.broadPhaseNodes) addBroadPhaseLines(options, lines);
+  if (options.pairs) addPairLines(lines);
   if (options.contacts) {
     const Vec3 red(1.0f, 0.2f, 0.2f), yellow(1.0f, 0.9f, 0.2f);
-    constexpr float kCross = 0.05f, kNormal = 0.3f;
+    // Sized by the bodies: a 30 cm normal hides a billiard ball and vanishes next to a house.
+    const float kNormal = 0.6f * typicalRadius_, kCross = 0.1f * typicalRadius_;
     for (const Contact& c : *contacts_) {
       for (int axis = 0; axis < 3; ++axis) {
         Vec3 d(0.0f);
@@ -197,6 +243,37 @@ std::vector<LineVertex> ViewerScene::debugLines(const DebugDraw& options) const 
     }
   }
   return lines;
+}
+
+void ViewerScene::addBroadPhaseLines(const DebugDraw& options, std::vector<LineVertex>& lines) const {
+  world().broadPhase().visitNodes([&](const BroadPhaseNode& node) {
+    if (node.tree == MotionType::Static && !options.staticTree) return;
+    if (node.depth < options.firstDepth || node.depth > options.lastDepth) return;
+    addBox(lines, node.box, depthColour(node.depth));
+  });
+}
+
+int ViewerScene::broadPhaseDepth() const {
+  int deepest = 0;
+  world().broadPhase().visitNodes(
+      [&](const BroadPhaseNode& node) { deepest = std::max(deepest, node.depth); });
+  return deepest;
+}
+
+void ViewerScene::addPairLines(std::vector<LineVertex>& lines) const {
+  // A line joins the two bodies' centres; a static body's end is the point of its box nearest the
+  // other body's centre instead, since a plane has no centre and a ground's is far below.
+  const Vec3 colour(0.95f, 0.35f, 0.95f);
+  for (const BodyPair& pair : world().broadPhasePairs()) {
+    const Vec3 a = world().centerOfMass(pair.a), b = world().centerOfMass(pair.b);
+    const auto end = [&](BodyId id, const Vec3& centre, const Vec3& other) {
+      if (world().type(id) != BodyType::Static) return centre;
+      const Aabb box = worldBounds(world().shape(id), world().transform(id));
+      return glm::clamp(other, box.min, box.max);
+    };
+    lines.push_back({end(pair.a, a, b), colour});
+    lines.push_back({end(pair.b, b, a), colour});
+  }
 }
 
 }  // namespace collide::viewer

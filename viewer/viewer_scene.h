@@ -2,10 +2,12 @@
 // its shapes, generated once, and a colour per body). Rebuilt from the Scene on restart.
 #pragma once
 
+#include "interaction.h"
 #include "renderer.h"
 
 #include <collide/scene/scene.h>
 
+#include <deque>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -16,12 +18,19 @@ namespace collide::viewer {
 struct DebugDraw {
   bool contacts = false;  // contact points and normals (from the pre-solve callback)
   bool aabbs = false;     // each body's world box
+  // The broad phase's own boxes (BroadPhase::visitNodes): the tree's nodes from firstDepth to
+  // lastDepth, coloured by depth, or the grid's occupied cells.
+  bool broadPhaseNodes = false;
+  bool staticTree = false;  // the static bodies' tree too (the ground's box is huge)
+  int firstDepth = 0;
+  int lastDepth = 64;
+  bool pairs = false;  // the pairs the broad phase kept in the last step
 };
 
 class ViewerScene {
  public:
-  // Builds the World and uploads the meshes. Throws collide::Error for a scene the World refuses.
-  ViewerScene(scene::Scene scene, Renderer& renderer);
+  // Takes the World built from the scene (scene::buildWorld) and uploads the meshes.
+  ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& renderer);
 
   const scene::Scene& scene() const { return scene_; }
   World& world() { return built_->world; }
@@ -31,38 +40,57 @@ class ViewerScene {
   double step();
   int stepCount() const { return steps_; }
 
+  // Shoots a sphere along the ray and draws it from now on. The oldest shot is removed once there
+  // are kMaxShots, so that shooting for a while does not slow the world down without end.
+  static constexpr std::size_t kMaxShots = 64;
+  BodyId shoot(const Ray& ray, const SphereShot& shot);
+  std::size_t shotCount() const { return shots_.size(); }
+
   // A box around the moving bodies (every body but planes if none moves; around the origin when
   // that leaves nothing).
   Aabb bounds() const;
 
+  struct DrawnBody {
+    struct Part {
+      int mesh = 0;
+      glm::mat4 local{1.0f};  // the compound child's transform, identity for a simple shape
+    };
+    BodyId id;
+    std::vector<Part> parts;
+    glm::vec4 colour{1.0f};  // rgb; alpha 0 for a checkerboard (static bodies and planes)
+  };
+  // The bodies drawn, in scene order and then the shots; some may have been destroyed since.
+  const std::vector<DrawnBody>& drawnBodies() const { return bodies_; }
+  // The colour the body is drawn with this frame (darker while asleep).
+  glm::vec4 drawnColour(const DrawnBody& body) const;
+
   // This frame's placements, one list per renderer mesh.
   std::vector<std::vector<Instance>> instances(int meshCount) const;
   std::vector<LineVertex> debugLines(const DebugDraw& options) const;
+  // The deepest node of the broad phase's structure (0 when it has none), for the depth sliders.
+  int broadPhaseDepth() const;
 
  private:
-  struct Part {
-    int mesh = 0;
-    glm::mat4 local{1.0f};  // the compound child's transform, identity for a simple shape
-  };
-  struct DrawnBody {
-    BodyId id;
-    std::vector<Part> parts;
-    glm::vec4 colour{1.0f};
-  };
   struct Contact {
     Vec3 point;
     Vec3 normal;
   };
 
-  void addParts(const Shape& shape, const glm::mat4& local, Renderer& renderer, std::vector<Part>& parts);
+  void addBody(BodyId id, const glm::vec4& colour);
+  void addParts(const Shape& shape, const glm::mat4& local, std::vector<DrawnBody::Part>& parts);
+  void addBroadPhaseLines(const DebugDraw& options, std::vector<LineVertex>& lines) const;
+  void addPairLines(std::vector<LineVertex>& lines) const;
 
   scene::Scene scene_;
+  Renderer& renderer_;
   std::unique_ptr<scene::SceneWorld> built_;
   std::vector<DrawnBody> bodies_;
+  std::deque<BodyId> shots_;
   // Meshes shared by shapes with equal parameters (primitives) or the same polyhedron (pointer).
   std::unordered_map<std::string, int> meshKeys_;
   std::shared_ptr<std::vector<Contact>> contacts_ = std::make_shared<std::vector<Contact>>();
   int steps_ = 0;
+  float typicalRadius_ = 0.5f;  // of the scene's bodies: sizes the contact marks
 };
 
 }  // namespace collide::viewer

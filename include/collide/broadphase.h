@@ -112,6 +112,16 @@ using RayCastCallback = std::function<float(ProxyId id, float distance)>;
 // Called for each proxy found by an overlap query; return false to stop the query.
 using OverlapCallback = std::function<bool(ProxyId id)>;
 
+// One box of a broad phase's own structure, as visitNodes hands it out (for debug drawing).
+struct BroadPhaseNode {
+  Aabb box;
+  int depth = 0;        // Tree: 0 at a root, a child one deeper than its parent; Grid: 0
+  bool isLeaf = false;  // Tree: a proxy's box (fattened by treeMargin if movable); Grid: always
+  // Tree: the tree the node is in (static and movable proxies are kept in two trees); Grid: Movable.
+  MotionType tree = MotionType::Movable;
+};
+using NodeVisitor = std::function<void(const BroadPhaseNode& node)>;
+
 class BroadPhase {
  public:
   virtual ~BroadPhase();
@@ -170,6 +180,11 @@ class BroadPhase {
 
   // Structural self-check for tests; throws collide::Error naming the broken invariant.
   virtual void validate() const {}
+
+  // Visits the boxes the algorithm keeps besides the proxies' own, read-only, in no particular
+  // order: every node of the Tree's two dynamic trees with its depth, every occupied cell of the
+  // Grid. SweepAndPrune and BruteForce keep none and visit nothing. For drawing, not for queries.
+  virtual void visitNodes(const NodeVisitor& visit) const { (void)visit; }
 
   // Per-proxy storage shared by all algorithms (public so the algorithms, which live in src/, can
   // read it; user code should use the accessors above).

@@ -19,6 +19,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace collide {
 
@@ -193,6 +194,22 @@ struct FaultEvent {
   std::uint8_t fields = 0;  // the parts of the state that were non-finite (bits above)
 };
 
+// The hit of World::castRay: the body and where its shape was hit.
+struct RayCastResult {
+  BodyId body;
+  float distance = 0.0f;  // along the ray (its direction normalised)
+  Vec3 point{0.0f};
+  Vec3 normal{0.0f};           // unit, the surface normal at the hit, facing the ray's origin side
+  std::uint32_t subShape = 0;  // triangle index for a mesh, child index for a compound
+};
+
+// Two bodies, as World::broadPhasePairs hands them out.
+struct BodyPair {
+  BodyId a;
+  BodyId b;
+  friend bool operator==(const BodyPair&, const BodyPair&) = default;
+};
+
 // Called for each contact before the solve (normal from a to b); return false to disable it for
 // this step (one-way platforms).
 using PreSolveCallback = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
@@ -270,6 +287,24 @@ class World {
   std::span<const FaultEvent> faultEvents() const;
   // The number of touching (non-sensor) contact pairs after the last step.
   std::size_t touchingContactCount() const;
+
+  // ---- Queries between steps, through the broad phase. ----
+  // The closest body whose shape the ray hits within ray.maxDistance (the lecture's picking: the
+  // broad phase's boxes find the candidates, each candidate's shape is cast exactly). Only bodies
+  // whose layer passes the mask ((layer & mask) != 0); sensors are skipped, having no surface to
+  // hit. Equal distances go to the lower body index, so every broad-phase type gives the same
+  // answer. The direction is normalised here; a non-finite origin, a zero or non-finite direction
+  // or a NaN or negative maxDistance throws Error. A ray that starts inside a solid shape hits it
+  // at distance 0 with normal -direction (as collide::rayCast).
+  std::optional<RayCastResult> castRay(const Ray& ray, LayerMask mask = kAllLayers) const;
+  // The pairs the broad phase kept in the last step (proxy boxes overlapping, static-static never),
+  // in its order (by proxy index); pairs with a body destroyed since are left out. For drawing and
+  // inspection: it allocates.
+  std::vector<BodyPair> broadPhasePairs() const;
+  // The broad phase, read-only: its box queries, and visitNodes for drawing its structure. A body's
+  // proxy box holds its shape grown by the contact tuning's speculative distance (by the step's
+  // predicted motion too, from the start of a step), so between steps it holds where the body is.
+  const BroadPhase& broadPhase() const;
 
   // Sum over dynamic bodies.
   Vec3 linearMomentum() const;

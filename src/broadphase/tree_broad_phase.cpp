@@ -44,6 +44,11 @@ class TreeBroadPhase final : public BroadPhase {
   const DynamicTree& staticTree() const { return staticTree_; }
   const DynamicTree& movableTree() const { return movableTree_; }
 
+  void visitNodes(const NodeVisitor& visit) const override {
+    visitTree(staticTree_, MotionType::Static, visit);
+    visitTree(movableTree_, MotionType::Movable, visit);
+  }
+
  private:
   DynamicTree& treeOf(std::uint32_t index) {
     return proxies_[index].motion == MotionType::Static ? staticTree_ : movableTree_;
@@ -147,6 +152,20 @@ class TreeBroadPhase final : public BroadPhase {
   void rayCastImpl(RayQuery& query) const override {
     rayCastTree(staticTree_, query);
     if (!query.stopped) rayCastTree(movableTree_, query);
+  }
+
+  static void visitTree(const DynamicTree& tree, MotionType motion, const NodeVisitor& visit) {
+    if (tree.root() == DynamicTree::kNull) return;
+    std::vector<std::pair<std::int32_t, int>> stack{{tree.root(), 0}};  // node, depth
+    while (!stack.empty()) {
+      const auto [index, depth] = stack.back();
+      stack.pop_back();
+      const DynamicTree::Node& n = tree.node(index);
+      visit(BroadPhaseNode{n.box, depth, n.isLeaf(), motion});
+      if (n.isLeaf()) continue;
+      stack.push_back({n.child1, depth + 1});
+      stack.push_back({n.child2, depth + 1});
+    }
   }
 
   // Depth first, nearer child first, so that a closest-hit callback clips the ray early.

@@ -42,6 +42,14 @@ class GridBroadPhase final : public BroadPhase {
     if (settings.gridCellSize > 0.0f) setCellSize(settings.gridCellSize);
   }
 
+  // The occupied cells (a cell is dropped when its last proxy leaves it); nothing before binning.
+  void visitNodes(const NodeVisitor& visit) const override {
+    for (const Cell& cell : cells_) {
+      const Vec3 cellMin = Vec3(cell.coord) * cellSize_;
+      visit(BroadPhaseNode{{cellMin, cellMin + Vec3(cellSize_)}, 0, true, MotionType::Movable});
+    }
+  }
+
  private:
   enum class State : std::uint8_t { Unbinned, Binned, Oversize };
 
