@@ -243,7 +243,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
       laneOf(c.twistMass, lane) = kt > 0.0f ? 1.0f / kt : 0.0f;
       float radius = 0.0f;
       for (int k = 0; k < count; ++k) radius += glm::length(contact.manifold.points[k].midpoint() - centroid);
-      laneOf(c.twistRadius, lane) = (2.0f / 3.0f) * radius / static_cast<float>(count);
+      laneOf(c.twistRadius, lane) = kTwistRadiusScale * radius / static_cast<float>(count);
       if (friction == 0.0f) {
         contact.frictionImpulse = Vec3(0.0f);
         contact.twistImpulse = 0.0f;

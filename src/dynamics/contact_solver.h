@@ -11,8 +11,7 @@
 //     speculative gap of a point still apart (Catto, GDC 2013 "Continuous Collision");
 //   - one friction patch at the points' centroid: two tangents solved as a 2x2 block inside the
 //     Coulomb disc mu * (sum of the normal impulses), and a twist about the normal bounded by
-//     mu * r * (sum), r = 2/3 of the points' mean distance from the centroid (a uniformly pressed
-//     disc of radius R resists twisting with 2/3 mu N R). Per-point friction, solved point after
+//     mu * r * (sum) (kTwistRadiusScale gives r). Per-point friction, solved point after
 //     point, couples the points through the body's rotation and made resting boxes rock and stacks
 //     walk (docs/architecture.md, "Stacking"); one block per patch does not;
 //   - a static-friction anchor: where a patch first sticks, a point fixed in each body is kept, and
@@ -46,6 +45,13 @@ Softness makeSoftness(float hertz, float dampingRatio, float h);
 // The stiffest spring the solver uses, as a fraction of the substep rate 1/h: contacts, one-way
 // contacts and rigid joints alike (h omega = pi / 2).
 inline constexpr float kMaxHertzPerSubstepRate = 0.25f;
+
+// The twist friction's radius as a fraction of the manifold points' mean distance from their
+// centroid. A uniformly pressed patch resists twisting with mu N times the mean distance of its
+// area from the centre; for a rectangle whose corners are the points that is 0.54 (square) down to
+// 0.50 (a long strip, e.g. a capsule lying down) of the corners' distance, for a disc with points on
+// its rim 0.67. The square's value, since box faces are the common patch.
+inline constexpr float kTwistRadiusScale = 0.54f;
 
 // One normal point of a batch, four lanes.
 struct BatchPoint {
