@@ -87,6 +87,7 @@ struct World::Impl {
   BroadPhaseStats lastStats;
   BroadPhaseStats totalStats;
   PreSolveCallback preSolve;
+  std::string callbackError;  // reported by step() once the step is complete
   std::size_t touchingCount = 0;
 
   std::uint32_t resolve(BodyId id, const char* operation) const {
@@ -572,11 +573,21 @@ float World::constraintCurrentLength(JointId id) const {
 }
 
 void World::setPreSolveCallback(PreSolveCallback callback) { impl_->preSolve = std::move(callback); }
+void World::setPreSolveCallback(PreSolveFilter filter) {
+  if (!filter) {
+    impl_->preSolve = nullptr;
+    return;
+  }
+  impl_->preSolve = [filter = std::move(filter)](BodyId a, BodyId b, const Manifold& manifold,
+                                                 ContactSettings&) { return filter(a, b, manifold); };
+}
 
 void World::step(float dt) {
   if (!isFinite(dt) || dt <= 0.0f)
     throw Error("world: step: dt must be finite and > 0, got " + formatFloat(dt));
+  impl_->callbackError.clear();
   impl_->step(dt);
+  if (!impl_->callbackError.empty()) throw Error(impl_->callbackError);
 }
 
 void World::Impl::step(float dt) {
@@ -751,7 +762,29 @@ void World::Impl::narrowPhase(float dt) {
       c.points = {};
     }
     c.enabled = true;
-    if (!sensor && preSolve) c.enabled = preSolve(idOf(ia), idOf(ib), c.manifold);
+    if (!sensor && preSolve) {
+      ContactSettings settings{c.friction, c.impactBounciness, Vec3(0.0f)};
+      c.enabled = preSolve(idOf(ia), idOf(ib), c.manifold, settings);
+      // A NaN friction would reach every body the contact touches: bad settings are refused (the
+      // contact keeps the world's values), the step completes, and then step() reports them.
+      if (!isFinite(settings.friction) || settings.friction < 0.0f || !isFinite(settings.bounciness) ||
+          settings.bounciness < 0.0f || settings.bounciness > 1.0f || !isFinite(settings.surfaceVelocity)) {
+        if (callbackError.empty()) {
+          callbackError =
+              "world: step: the pre-solve callback set contact settings out of range for bodies " +
+              std::to_string(ia) + " and " + std::to_string(ib) + " (friction " +
+              formatFloat(settings.friction) + ", bounciness " + formatFloat(settings.bounciness) +
+              ", surfaceVelocity " + formatVec(settings.surfaceVelocity) +
+              "); the contact kept its own values";
+        }
+        settings = ContactSettings{c.friction, c.impactBounciness, Vec3(0.0f)};
+      }
+      c.friction = settings.friction;
+      c.impactBounciness = settings.bounciness;
+      if (def.impactModel != ImpactModel::Interpolated) c.restitution = settings.bounciness;
+      c.surfaceVelocity = settings.surfaceVelocity -
+                          glm::dot(settings.surfaceVelocity, c.manifold.normal) * c.manifold.normal;
+    }
     const float deepest = c.manifold.maxDepth();
     c.touching = c.enabled && (sensor ? deepest >= 0.0f : deepest >= -def.contact.linearSlop);
     if (!c.enabled) c.points = {};

@@ -33,11 +33,11 @@ struct ContactPointState {
 // manifold can be placed again at their new poses instead of being computed: the points are the
 // same material points, the depths follow from where they are now.
 struct ManifoldCache {
-  Vec3 normal{0.0f};  // in A's frame
+  Vec3 normal{0.0f};                                   // in A's frame
   std::array<Vec3, Manifold::kMaxPoints> pointsOnA{};  // in A's frame
   std::array<Vec3, Manifold::kMaxPoints> pointsOnB{};  // in B's frame
   Vec3 relativePosition{0.0f};                         // B's origin in A's frame
-  Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};        // conj(qA) qB
+  Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};       // conj(qA) qB
   bool valid = false;
 };
 
@@ -61,6 +61,7 @@ struct Contact {
   float friction = 0.0f;
   float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model
   float impactBounciness = 0.0f;  // the combined bounciness, for the lecture's interpolated impact
+  Vec3 surfaceVelocity{0.0f};     // of B relative to A in the contact plane (pre-solve: a belt)
   bool sensor = false;            // overlap only, no response
   bool enabled = true;            // the pre-solve callback may disable it for this step
   bool asleep = false;            // no awake dynamic body: kept as it was, not solved (sleeping)

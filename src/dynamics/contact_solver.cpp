@@ -260,7 +260,11 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
         contact.stickLocalA = glm::conjugate(stateA.rotation) * rA;
         contact.stickLocalB = glm::conjugate(stateB.rotation) * rB;
       };
-      if (!contact.stuck || contact.sliding || friction == 0.0f) anchorHere();
+      laneOf(c.surfaceSpeed1, lane) = glm::dot(contact.surfaceVelocity, t1);
+      laneOf(c.surfaceSpeed2, lane) = glm::dot(contact.surfaceVelocity, t2);
+      const bool anchored = friction > 0.0f && contact.surfaceVelocity == Vec3(0.0f);
+      laneOf(c.stickRate, lane) = anchored ? s.biasRate : 0.0f;
+      if (!contact.stuck || contact.sliding || !anchored) anchorHere();
       Vec3 stickA = stateA.rotation * contact.stickLocalA;
       Vec3 stickB = stateB.rotation * contact.stickLocalB;
       Vec3 gap = (stateB.centerOfMass + stickB) - (stateA.centerOfMass + stickA);
@@ -271,7 +275,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
         stickB = rB;
         gap = Vec3(0.0f);
       }
-      contact.stuck = friction > 0.0f;
+      contact.stuck = anchored;
       contact.sliding = false;
       setLane(c.stickA, lane, stickA);
       setLane(c.stickB, lane, stickB);
@@ -353,16 +357,18 @@ void ContactSolver::solve(std::vector<SolverBody>& bodies, float h, bool useBias
     // Friction patch: the tangential velocity at the centroid, plus in the biased pass the gap of the
     // static anchors, driven to zero inside the Coulomb disc.
     const Vec3W dv = b.v - a.v;
-    FloatW v1 = dot(dv, c.tangent1) + dot(b.w, c.tangent1CrossB) - dot(a.w, c.tangent1CrossA);
-    FloatW v2 = dot(dv, c.tangent2) + dot(b.w, c.tangent2CrossB) - dot(a.w, c.tangent2CrossA);
+    FloatW v1 =
+        dot(dv, c.tangent1) + dot(b.w, c.tangent1CrossB) - dot(a.w, c.tangent1CrossA) - c.surfaceSpeed1;
+    FloatW v2 =
+        dot(dv, c.tangent2) + dot(b.w, c.tangent2CrossB) - dot(a.w, c.tangent2CrossA) - c.surfaceSpeed2;
     FloatW massScale = one;
     FloatW impulseScale = zero;
     if (useBias) {
       const Vec3W turnA = smallRotation(a);
       const Vec3W turnB = smallRotation(b);
       const Vec3W drift = (b.dp - a.dp) + cross(turnB, c.stickB) - cross(turnA, c.stickA);
-      v1 = v1 + c.biasRate * (c.stickGap1 + dot(drift, c.tangent1));
-      v2 = v2 + c.biasRate * (c.stickGap2 + dot(drift, c.tangent2));
+      v1 = v1 + c.stickRate * (c.stickGap1 + dot(drift, c.tangent1));
+      v2 = v2 + c.stickRate * (c.stickGap2 + dot(drift, c.tangent2));
       massScale = c.massScale;
       impulseScale = c.impulseScale;
     }

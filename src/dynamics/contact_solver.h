@@ -84,12 +84,14 @@ struct ContactBatch {
   Vec3W tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;      // I^-1 of those
   FloatW tangentMass11, tangentMass12, tangentMass22;                    // inverse of the 2x2 block
   FloatW tangentImpulse1, tangentImpulse2;
+  FloatW surfaceSpeed1, surfaceSpeed2;  // the sliding friction drives towards (a conveyor belt)
   Vec3W twistTurnA, twistTurnB;  // I^-1 normal
   FloatW twistMass, twistRadius, twistImpulse;
   // Static-friction anchor: offsets of the anchored points from the centres at the step start, and
   // their tangential gap B - A then.
   Vec3W stickA, stickB;
   FloatW stickGap1, stickGap2;
+  FloatW stickRate;  // the softness's bias rate, or 0 where the patch has no anchor (a belt)
   FloatW sliding;  // lane mask: the patch reached the friction bound in a biased pass
 };
 
