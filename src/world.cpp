@@ -16,10 +16,11 @@
 
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
-#include "dynamics/contact_solver.h"
 #include "dynamics/continuous.h"
 #include "dynamics/fault_guard.h"
+#include "dynamics/integrate.h"
 #include "dynamics/joint_solver.h"
+#include "dynamics/solver.h"
 #include "response/contact_response.h"
 
 #include <algorithm>
@@ -71,7 +72,7 @@ struct World::Impl {
   std::vector<ProxyPair> pairs;
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
-  std::vector<detail::ContactConstraint> constraints;
+  detail::StepSolver stepSolver;
   std::vector<DistanceJoint> joints;
   std::vector<std::uint32_t> freeJoints;
   std::size_t jointCount = 0;
@@ -86,6 +87,7 @@ struct World::Impl {
   BroadPhaseStats lastStats;
   BroadPhaseStats totalStats;
   PreSolveCallback preSolve;
+  std::string callbackError;  // reported by step() once the step is complete
   std::size_t touchingCount = 0;
 
   std::uint32_t resolve(BodyId id, const char* operation) const {
@@ -212,6 +214,12 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
   check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
   check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
+  check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)");
+  check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
+  check(t.manifoldCacheAngle, t.manifoldCacheAngle >= 0.0f, "manifoldCacheAngle (must be >= 0)");
+  if (t.relaxPasses < 0)
+    throw Error("world: contact.relaxPasses out of range (must be >= 0), got " +
+                std::to_string(t.relaxPasses));
   const SleepTuning& sleep = def.sleep;
   const auto checkSleep = [](float value, bool ok, const char* field) {
     if (!isFinite(value) || !ok)
@@ -304,6 +312,7 @@ BodyId World::createBody(const BodyDef& def) {
       if (!def.particle) {
         r.inertiaLocal = props.inertia * massScale;
         r.inverseInertiaLocal = glm::inverse(r.inertiaLocal);
+        r.isotropicInertia = detail::isIsotropic(r.inertiaLocal);
       }
       s.inverseMass = 1.0f / r.mass;
     }
@@ -564,11 +573,21 @@ float World::constraintCurrentLength(JointId id) const {
 }
 
 void World::setPreSolveCallback(PreSolveCallback callback) { impl_->preSolve = std::move(callback); }
+void World::setPreSolveCallback(PreSolveFilter filter) {
+  if (!filter) {
+    impl_->preSolve = nullptr;
+    return;
+  }
+  impl_->preSolve = [filter = std::move(filter)](BodyId a, BodyId b, const Manifold& manifold,
+                                                 ContactSettings&) { return filter(a, b, manifold); };
+}
 
 void World::step(float dt) {
   if (!isFinite(dt) || dt <= 0.0f)
     throw Error("world: step: dt must be finite and > 0, got " + formatFloat(dt));
+  impl_->callbackError.clear();
   impl_->step(dt);
+  if (!impl_->callbackError.empty()) throw Error(impl_->callbackError);
 }
 
 void World::Impl::step(float dt) {
@@ -587,10 +606,10 @@ void World::Impl::step(float dt) {
 
   solve(dt);
   if (def.impactModel == ImpactModel::Interpolated) {
-    detail::applyInterpolatedImpacts(bodies, contacts, constraints, def.contact.restitutionThreshold,
-                                     def.contact.linearSlop);
+    detail::applyInterpolatedImpacts(bodies, contacts, stepSolver.solvedContacts(),
+                                     def.contact.restitutionThreshold, def.contact.linearSlop);
   }
-  detail::applyProlongedFriction(bodies, contacts, constraints, def.frictionModel, dt);
+  detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   for (BodyRecord& r : bodies.records) {
     r.force = Vec3(0.0f);
     r.torque = Vec3(0.0f);
@@ -607,52 +626,20 @@ void World::Impl::step(float dt) {
   totalStats.keptPairs += lastStats.keptPairs;
   totalStats.boxTests += lastStats.boxTests;
   totalStats.narrowPhaseTests += lastStats.narrowPhaseTests;
+  totalStats.reusedManifolds += lastStats.reusedManifolds;
   totalStats.contactPairs += lastStats.contactPairs;
 }
 
-namespace {
-constexpr int kContactRelaxPasses = 2;
-}  // namespace
-
-// The soft step (Catto, "Solver2D" 2024; Box2D v3's b2SolverStage order): per substep integrate
-// velocities, warm start, solve with the position bias, integrate positions, relax without it.
-// Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
-// last word on penetration.
+// The soft step (src/dynamics/solver.h): the substep loop over the awake bodies, contacts and joints.
 void World::Impl::solve(float dt) {
-  detail::SolverSettings settings;
+  detail::StepSettings settings;
   settings.gravity = def.gravity;
   settings.substeps = def.substeps;
+  settings.relaxPasses = def.contact.relaxPasses;
   settings.tuning = def.contact;
   // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
   settings.friction = def.frictionModel == FrictionModel::Coulomb;
-  const float h = dt / static_cast<float>(def.substeps);
-  for (BodyState& s : bodies.states) {
-    s.centerOfMass0 = s.centerOfMass;
-    s.rotation0 = s.rotation;
-  }
-  for (DistanceJoint& joint : joints) {
-    joint.active = joint.alive && (isAwakeDynamic(joint.bodyA) || isAwakeDynamic(joint.bodyB));
-  }
-  detail::prepareContacts(bodies, contacts, constraints, settings, h);
-  // Box2D v3: rigid joints correct at twice the (capped) contact stiffness.
-  const float rigidHertz = 2.0f * std::min(def.contact.hertz, 0.25f / h);
-  for (int i = 0; i < def.substeps; ++i) {
-    detail::integrateVelocities(bodies, settings.gravity, h);
-    detail::guardFiniteStates(bodies, faultEvents);  // before a bad velocity reaches a contact
-    detail::warmStartJoints(bodies, joints);
-    detail::warmStartContacts(bodies, contacts, constraints);
-    detail::solveJoints(bodies, joints, h, rigidHertz, true);
-    detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, true);
-    detail::integratePositions(bodies, h);
-    detail::solveJoints(bodies, joints, h, rigidHertz, false);
-    // Two relax passes: with stiff, lightly damped contacts (the defaults hold a stack's sag under
-    // 1 cm) one pass leaves the boxes of a stack shivering at up to 1.6 cm/s; the second removes it
-    // (docs/architecture.md, "Stacking": the measured table).
-    for (int pass = 0; pass < kContactRelaxPasses; ++pass)
-      detail::solveContacts(bodies, contacts, constraints, h, settings.tuning.pushOutSpeed, false);
-    detail::guardFiniteStates(bodies, faultEvents);
-  }
-  detail::applyRestitution(bodies, contacts, constraints, settings.tuning.restitutionThreshold);
+  stepSolver.solve(bodies, contacts, joints, settings, dt, faultEvents);
 }
 
 ContactEvent World::Impl::makeEvent(const Contact& c, ContactEvent::Type type) const {
@@ -677,6 +664,7 @@ void World::Impl::narrowPhase(float dt) {
   contacts.clear();
   lastStats = broadPhase->lastStats();
   std::uint64_t tests = 0;
+  std::uint64_t reused = 0;
   std::size_t j = 0;
   const auto endVanished = [&](const Contact& old) {
     // Contacts of destroyed bodies were erased; a generation mismatch means the slot was reused.
@@ -729,11 +717,22 @@ void World::Impl::narrowPhase(float dt) {
     }
     const BodyState& sa = bodies.states[ia];
     const BodyState& sb = bodies.states[ib];
-    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
+    const Transform ta = detail::bodyTransform(ra, sa);
+    const Transform tb = detail::bodyTransform(rb, sb);
     Contact& c = contacts.emplace_back();
     ++tests;
-    collide::collide(ra.shape, detail::bodyTransform(ra, sa), rb.shape, detail::bodyTransform(rb, sb),
-                     c.manifold, margin);
+    // A pair that has not moved relative to itself since its manifold was computed (a resting
+    // stack, a crate on the terrain) gets that manifold placed again (Jolt's body pair cache).
+    if (previous && !sensor &&
+        detail::reuseManifold(previous->cache, previous->manifold, ta, tb, def.contact.manifoldCacheDistance,
+                              def.contact.manifoldCacheAngle, c.manifold)) {
+      c.cache = previous->cache;
+      ++reused;
+    } else {
+      const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
+      collide::collide(ra.shape, ta, rb.shape, tb, c.manifold, margin);
+      if (c.manifold.count > 0 && !sensor) detail::storeManifold(c.manifold, ta, tb, c.cache);
+    }
     if (c.manifold.count == 0) {
       contacts.pop_back();
       if (previous) endVanished(*previous);
@@ -758,18 +757,41 @@ void World::Impl::narrowPhase(float dt) {
       if (!c.wasTouching) c.friction = 0.0f;
     }
     if (previous) {
-      detail::matchContactPoints(*previous, c, def.contact.linearSlop);
+      detail::inheritContact(*previous, c, def.contact.linearSlop);
     } else {
       c.points = {};
     }
     c.enabled = true;
-    if (!sensor && preSolve) c.enabled = preSolve(idOf(ia), idOf(ib), c.manifold);
+    if (!sensor && preSolve) {
+      ContactSettings settings{c.friction, c.impactBounciness, Vec3(0.0f)};
+      c.enabled = preSolve(idOf(ia), idOf(ib), c.manifold, settings);
+      // A NaN friction would reach every body the contact touches: bad settings are refused (the
+      // contact keeps the world's values), the step completes, and then step() reports them.
+      if (!isFinite(settings.friction) || settings.friction < 0.0f || !isFinite(settings.bounciness) ||
+          settings.bounciness < 0.0f || settings.bounciness > 1.0f || !isFinite(settings.surfaceVelocity)) {
+        if (callbackError.empty()) {
+          callbackError =
+              "world: step: the pre-solve callback set contact settings out of range for bodies " +
+              std::to_string(ia) + " and " + std::to_string(ib) + " (friction " +
+              formatFloat(settings.friction) + ", bounciness " + formatFloat(settings.bounciness) +
+              ", surfaceVelocity " + formatVec(settings.surfaceVelocity) +
+              "); the contact kept its own values";
+        }
+        settings = ContactSettings{c.friction, c.impactBounciness, Vec3(0.0f)};
+      }
+      c.friction = settings.friction;
+      c.impactBounciness = settings.bounciness;
+      if (def.impactModel != ImpactModel::Interpolated) c.restitution = settings.bounciness;
+      c.surfaceVelocity = settings.surfaceVelocity -
+                          glm::dot(settings.surfaceVelocity, c.manifold.normal) * c.manifold.normal;
+    }
     const float deepest = c.manifold.maxDepth();
     c.touching = c.enabled && (sensor ? deepest >= 0.0f : deepest >= -def.contact.linearSlop);
     if (!c.enabled) c.points = {};
   }
   while (j < previousContacts.size()) endVanished(previousContacts[j++]);
   lastStats.narrowPhaseTests = tests;
+  lastStats.reusedManifolds = reused;
 }
 
 // Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).
@@ -860,8 +882,8 @@ void World::Impl::updateSleep(float dt) {
 
 void World::Impl::revertPenetrating() {
   // Simple version of the lecture's "revert": one re-test per solved contact at the new poses.
-  for (const detail::ContactConstraint& k : constraints) {
-    const Contact& c = contacts[k.contactIndex];
+  for (const std::uint32_t index : stepSolver.solvedContacts()) {
+    const Contact& c = contacts[index];
     BodyRecord& ra = bodies.records[c.bodyA];
     BodyRecord& rb = bodies.records[c.bodyB];
     BodyState& sa = bodies.states[c.bodyA];

@@ -70,13 +70,16 @@ struct ProxyPair {
 };
 
 // Counters of one findPairs call. The broad phase fills the first four; the caller fills the last
-// two after its narrow phase, so that one struct tells the whole funnel of the lecture's argument.
+// three after its narrow phase, so that one struct tells the whole funnel of the lecture's argument.
 struct BroadPhaseStats {
   std::uint64_t proxies = 0;
   std::uint64_t potentialPairs = 0;  // n (n - 1) / 2 over all proxies, static ones included
   std::uint64_t keptPairs = 0;       // the pairs reported (box overlaps, static-static excluded)
   std::uint64_t boxTests = 0;        // AABB-vs-AABB tests the algorithm performed to find them
   std::uint64_t narrowPhaseTests = 0;
+  // Of those, the pairs whose manifold was re-placed from the last computation instead of computed
+  // again, because the two bodies had not moved relative to each other (World's manifold cache).
+  std::uint64_t reusedManifolds = 0;
   std::uint64_t contactPairs = 0;
 
   // The fraction of potential pairs the broad phase kept (0 when there are none).

@@ -59,6 +59,17 @@ struct ContactTuning {
   float restitutionThreshold = 1.0f;  // m/s: slower impacts do not bounce (resting contacts stay quiet)
   float linearSlop = 0.005f;          // m: the penetration allowed (and the "touching" tolerance of events)
   float speculativeDistance = 0.02f;  // m: contacts are created this far apart (plus the step's motion)
+  // Passes without the position bias after each substep's position update (Box2D v3's relax), so
+  // that push-out does not turn into bounce.
+  int relaxPasses = 1;
+  // A sticking friction patch holds its place (a point fixed in each body); when the two points
+  // drift apart farther than this (m) along the surface, the anchor is taken again where the patch is.
+  float frictionAnchorReach = 0.02f;
+  // A pair whose relative pose moved less than this (m, rad) since its manifold was computed gets
+  // that manifold placed at the new poses instead of a new narrow-phase query (Jolt's body pair
+  // cache): resting bodies cost almost nothing. 0 turns the cache off.
+  float manifoldCacheDistance = 0.001f;
+  float manifoldCacheAngle = 0.0087f;  // half a degree
 };
 
 // When a body counts as resting (Box2D's sleep tolerances and time to sleep).
@@ -199,9 +210,26 @@ struct BodyPair {
   friend bool operator==(const BodyPair&, const BodyPair&) = default;
 };
 
+// What a pre-solve callback may change of one contact for this step. friction and bounciness start
+// as the world's combined values for the pair. surfaceVelocity is the velocity B's surface is to keep
+// relative to A's along the contact plane (its normal part is ignored): friction drives the bodies'
+// relative sliding towards it, a conveyor belt (Box2D's tangent speed). A contact with a surface
+// velocity has no static anchor: it is meant to slide.
+struct ContactSettings {
+  float friction = 0.0f;
+  float bounciness = 0.0f;
+  Vec3 surfaceVelocity{0.0f};
+};
+
 // Called for each contact before the solve (normal from a to b); return false to disable it for
-// this step (one-way platforms).
-using PreSolveCallback = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
+// this step (one-way platforms), or change its settings (gameplay surfaces: ice, bumpers, belts).
+// Settings out of range (negative or non-finite friction, bounciness outside [0, 1], a non-finite
+// surface velocity) are not applied: the step completes with the contact's own values and then
+// World::step throws Error naming the bodies.
+using PreSolveCallback =
+    std::function<bool(BodyId a, BodyId b, const Manifold& manifold, ContactSettings& settings)>;
+// The same without settings, for callbacks that only look or disable.
+using PreSolveFilter = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
 
 class World {
  public:
@@ -261,6 +289,7 @@ class World {
   float constraintCurrentLength(JointId id) const;  // the anchors' distance now
 
   void setPreSolveCallback(PreSolveCallback callback);
+  void setPreSolveCallback(PreSolveFilter filter);
 
   // Advances by dt > 0 (finite); throws Error otherwise.
   void step(float dt);

@@ -25,7 +25,6 @@ inline Json referenceDocument() {
            {{"gravity", vec(0, -9.81, 0)},
             {"dt", num(1.0 / 60.0)},
             {"steps", 600},
-            {"substeps", 4},
             {"broadphase", "tree"},
             {"sleeping", false},
             {"friction_combine", "average"}}},

@@ -70,6 +70,7 @@ void addStats(BroadPhaseStats& total, const BroadPhaseStats& s) {
   total.keptPairs += s.keptPairs;
   total.boxTests += s.boxTests;
   total.narrowPhaseTests += s.narrowPhaseTests;
+  total.reusedManifolds += s.reusedManifolds;
   total.contactPairs += s.contactPairs;
 }
 

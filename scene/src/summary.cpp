@@ -19,6 +19,7 @@ nlohmann::json statsJson(const BroadPhaseStats& s) {
   return {{"potential_pairs", s.potentialPairs},
           {"broad_phase_pairs", s.keptPairs},
           {"narrow_phase_tests", s.narrowPhaseTests},
+          {"reused_manifolds", s.reusedManifolds},
           {"contact_pairs", s.contactPairs}};
 }
 
@@ -51,6 +52,7 @@ std::string formatSummary(const RunSummary& s) {
   row("potential n(n-1)/2", s.lastStep.potentialPairs, s.total.potentialPairs);
   row("kept by broad phase", s.lastStep.keptPairs, s.total.keptPairs);
   row("narrow-phase tests", s.lastStep.narrowPhaseTests, s.total.narrowPhaseTests);
+  row("  manifold reused", s.lastStep.reusedManifolds, s.total.reusedManifolds);
   row("in contact", s.lastStep.contactPairs, s.total.contactPairs);
   if (s.total.potentialPairs > 0) {
     add("in contact / potential: %.4f%%\n",

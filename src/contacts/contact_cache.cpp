@@ -1,5 +1,7 @@
 #include "contacts/contact_cache.h"
 
+#include <cmath>
+
 namespace collide::detail {
 
 namespace {
@@ -54,10 +56,53 @@ void matchContactPoints(const Contact& previous, Contact& current, float matchDi
     state = ContactPointState{};
     if (match[i] >= 0) {
       state.normalImpulse = previous.points[match[i]].normalImpulse;
-      state.tangentImpulse = previous.points[match[i]].tangentImpulse;
       state.prolonged = true;
     }
   }
+}
+
+void storeManifold(const Manifold& manifold, const Transform& a, const Transform& b, ManifoldCache& cache) {
+  cache.normal = a.inverseApplyToDirection(manifold.normal);
+  for (int i = 0; i < manifold.count; ++i) {
+    cache.pointsOnA[i] = a.inverseApplyToPoint(manifold.points[i].pointOnA);
+    cache.pointsOnB[i] = b.inverseApplyToPoint(manifold.points[i].pointOnB);
+  }
+  const Quat inverseA = glm::conjugate(a.rotation);
+  cache.relativePosition = inverseA * (b.position - a.position);
+  cache.relativeRotation = inverseA * b.rotation;
+  cache.valid = true;
+}
+
+bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
+                   float distance, float angle, Manifold& out) {
+  if (!cache.valid) return false;
+  const Quat inverseA = glm::conjugate(a.rotation);
+  const Vec3 moved = inverseA * (b.position - a.position) - cache.relativePosition;
+  if (glm::dot(moved, moved) > distance * distance) return false;
+  // |q1 . q2| = cos(theta / 2) >= cos(angle / 2), compared as 1 - cos(theta / 2) <= angle^2 / 8
+  // (the first terms of the series; the tolerance is small).
+  const float cosHalf = std::abs(glm::dot(inverseA * b.rotation, cache.relativeRotation));
+  if (1.0f - cosHalf > 0.125f * angle * angle) return false;
+  out.count = cached.count;
+  out.normal = a.applyToDirection(cache.normal);
+  for (int i = 0; i < cached.count; ++i) {
+    ContactPoint& p = out.points[i];
+    p.pointOnA = a.applyToPoint(cache.pointsOnA[i]);
+    p.pointOnB = b.applyToPoint(cache.pointsOnB[i]);
+    p.depth = glm::dot(p.pointOnA - p.pointOnB, out.normal);
+    p.featureId = cached.points[i].featureId;
+  }
+  return true;
+}
+
+void inheritContact(const Contact& previous, Contact& current, float matchDistance) {
+  matchContactPoints(previous, current, matchDistance);
+  current.frictionImpulse = previous.frictionImpulse;
+  current.twistImpulse = previous.twistImpulse;
+  current.stickLocalA = previous.stickLocalA;
+  current.stickLocalB = previous.stickLocalB;
+  current.stuck = previous.stuck;
+  current.sliding = previous.sliding;
 }
 
 }  // namespace collide::detail

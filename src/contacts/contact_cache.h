@@ -21,13 +21,33 @@
 namespace collide::detail {
 
 struct ContactPointState {
-  float normalImpulse = 0.0f;  // per substep, accumulated (warm start)
-  std::array<float, 2> tangentImpulse{0.0f, 0.0f};
+  float normalImpulse = 0.0f;       // per substep, accumulated (warm start)
   float totalNormalImpulse = 0.0f;  // everything applied this step (events)
   float maxNormalImpulse = 0.0f;    // did the point act this step (restitution)
   float relativeVelocity = 0.0f;    // normal relative velocity before the solve (restitution, events)
   bool prolonged = false;           // matched a point of last step's manifold
 };
+
+// A manifold as it was computed, in the bodies' own frames, with B's pose in A's frame then (Jolt's
+// body pair cache). While the two bodies keep that relative pose within the world's tolerance, the
+// manifold can be placed again at their new poses instead of being computed: the points are the
+// same material points, the depths follow from where they are now.
+struct ManifoldCache {
+  Vec3 normal{0.0f};                                   // in A's frame
+  std::array<Vec3, Manifold::kMaxPoints> pointsOnA{};  // in A's frame
+  std::array<Vec3, Manifold::kMaxPoints> pointsOnB{};  // in B's frame
+  Vec3 relativePosition{0.0f};                         // B's origin in A's frame
+  Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};       // conj(qA) qB
+  bool valid = false;
+};
+
+// Fills the cache from a manifold just computed at these transforms.
+void storeManifold(const Manifold& manifold, const Transform& a, const Transform& b, ManifoldCache& cache);
+// If B's pose relative to A is within `distance` (m) and `angle` (rad) of the cached one, writes the
+// cached manifold placed at these transforms (same points and ids, depths measured anew) and
+// returns true.
+bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
+                   float distance, float angle, Manifold& out);
 
 struct Contact {
   std::uint64_t key = 0;  // proxy a index << 32 | proxy b index
@@ -36,22 +56,37 @@ struct Contact {
   std::uint32_t generationA = 0;
   std::uint32_t generationB = 0;
   Manifold manifold;
+  ManifoldCache cache;
   std::array<ContactPointState, Manifold::kMaxPoints> points{};
   float friction = 0.0f;
   float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model
   float impactBounciness = 0.0f;  // the combined bounciness, for the lecture's interpolated impact
+  Vec3 surfaceVelocity{0.0f};     // of B relative to A in the contact plane (pre-solve: a belt)
   bool sensor = false;            // overlap only, no response
   bool enabled = true;            // the pre-solve callback may disable it for this step
   bool asleep = false;            // no awake dynamic body: kept as it was, not solved (sleeping)
   bool touching = false;          // after this step's narrow phase
   bool wasTouching = false;       // after last step's
   int consecutiveSteps = 0;       // steps in a row with points (lecture: friction from the second step)
+  // The friction patch (dynamics/contact_solver.h), kept across steps: its impulse as a world vector
+  // (the tangent basis is rebuilt every step), the twist about the normal, and the static anchor in
+  // each body's frame (from the centre of mass) with whether it holds.
+  Vec3 frictionImpulse{0.0f};
+  float twistImpulse = 0.0f;
+  Vec3 stickLocalA{0.0f};
+  Vec3 stickLocalB{0.0f};
+  bool stuck = false;    // the anchor is set
+  bool sliding = false;  // the patch reached the friction bound last step: re-anchor
 };
 
 // Copies the accumulated impulses of `previous`'s points onto `current`'s matching points and marks
 // them prolonged. current.manifold must already hold the new points. A point whose id finds no
 // partner takes the nearest unmatched old point within matchDistance (m), if any.
 void matchContactPoints(const Contact& previous, Contact& current, float matchDistance = 0.0f);
+
+// The whole contact carried over from last step: the points matched as above, and the friction
+// patch's impulses and static anchor.
+void inheritContact(const Contact& previous, Contact& current, float matchDistance);
 
 inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
   return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;

@@ -19,7 +19,7 @@ struct BodyState {
   Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
   Vec3 linearVelocity{0.0f};
   Vec3 angularVelocity{0.0f};
-  Mat3 inverseInertiaWorld{0.0f};  // R I^-1 R^T, refreshed after every position update
+  Mat3 inverseInertiaWorld{0.0f};  // R I^-1 R^T, refreshed at the end of every step
   float inverseMass = 0.0f;
   // Where the step started: the solver measures current separations from these (Catto's
   // "relative positions": anchors move with the body's change of pose, not re-queried).
@@ -36,6 +36,8 @@ struct BodyRecord {
   Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
   Mat3 inertiaLocal{0.0f};       // about the centre of mass, body axes (zero for particles)
   Mat3 inverseInertiaLocal{0.0f};
+  // I = lambda 1 (spheres, cubes, regular polyhedra...): w x (I w) = 0, so no gyroscopic term.
+  bool isotropicInertia = true;
   float mass = 0.0f;
   float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
   float bounciness = 0.0f;
@@ -84,15 +86,5 @@ inline Mat3 worldInverseInertia(const Mat3& inverseInertiaLocal, const Quat& rot
   const Mat3 r = glm::mat3_cast(rotation);
   return r * inverseInertiaLocal * glm::transpose(r);
 }
-
-// One implicit-midpoint step of torque-free rotation in the body frame; returns the new body-frame
-// angular velocity (see integrate.cpp).
-Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& bodyOmega, float h);
-// Velocity step of one substep: gravity, the accumulated force/torque and the gyroscopic term
-// (awake dynamic bodies only).
-void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h);
-// Position step of one substep: centre of mass by v, rotation by the quaternion derivative
-// q' = 1/2 (0, w) q, renormalised; dynamic and kinematic bodies.
-void integratePositions(BodyStorage& bodies, float h);
 
 }  // namespace collide::detail

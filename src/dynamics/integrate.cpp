@@ -1,8 +1,7 @@
-// Symplectic Euler per substep, as in Box2D v3's b2IntegrateVelocitiesTask / b2IntegratePositionsTask:
-// velocities first (gravity, forces, the gyroscopic term), then the constraints act on them, then
-// positions move by the new velocities. Sleeping bodies are skipped.
-#include "dynamics/body_storage.h"
+// See integrate.h. Sleeping bodies are not in the step.
+#include "dynamics/integrate.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace collide::detail {
@@ -46,44 +45,58 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3&
 // angular speed. 0.25 pi per substep is 283 rad/s at 60 Hz with 6 substeps.
 constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 
-void integrateVelocities(BodyStorage& bodies, const Vec3& gravity, float h) {
+bool isIsotropic(const Mat3& inertia) {
+  const float scale = std::max({std::abs(inertia[0][0]), std::abs(inertia[1][1]), std::abs(inertia[2][2])});
+  const float tolerance = 1e-6f * scale;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const float expected = i == j ? inertia[0][0] : 0.0f;
+      if (std::abs(inertia[i][j] - expected) > tolerance) return false;
+    }
+  return true;
+}
+
+// A rotation slower than this per substep (rad) keeps its angular velocity as it is: the gyroscopic
+// change of w per substep is at most about h |w| |w| (times the inertia's anisotropy), so below
+// 1e-4 rad per substep it is below 1e-4 of w itself, less than the contact solver's own error. This
+// skips the Newton solve for every resting body.
+constexpr float kGyroscopicMinTurn = 1e-4f;
+
+void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
+                         const BodyStorage& storage, const Vec3& gravity, float h) {
   const float maxAngularSpeed = kMaxRotationPerSubstep / h;
-  const std::size_t n = bodies.states.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const BodyRecord& record = bodies.records[i];
-    if (!record.alive || record.type != BodyType::Dynamic || !record.awake) continue;
-    BodyState& s = bodies.states[i];
-    s.linearVelocity += h * (gravity + s.inverseMass * record.force);
-    if (record.particle) continue;
-    s.angularVelocity += h * (s.inverseInertiaWorld * record.torque);
-    if (s.angularVelocity != Vec3(0.0f)) {
-      const Vec3 bodyOmega = glm::conjugate(s.rotation) * s.angularVelocity;
-      s.angularVelocity =
-          s.rotation * gyroscopicStep(record.inertiaLocal, record.inverseInertiaLocal, bodyOmega, h);
-      const float speedSquared = glm::dot(s.angularVelocity, s.angularVelocity);
-      if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
-        s.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
-      }
+  for (std::size_t j = 0; j < bodies.size(); ++j) {
+    const SolverBodyInfo& info = infos[j];
+    if (!info.dynamic || info.faulted) continue;
+    const BodyRecord& record = storage.records[info.body];
+    SolverBody& b = bodies[j];
+    b.linearVelocity += h * (gravity + info.inverseMass * record.force);
+    if (info.particle) continue;
+    b.angularVelocity += h * (info.inverseInertiaWorld * record.torque);
+    const float turn2 = h * h * glm::dot(b.angularVelocity, b.angularVelocity);
+    if (!record.isotropicInertia && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {
+      const Quat rotation = b.deltaRotation * storage.states[info.body].rotation0;
+      const Vec3 bodyOmega = glm::conjugate(rotation) * b.angularVelocity;
+      b.angularVelocity =
+          rotation * gyroscopicStep(record.inertiaLocal, record.inverseInertiaLocal, bodyOmega, h);
+    }
+    const float speedSquared = glm::dot(b.angularVelocity, b.angularVelocity);
+    if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
+      b.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
     }
   }
 }
 
-void integratePositions(BodyStorage& bodies, float h) {
-  const std::size_t n = bodies.states.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const BodyRecord& record = bodies.records[i];
-    if (!record.alive || record.type == BodyType::Static || !record.awake) continue;
-    BodyState& s = bodies.states[i];
-    s.centerOfMass += h * s.linearVelocity;
-    if (record.particle) continue;  // a point mass keeps its rotation bit for bit
-    const Vec3& w = s.angularVelocity;
+void integratePositions(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos, float h) {
+  for (std::size_t j = 0; j < bodies.size(); ++j) {
+    const SolverBodyInfo& info = infos[j];
+    if (info.faulted) continue;
+    SolverBody& b = bodies[j];
+    b.deltaPosition += h * b.linearVelocity;
+    if (info.particle) continue;  // a point mass keeps its rotation bit for bit
+    const Vec3& w = b.angularVelocity;
     const Quat spin(0.0f, w.x, w.y, w.z);
-    Quat q = s.rotation;
-    q = q + (0.5f * h) * (spin * q);
-    s.rotation = glm::normalize(q);
-    if (record.type == BodyType::Dynamic) {
-      s.inverseInertiaWorld = worldInverseInertia(record.inverseInertiaLocal, s.rotation);
-    }
+    b.deltaRotation = glm::normalize(b.deltaRotation + (0.5f * h) * (spin * b.deltaRotation));
   }
 }
 

@@ -9,6 +9,46 @@ namespace collide::detail {
 
 namespace {
 
+// One end of a joint: the body's current pose, velocities and masses (zero for a body the solver
+// does not move).
+struct JointBody {
+  Vec3 centerOfMass{0.0f};
+  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  SolverBody* solver = nullptr;
+  float inverseMass = 0.0f;
+  Mat3 inverseInertia{0.0f};
+};
+
+JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
+  JointBody out;
+  const BodyState& s = view.storage.states[body];
+  const std::int32_t j = view.solverOf[body];
+  if (j == kNoSolverBody) {
+    out.centerOfMass = s.centerOfMass;
+    out.rotation = s.rotation;
+    return out;
+  }
+  SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
+  const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
+  out.centerOfMass = s.centerOfMass0 + b.deltaPosition;
+  out.rotation = b.deltaRotation * s.rotation0;
+  if (info.dynamic && !info.faulted) {
+    out.solver = &b;
+    out.inverseMass = info.inverseMass;
+    out.inverseInertia = info.inverseInertiaWorld;
+  }
+  return out;
+}
+
+Vec3 linearVelocity(const JointSolverView& view, std::uint32_t body) {
+  const std::int32_t j = view.solverOf[body];
+  return j == kNoSolverBody ? Vec3(0.0f) : view.bodies[static_cast<std::size_t>(j)].linearVelocity;
+}
+Vec3 angularVelocity(const JointSolverView& view, std::uint32_t body) {
+  const std::int32_t j = view.solverOf[body];
+  return j == kNoSolverBody ? Vec3(0.0f) : view.bodies[static_cast<std::size_t>(j)].angularVelocity;
+}
+
 struct JointFrame {
   Vec3 rA{0.0f};  // world offsets from the centres of mass to the anchors, at the current pose
   Vec3 rB{0.0f};
@@ -18,9 +58,7 @@ struct JointFrame {
 
 // The anchors are rotated with each body's current rotation, so a turning body carries its anchor
 // exactly (Box2D v3 uses the step-start frames and the delta rotation instead; same result).
-JointFrame frameOf(const BodyStorage& bodies, DistanceJoint& joint) {
-  const BodyState& a = bodies.states[joint.bodyA];
-  const BodyState& b = bodies.states[joint.bodyB];
+JointFrame frameOf(const JointBody& a, const JointBody& b, DistanceJoint& joint) {
   JointFrame f;
   f.rA = a.rotation * joint.localAnchorA;
   f.rB = b.rotation * joint.localAnchorB;
@@ -32,40 +70,54 @@ JointFrame frameOf(const BodyStorage& bodies, DistanceJoint& joint) {
   return f;
 }
 
-void applyAxisImpulse(BodyState& a, BodyState& b, const JointFrame& f, float impulse) {
+void applyAxisImpulse(const JointBody& a, const JointBody& b, const JointFrame& f, float impulse) {
   const Vec3 p = impulse * f.axis;
-  a.linearVelocity -= a.inverseMass * p;
-  a.angularVelocity -= a.inverseInertiaWorld * glm::cross(f.rA, p);
-  b.linearVelocity += b.inverseMass * p;
-  b.angularVelocity += b.inverseInertiaWorld * glm::cross(f.rB, p);
-}
-
-}  // namespace
-
-void warmStartJoints(BodyStorage& bodies, std::vector<DistanceJoint>& joints) {
-  for (DistanceJoint& joint : joints) {
-    if (!joint.active) continue;
-    const JointFrame f = frameOf(bodies, joint);
-    applyAxisImpulse(bodies.states[joint.bodyA], bodies.states[joint.bodyB], f, joint.impulse);
+  if (a.solver) {
+    a.solver->linearVelocity -= a.inverseMass * p;
+    a.solver->angularVelocity -= a.inverseInertia * glm::cross(f.rA, p);
+  }
+  if (b.solver) {
+    b.solver->linearVelocity += b.inverseMass * p;
+    b.solver->angularVelocity += b.inverseInertia * glm::cross(f.rB, p);
   }
 }
 
-void solveJoints(BodyStorage& bodies, std::vector<DistanceJoint>& joints, float h, float rigidHertz,
+bool isAwakeDynamic(const BodyRecord& r) { return r.alive && r.type == BodyType::Dynamic && r.awake; }
+
+}  // namespace
+
+void prepareJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints) {
+  for (DistanceJoint& joint : joints) {
+    joint.active = joint.alive && (isAwakeDynamic(view.storage.records[joint.bodyA]) ||
+                                   isAwakeDynamic(view.storage.records[joint.bodyB]));
+  }
+}
+
+void warmStartJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints) {
+  for (DistanceJoint& joint : joints) {
+    if (!joint.active) continue;
+    const JointBody a = jointBody(view, joint.bodyA);
+    const JointBody b = jointBody(view, joint.bodyB);
+    applyAxisImpulse(a, b, frameOf(a, b, joint), joint.impulse);
+  }
+}
+
+void solveJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints, float h, float rigidHertz,
                  bool useBias) {
   for (DistanceJoint& joint : joints) {
     if (!joint.active) continue;
-    BodyState& a = bodies.states[joint.bodyA];
-    BodyState& b = bodies.states[joint.bodyB];
-    const JointFrame f = frameOf(bodies, joint);
+    const JointBody a = jointBody(view, joint.bodyA);
+    const JointBody b = jointBody(view, joint.bodyB);
+    const JointFrame f = frameOf(a, b, joint);
     const Vec3 rnA = glm::cross(f.rA, f.axis);
     const Vec3 rnB = glm::cross(f.rB, f.axis);
-    const float k = a.inverseMass + b.inverseMass + glm::dot(rnA, a.inverseInertiaWorld * rnA) +
-                    glm::dot(rnB, b.inverseInertiaWorld * rnB);
+    const float k = a.inverseMass + b.inverseMass + glm::dot(rnA, a.inverseInertia * rnA) +
+                    glm::dot(rnB, b.inverseInertia * rnB);
     if (k <= 0.0f) continue;
     const float axialMass = 1.0f / k;
     const float c = f.distance - joint.length;
-    const Vec3 va = a.linearVelocity + glm::cross(a.angularVelocity, f.rA);
-    const Vec3 vb = b.linearVelocity + glm::cross(b.angularVelocity, f.rB);
+    const Vec3 va = linearVelocity(view, joint.bodyA) + glm::cross(angularVelocity(view, joint.bodyA), f.rA);
+    const Vec3 vb = linearVelocity(view, joint.bodyB) + glm::cross(angularVelocity(view, joint.bodyB), f.rB);
     const float cdot = glm::dot(vb - va, f.axis);
 
     float bias = 0.0f;

@@ -1,5 +1,5 @@
 // Distance constraints in the soft step (Catto, "Solver2D" 2024 and GDC 2011 "Soft Constraints"),
-// solved in the same substep loop as the contacts (World::Impl::solve in src/world.cpp).
+// solved in the same substep loop as the contacts (StepSolver::solve in src/dynamics/solver.cpp).
 //
 // C = |pB - pA| - length, along the unit axis n from anchor A to anchor B. A rigid constraint
 // (compliance 0) is a velocity constraint in the relax pass and, in the biased pass, a stiff soft
@@ -10,6 +10,7 @@
 #pragma once
 
 #include "dynamics/body_storage.h"
+#include "dynamics/solver_body.h"
 
 #include <cstdint>
 #include <vector>
@@ -31,11 +32,22 @@ struct DistanceJoint {
   std::uint32_t generation = 1;
 };
 
+// The step's bodies as the joints see them: the solver bodies of moving bodies, the body storage
+// for the start-of-step poses and for static bodies.
+struct JointSolverView {
+  std::vector<SolverBody>& bodies;
+  const std::vector<SolverBodyInfo>& infos;
+  const std::vector<std::int32_t>& solverOf;
+  const BodyStorage& storage;
+};
+
+// Once per step: which joints take part (at least one awake dynamic body).
+void prepareJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints);
 // Per substep, over the active joints: apply the accumulated impulse along the current axis.
-void warmStartJoints(BodyStorage& bodies, std::vector<DistanceJoint>& joints);
+void warmStartJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints);
 // Per substep: one pass; useBias = false is the relax pass (rigid joints without position bias).
 // rigidHertz: the stiffness of the rigid joints' position correction (twice the contact hertz).
-void solveJoints(BodyStorage& bodies, std::vector<DistanceJoint>& joints, float h, float rigidHertz,
+void solveJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints, float h, float rigidHertz,
                  bool useBias);
 
 }  // namespace collide::detail

@@ -48,58 +48,58 @@ Vec3 averagePoint(const Manifold& m, float minDepth) {
 }  // namespace
 
 void applyInterpolatedImpacts(BodyStorage& bodies, std::vector<Contact>& contacts,
-                              const std::vector<ContactConstraint>& constraints, float threshold,
-                              float slop) {
-  for (const ContactConstraint& k : constraints) {
-    Contact& c = contacts[k.contactIndex];
+                              const std::vector<std::uint32_t>& solved, float threshold, float slop) {
+  for (const std::uint32_t index : solved) {
+    Contact& c = contacts[index];
     if (c.wasTouching || !solverActed(c)) continue;  // a prolonged contact, or no impact this step
     float approach = 0.0f;
-    for (int i = 0; i < k.pointCount; ++i) approach = std::max(approach, -c.points[i].relativeVelocity);
+    for (int i = 0; i < c.manifold.count; ++i) approach = std::max(approach, -c.points[i].relativeVelocity);
     // Slow impacts do not bounce (resting contacts stay quiet); the soft solver's result stands.
     if (approach <= threshold) continue;
 
-    BodyState& sa = bodies.states[k.bodyA];
-    BodyState& sb = bodies.states[k.bodyB];
+    BodyState& sa = bodies.states[c.bodyA];
+    BodyState& sb = bodies.states[c.bodyB];
+    const Vec3 normal = c.manifold.normal;
     // Undo this contact's impulses: the soft solver has already made the impact perfectly inelastic
     // along the normal, and the lecture's model needs the velocities before the impact. Exact for
     // the linear part; the angular part uses the end-of-step inertia (exact for a central impact).
-    for (int i = 0; i < k.pointCount; ++i) {
-      const Vec3 impulse = c.points[i].totalNormalImpulse * k.normal;
+    for (int i = 0; i < c.manifold.count; ++i) {
+      const Vec3 impulse = c.points[i].totalNormalImpulse * normal;
+      const Vec3 point = c.manifold.points[i].midpoint();  // anchors at the step start, as solved
       sa.linearVelocity += sa.inverseMass * impulse;
-      sa.angularVelocity += sa.inverseInertiaWorld * glm::cross(k.points[i].anchorA, impulse);
+      sa.angularVelocity += sa.inverseInertiaWorld * glm::cross(point - sa.centerOfMass0, impulse);
       sb.linearVelocity -= sb.inverseMass * impulse;
-      sb.angularVelocity -= sb.inverseInertiaWorld * glm::cross(k.points[i].anchorB, impulse);
+      sb.angularVelocity -= sb.inverseInertiaWorld * glm::cross(point - sb.centerOfMass0, impulse);
     }
     ImpactBody a = impactBodyOf(sa);
     ImpactBody b = impactBodyOf(sb);
     // The points that touch first carry the impact: those within the slop of the deepest.
     const Vec3 point = averagePoint(c.manifold, c.manifold.maxDepth() - slop);
-    resolveImpactInterpolated(a, b, point, k.normal, c.impactBounciness);
-    writeBack(bodies.records[k.bodyA], sa, a);
-    writeBack(bodies.records[k.bodyB], sb, b);
+    resolveImpactInterpolated(a, b, point, normal, c.impactBounciness);
+    writeBack(bodies.records[c.bodyA], sa, a);
+    writeBack(bodies.records[c.bodyB], sb, b);
   }
 }
 
 void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
-                            const std::vector<ContactConstraint>& constraints, FrictionModel model,
-                            float dt) {
+                            const std::vector<std::uint32_t>& solved, FrictionModel model, float dt) {
   if (model != FrictionModel::Viscous && model != FrictionModel::Damping) return;
-  for (const ContactConstraint& k : constraints) {
-    Contact& c = contacts[k.contactIndex];
+  for (const std::uint32_t index : solved) {
+    Contact& c = contacts[index];
     // Lecture, slide 12: friction acts on a prolonged contact only, from its second step.
     if (!c.wasTouching || !(c.touching || solverActed(c))) continue;
-    BodyState& sa = bodies.states[k.bodyA];
-    BodyState& sb = bodies.states[k.bodyB];
+    BodyState& sa = bodies.states[c.bodyA];
+    BodyState& sb = bodies.states[c.bodyB];
     ImpactBody a = impactBodyOf(sa);
     ImpactBody b = impactBodyOf(sb);
     const Vec3 point = averagePoint(c.manifold, -std::numeric_limits<float>::infinity());
     if (model == FrictionModel::Viscous) {
-      applyViscousFriction(a, b, point, k.normal, c.friction, dt);
+      applyViscousFriction(a, b, point, c.manifold.normal, c.friction, dt);
     } else {
-      applyDampingFriction(a, b, point, k.normal, std::clamp(c.friction, 0.0f, 1.0f));
+      applyDampingFriction(a, b, point, c.manifold.normal, std::clamp(c.friction, 0.0f, 1.0f));
     }
-    writeBack(bodies.records[k.bodyA], sa, a);
-    writeBack(bodies.records[k.bodyB], sb, b);
+    writeBack(bodies.records[c.bodyA], sa, a);
+    writeBack(bodies.records[c.bodyB], sb, b);
   }
 }
 

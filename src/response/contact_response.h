@@ -1,15 +1,15 @@
 // The world's use of the lecture's response models (src/response/impact.h, friction.h): run after
-// the soft contact solver (src/dynamics/contact_solver.cpp) has solved the step's velocities, on the
+// the soft contact solver (src/dynamics/solver.h) has solved the step's velocities, on the
 // contacts that the contact cache marks as new impacts or prolonged contacts. See docs/response.md
 // ("In the world").
 #pragma once
 
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
-#include "dynamics/contact_solver.h"
 
 #include <collide/world.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace collide::detail {
@@ -21,12 +21,12 @@ namespace collide::detail {
 // with contact.impactBounciness at the impact point (the average of the manifold points within
 // `slop` of the deepest). Other contacts' impulses on the same bodies are kept.
 void applyInterpolatedImpacts(BodyStorage& bodies, std::vector<Contact>& contacts,
-                              const std::vector<ContactConstraint>& constraints, float threshold, float slop);
+                              const std::vector<std::uint32_t>& solved, float threshold, float slop);
 
 // FrictionModel::Viscous / Damping, once per step per prolonged contact (touching last step and
 // active this step), at the average of the manifold points: viscous with k = contact.friction per
 // second over dt, damping with tax = contact.friction clamped to [0, 1]. Other models: nothing.
 void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
-                            const std::vector<ContactConstraint>& constraints, FrictionModel model, float dt);
+                            const std::vector<std::uint32_t>& solved, FrictionModel model, float dt);
 
 }  // namespace collide::detail

@@ -21,7 +21,6 @@ TEST(ContactCache, PointsMatchByFeatureIdAndInheritImpulses) {
   previous.manifold.points[2] = pointAt(2.0f, 11);
   previous.points[0].normalImpulse = 1.0f;
   previous.points[1].normalImpulse = 2.0f;
-  previous.points[1].tangentImpulse = {0.5f, -0.5f};
   previous.points[2].normalImpulse = 3.0f;
 
   Contact current;
@@ -31,7 +30,6 @@ TEST(ContactCache, PointsMatchByFeatureIdAndInheritImpulses) {
   matchContactPoints(previous, current);
   EXPECT_TRUE(current.points[0].prolonged);
   EXPECT_EQ(current.points[0].normalImpulse, 2.0f);
-  EXPECT_EQ(current.points[0].tangentImpulse[1], -0.5f);
   EXPECT_FALSE(current.points[1].prolonged);
   EXPECT_EQ(current.points[1].normalImpulse, 0.0f);
 }
@@ -60,7 +58,6 @@ TEST(ContactCache, RenamedPointWithinMatchDistanceInheritsItsImpulse) {
   previous.manifold.points[0] = pointAt(0.0f, 7);
   previous.manifold.points[1] = pointAt(1.0f, 9);
   previous.points[0].normalImpulse = 1.0f;
-  previous.points[0].tangentImpulse = {0.25f, 0.75f};
   previous.points[1].normalImpulse = 2.0f;
   Contact current;
   current.manifold.count = 2;
@@ -69,7 +66,6 @@ TEST(ContactCache, RenamedPointWithinMatchDistanceInheritsItsImpulse) {
   matchContactPoints(previous, current, 0.005f);
   EXPECT_TRUE(current.points[0].prolonged);
   EXPECT_EQ(current.points[0].normalImpulse, 1.0f);
-  EXPECT_EQ(current.points[0].tangentImpulse[1], 0.75f);
   EXPECT_FALSE(current.points[1].prolonged);  // beyond the match distance: a new contact
   EXPECT_EQ(current.points[1].normalImpulse, 0.0f);
 }
@@ -87,6 +83,35 @@ TEST(ContactCache, FeatureIdMatchesComeBeforePositionMatches) {
   EXPECT_FALSE(current.points[0].prolonged);  // the old point went to its id
   EXPECT_TRUE(current.points[1].prolonged);
   EXPECT_EQ(current.points[1].normalImpulse, 1.0f);
+}
+
+}  // namespace
+}  // namespace collide::detail
+
+namespace collide::detail {
+namespace {
+
+// The friction patch is the manifold's, not a point's: its impulse and static anchor carry over with
+// the contact whatever happens to the points' names.
+TEST(ContactCache, InheritedContactKeepsItsFrictionPatch) {
+  Contact previous;
+  previous.manifold.count = 1;
+  previous.manifold.points[0] = pointAt(0.0f, 7);
+  previous.frictionImpulse = Vec3(0.5f, 0.0f, -0.25f);
+  previous.twistImpulse = 0.125f;
+  previous.stickLocalA = Vec3(1.0f, 2.0f, 3.0f);
+  previous.stickLocalB = Vec3(-1.0f, 0.0f, 0.5f);
+  previous.stuck = true;
+  Contact current;
+  current.manifold.count = 1;
+  current.manifold.points[0] = pointAt(0.5f, 8);  // neither the id nor the place matches
+  inheritContact(previous, current, 0.005f);
+  EXPECT_FALSE(current.points[0].prolonged);
+  EXPECT_EQ(current.frictionImpulse, previous.frictionImpulse);
+  EXPECT_EQ(current.twistImpulse, 0.125f);
+  EXPECT_EQ(current.stickLocalA, previous.stickLocalA);
+  EXPECT_EQ(current.stickLocalB, previous.stickLocalB);
+  EXPECT_TRUE(current.stuck);
 }
 
 }  // namespace

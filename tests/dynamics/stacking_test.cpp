@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
 namespace collide {
@@ -75,9 +76,11 @@ StandingResult runStanding(const std::vector<Vec3>& centres, int steps) {
 // The stack's sag is the soft contacts' steady state: a resting point carrying force F is compressed
 // by F / (m_eff omega^2) (in steady state the biased solve adds no impulse, whatever the damping ratio).
 // A unit cube's corner point has m_eff = 1/8 against another cube (inverse masses 1 + 1 plus the
-// turning terms 3 + 3) and 1/4 against the ground (whose spring is twice the hertz); each of the four
-// points of the contact under k boxes carries k g / 4. Summed over the stack: (2 (1 + ... + 9) + 2.5)
-// g / omega^2. A measured sag that differs means the solver is not at rest or not the model it claims.
+// turning terms 3 + 3) and 1/4 against the ground; each of the four points of the contact under k
+// boxes carries k g / 4. Summed over the stack: 2 (1 + ... + 9) g / omega^2 + 10 g / omega_ground^2,
+// where the ground's spring has twice the hertz within the same cap (the quarter substep rate, which
+// the default hertz already reaches, so both are equal with the defaults). A measured sag that
+// differs means the solver is not at rest or not the model it claims.
 TEST(Stacking, TenBoxStackSagsByTheSoftContactsPrediction) {
   ASSERT_TRUE(boxBoxHasFaceManifold()) << "box-box needs SAT with clipping";
   std::vector<Vec3> centres;
@@ -86,19 +89,19 @@ TEST(Stacking, TenBoxStackSagsByTheSoftContactsPrediction) {
   const WorldDef def;
   const float h = kDt / static_cast<float>(def.substeps);
   const float omega = 2.0f * kPi * std::min(def.contact.hertz, 0.25f / h);
-  const float predicted = (90.0f + 2.5f) * 9.81f / (omega * omega);
+  const float omegaGround = 2.0f * kPi * std::min(2.0f * def.contact.hertz, 0.25f / h);
+  const float predicted = 90.0f * 9.81f / (omega * omega) + 10.0f * 9.81f / (omegaGround * omegaGround);
   std::printf("stack sag %g m, predicted %g m\n", -r.topDisplacement.y, predicted);
   EXPECT_NEAR(-r.topDisplacement.y, predicted, 0.05f * predicted);
   EXPECT_LT(r.largestFinalSpeed, 1e-2f);  // no jitter
 }
 
-// Disabled until they pass with a margin (no loosened thresholds); run with
-// --gtest_also_run_disabled_tests. Release, 600 steps of 1/60 s, with the defaults (90 Hz, damping
-// ratio 0.5, 6 substeps, 2 relax passes): the 10-stack's top box ends (0.98, -0.28, 0.40) cm off, the
-// R3 pyramid's (0.53, -0.87, -0.65) cm; both under 1 cm but the sideways walk (x, z) is chaotic in the
-// settings (0.1 to 1.5 cm across nearby ones), so a pass would be luck. The sag (y) is the soft
-// contact's spring and now small; the walk is what is left (docs/architecture.md, "Stacking").
-TEST(Stacking, DISABLED_TenBoxStackStandsForTenSeconds) {
+// Issue 5: a stack and the R3 pyramid stand for 10 s, the top box within 1 cm of where it started in
+// each axis. With the defaults (6 substeps, contacts at 90 Hz, the quarter substep rate) the sag (y)
+// is the soft contacts' spring (the prediction above) and the sideways walk (x, z) is held by the
+// friction patches' static anchors: measured (-0.01, -0.31, 0.00) cm for the stack and (0.34, -0.78,
+// 0.01) cm for the pyramid; the perturbed pyramids below stay within (0.16, 0.79, 0.10) cm.
+TEST(Stacking, TenBoxStackStandsForTenSeconds) {
   ASSERT_TRUE(boxBoxHasFaceManifold()) << "box-box needs SAT with clipping";
   std::vector<Vec3> centres;
   for (int i = 0; i < 10; ++i) centres.emplace_back(0.0f, 0.5f + static_cast<float>(i), 0.0f);
@@ -111,7 +114,7 @@ TEST(Stacking, DISABLED_TenBoxStackStandsForTenSeconds) {
 }
 
 // Reference scene R3 (/work/shared/reference-scenes.md): 465 unit cubes in rows of 30..1.
-TEST(Stacking, DISABLED_PyramidR3StandsForTenSeconds) {
+TEST(Stacking, PyramidR3StandsForTenSeconds) {
   ASSERT_TRUE(boxBoxHasFaceManifold()) << "box-box needs SAT with clipping";
   std::vector<Vec3> centres;
   for (int r = 0; r < 30; ++r) {
@@ -126,6 +129,41 @@ TEST(Stacking, DISABLED_PyramidR3StandsForTenSeconds) {
   EXPECT_LT(std::abs(r.topDisplacement.x), 1e-2f);
   EXPECT_LT(std::abs(r.topDisplacement.y), 1e-2f);
   EXPECT_LT(std::abs(r.topDisplacement.z), 1e-2f);
+}
+
+// The same pyramid with every cube placed up to 0.1 mm off and turned up to about 0.01 degrees
+// (three fixed seeds; the first layer may hover up to 0.1 mm): a standing result that depended on
+// the exact lattice would be luck, not stability.
+TEST(Stacking, PerturbedPyramidsStandForTenSeconds) {
+  ASSERT_TRUE(boxBoxHasFaceManifold()) << "box-box needs SAT with clipping";
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> offset(-1e-4f, 1e-4f);
+    World world;
+    world.createBody(test::groundBox());
+    BodyId top{};
+    Vec3 topStart(0.0f);
+    for (int r = 0; r < 30; ++r) {
+      const int n = 30 - r;
+      for (int i = 0; i < n; ++i) {
+        BodyDef def = test::boxBody(Vec3(static_cast<float>(i) - 0.5f * static_cast<float>(n - 1) + offset(rng),
+                                         0.5f + static_cast<float>(r) + std::abs(offset(rng)), offset(rng)),
+                                    Vec3(0.5f), 1.0f);
+        def.rotation = glm::normalize(Quat(1.0f, offset(rng), offset(rng), offset(rng)));
+        const BodyId id = world.createBody(def);
+        if (r == 29) {
+          top = id;
+          topStart = def.position;
+        }
+      }
+    }
+    for (int i = 0; i < 600; ++i) world.step(kDt);
+    const Vec3 d = world.transform(top).position - topStart;
+    std::printf("seed %u: top displacement (%g, %g, %g)\n", seed, d.x, d.y, d.z);
+    EXPECT_LT(std::abs(d.x), 1e-2f) << "seed " << seed;
+    EXPECT_LT(std::abs(d.y), 1e-2f) << "seed " << seed;
+    EXPECT_LT(std::abs(d.z), 1e-2f) << "seed " << seed;
+  }
 }
 
 }  // namespace

@@ -218,6 +218,83 @@ TEST(World, PreSolveCallbackMakesAOneWayPlatform) {
   EXPECT_LT(glm::length(world.linearVelocity(ball)), 0.05f);
 }
 
+// The pre-solve callback may change a contact: a conveyor belt is a static box whose contacts get a
+// surface velocity. A box set on it accelerates at mu g (Coulomb) until it rides at the belt's speed:
+// after 1 s, v = 2 m/s and x = v^2 / (2 mu g) + v (1 - v / (mu g)).
+TEST(World, PreSolveSurfaceVelocityMakesAConveyorBelt) {
+  World world;
+  BodyDef belt = test::groundBox();
+  belt.friction = 0.5f;
+  const BodyId beltId = world.createBody(belt);
+  BodyDef box = test::boxBody(Vec3(0.0f, 0.5f, 0.0f), Vec3(0.5f), 1.0f);
+  box.friction = 0.5f;
+  const BodyId boxId = world.createBody(box);
+  const Vec3 beltVelocity(2.0f, 0.0f, 0.0f);
+  world.setPreSolveCallback([&](BodyId a, BodyId b, const Manifold&, ContactSettings& settings) {
+    (void)b;
+    // B's surface relative to A's: the box moves with the belt, the belt against the box.
+    settings.surfaceVelocity = a == beltId ? beltVelocity : -beltVelocity;
+    return true;
+  });
+  for (int i = 0; i < 60; ++i) world.step(kDt);
+  const float muG = 0.5f * 9.81f;
+  const float expectedX = 4.0f / (2.0f * muG) + 2.0f * (1.0f - 2.0f / muG);
+  EXPECT_NEAR(world.linearVelocity(boxId).x, 2.0f, 0.02f);
+  EXPECT_NEAR(world.transform(boxId).position.x, expectedX, 0.03f * expectedX);
+  EXPECT_NEAR(world.transform(boxId).position.y, 0.5f, 0.01f);
+}
+
+// ... and its friction and bounciness: a ball dropped on a floor whose callback makes the contact
+// perfectly bouncy comes back up to its height (within the soft contact's loss), and the same ball
+// with the world's combined bounciness of 0 stays down.
+TEST(World, PreSolveChangesBounciness) {
+  const auto rebound = [](bool bouncy) {
+    World world;
+    world.createBody(test::groundPlane());
+    const BodyId ball = world.createBody(test::sphereBody(Vec3(0.0f, 2.0f, 0.0f), 0.25f, 1.0f));
+    if (bouncy) {
+      world.setPreSolveCallback([](BodyId, BodyId, const Manifold&, ContactSettings& settings) {
+        settings.bounciness = 1.0f;
+        return true;
+      });
+    }
+    float highest = 0.0f;
+    bool landed = false;
+    for (int i = 0; i < 90; ++i) {
+      world.step(kDt);
+      const float y = world.transform(ball).position.y;
+      if (world.linearVelocity(ball).y > 0.0f) landed = true;
+      if (landed) highest = std::max(highest, y);
+    }
+    return highest;
+  };
+  EXPECT_GT(rebound(true), 1.9f);
+  EXPECT_LT(rebound(false), 0.3f);
+}
+
+// Bad settings from the callback are not applied, the step still completes, then step() says so.
+TEST(World, PreSolveSettingsOutOfRangeAreRefused) {
+  World world;
+  world.createBody(test::groundPlane());
+  const BodyId ball = world.createBody(test::sphereBody(Vec3(0.0f, 0.24f, 0.0f), 0.25f, 1.0f));
+  world.setPreSolveCallback([](BodyId, BodyId, const Manifold&, ContactSettings& settings) {
+    settings.friction = std::numeric_limits<float>::quiet_NaN();
+    return true;
+  });
+  try {
+    world.step(kDt);
+    ADD_FAILURE() << "a NaN friction was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pre-solve callback"), std::string::npos) << e.what();
+  }
+  // The step happened with the contact's own friction: the ball was pushed out of the floor, finite.
+  EXPECT_TRUE(isFinite(world.transform(ball).position));
+  EXPECT_GT(world.transform(ball).position.y, 0.24f);
+  world.setPreSolveCallback(PreSolveFilter(nullptr));
+  world.step(kDt);  // the world goes on
+  EXPECT_TRUE(isFinite(world.linearVelocity(ball)));
+}
+
 TEST(World, SameSceneTwiceGivesBitIdenticalStates) {
   const auto run = [](std::vector<float>& out) {
     World world;

@@ -1,0 +1,30 @@
+// Symplectic Euler per substep on the solver bodies (Box2D v3's b2IntegrateVelocitiesTask /
+// b2IntegratePositionsTask): velocities first (gravity, forces, the gyroscopic term), then the
+// constraints act on them, then the pose change follows the new velocities.
+#pragma once
+
+#include "dynamics/body_storage.h"
+#include "dynamics/solver_body.h"
+
+#include <vector>
+
+namespace collide::detail {
+
+// One implicit-midpoint step of torque-free rotation in the body frame; returns the new body-frame
+// angular velocity.
+Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& bodyOmega, float h);
+
+// True when the inertia is a multiple of the identity (to float precision), where the gyroscopic
+// term w x (I w) vanishes.
+bool isIsotropic(const Mat3& inertia);
+
+// Velocity step of one substep for the dynamic solver bodies: gravity, the body's accumulated force
+// and torque, and the gyroscopic term; the angular speed is bounded (see integrate.cpp).
+void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
+                         const BodyStorage& storage, const Vec3& gravity, float h);
+
+// Position step of one substep for dynamic and kinematic solver bodies: the change of position by
+// v h, the change of rotation by dq' = 1/2 (0, w) dq, renormalised; particles never turn.
+void integratePositions(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos, float h);
+
+}  // namespace collide::detail

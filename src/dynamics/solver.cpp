@@ -1,0 +1,118 @@
+#include "dynamics/solver.h"
+
+#include "dynamics/fault_guard.h"
+#include "dynamics/integrate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace collide::detail {
+
+namespace {
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const Quat& q) {
+  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+}
+
+}  // namespace
+
+void StepSolver::gatherBodies(BodyStorage& storage) {
+  const std::size_t n = storage.states.size();
+  solverOf_.assign(n, kNoSolverBody);
+  bodies_.clear();
+  infos_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    BodyState& s = storage.states[i];
+    s.centerOfMass0 = s.centerOfMass;
+    s.rotation0 = s.rotation;
+    const BodyRecord& r = storage.records[i];
+    if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
+    solverOf_[i] = static_cast<std::int32_t>(bodies_.size());
+    SolverBody& body = bodies_.emplace_back();
+    body.linearVelocity = s.linearVelocity;
+    body.angularVelocity = s.angularVelocity;
+    SolverBodyInfo& info = infos_.emplace_back();
+    info.body = static_cast<std::uint32_t>(i);
+    info.dynamic = r.type == BodyType::Dynamic;
+    info.particle = r.particle;
+    if (info.dynamic) {
+      info.inverseMass = s.inverseMass;
+      info.inverseInertiaWorld = s.inverseInertiaWorld;
+    }
+  }
+}
+
+// The guard inside the step: a solver body with a non-finite part is stopped where the step began
+// (its solver state back to rest, unmoved) before its value reaches another body, and frozen and
+// reported at the end of the solve (fault_guard.h).
+void StepSolver::guard() {
+  for (std::size_t j = 0; j < bodies_.size(); ++j) {
+    SolverBodyInfo& info = infos_[j];
+    if (info.faulted) continue;
+    SolverBody& b = bodies_[j];
+    std::uint8_t fields = 0;
+    if (!finite(b.deltaPosition)) fields |= FaultEvent::kPosition;
+    if (!finite(b.deltaRotation)) fields |= FaultEvent::kRotation;
+    if (!finite(b.linearVelocity)) fields |= FaultEvent::kLinearVelocity;
+    if (!finite(b.angularVelocity)) fields |= FaultEvent::kAngularVelocity;
+    if (fields == 0) continue;
+    info.faulted = true;
+    faultFields_[j] = fields;
+    b = SolverBody{};
+  }
+}
+
+void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults) {
+  for (std::size_t j = 0; j < bodies_.size(); ++j) {
+    const SolverBodyInfo& info = infos_[j];
+    BodyRecord& r = storage.records[info.body];
+    BodyState& s = storage.states[info.body];
+    if (info.faulted) {
+      freezeBody(r, s);
+      faults.push_back({BodyId{info.body, r.generation}, faultFields_[j]});
+      continue;
+    }
+    const SolverBody& b = bodies_[j];
+    s.centerOfMass = s.centerOfMass0 + b.deltaPosition;
+    if (!info.particle) s.rotation = glm::normalize(b.deltaRotation * s.rotation0);
+    s.linearVelocity = b.linearVelocity;
+    s.angularVelocity = b.angularVelocity;
+    if (info.dynamic) s.inverseInertiaWorld = worldInverseInertia(r.inverseInertiaLocal, s.rotation);
+  }
+}
+
+void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
+                       std::vector<DistanceJoint>& joints, const StepSettings& settings, float dt,
+                       std::vector<FaultEvent>& faults) {
+  const float h = dt / static_cast<float>(settings.substeps);
+  gatherBodies(storage);
+  faultFields_.assign(bodies_.size(), 0);
+  ContactSolverSettings contactSettings;
+  contactSettings.tuning = settings.tuning;
+  contactSettings.friction = settings.friction;
+  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h);
+  JointSolverView view{bodies_, infos_, solverOf_, storage};
+  prepareJoints(view, joints);
+  // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
+  // joint past it made a net draped over a ball shiver instead of sleeping).
+  const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
+  for (int i = 0; i < settings.substeps; ++i) {
+    integrateVelocities(bodies_, infos_, storage, settings.gravity, h);
+    guard();  // before a bad velocity reaches a contact
+    warmStartJoints(view, joints);
+    contacts_.warmStart(bodies_);
+    solveJoints(view, joints, h, rigidHertz, true);
+    contacts_.solve(bodies_, h, true);
+    integratePositions(bodies_, infos_, h);
+    solveJoints(view, joints, h, rigidHertz, false);
+    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false);
+    guard();
+  }
+  contacts_.applyRestitution(bodies_);
+  guard();
+  contacts_.store(contacts);
+  writeBack(storage, faults);
+}
+
+}  // namespace collide::detail

@@ -1,0 +1,54 @@
+// One step's solve (Box2D v3's solver.c), between the narrow phase and the response models:
+//   1. solver bodies for the awake dynamic and the kinematic bodies (solver_body.h), the contact
+//      batches (contact_solver.h) and the joints' frames;
+//   2. per substep (h = dt / substeps): integrate velocities (gravity, forces, the gyroscopic term)
+//      -> fault guard -> warm start joints and contacts -> solve both with the soft position bias ->
+//      integrate positions -> relax both without it -> fault guard;
+//   3. restitution, the impulses back into the contacts, the new poses and velocities back into the
+//      body storage (inertia refreshed), and bodies the guard stopped frozen and reported.
+// Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
+// last word on penetration.
+#pragma once
+
+#include "contacts/contact_cache.h"
+#include "dynamics/body_storage.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/joint_solver.h"
+#include "dynamics/solver_body.h"
+
+#include <collide/world.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace collide::detail {
+
+struct StepSettings {
+  Vec3 gravity{0.0f};
+  int substeps = 4;
+  int relaxPasses = 1;
+  ContactTuning tuning;
+  bool friction = true;  // Coulomb friction in the solver (off under the viscous and damping models)
+};
+
+class StepSolver {
+ public:
+  void solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<DistanceJoint>& joints,
+             const StepSettings& settings, float dt, std::vector<FaultEvent>& faults);
+
+  // The contacts the last solve took, in solve order (the response models and revert walk them).
+  const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts; }
+
+ private:
+  void gatherBodies(BodyStorage& storage);
+  void writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults);
+  void guard();
+
+  std::vector<SolverBody> bodies_;
+  std::vector<SolverBodyInfo> infos_;
+  std::vector<std::int32_t> solverOf_;  // body index -> solver body, kNoSolverBody if none
+  std::vector<std::uint8_t> faultFields_;
+  ContactSolver contacts_;
+};
+
+}  // namespace collide::detail
