@@ -216,7 +216,6 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
   check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)");
   check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
-  check(t.manifoldCacheAngle, t.manifoldCacheAngle >= 0.0f, "manifoldCacheAngle (must be >= 0)");
   if (t.relaxPasses < 0)
     throw Error("world: contact.relaxPasses out of range (must be >= 0), got " +
                 std::to_string(t.relaxPasses));
@@ -323,6 +322,8 @@ BodyId World::createBody(const BodyDef& def) {
       r.boundingRadius =
           glm::length(sphere.center * def.scale - r.localCenterOfMass) + sphere.radius * def.scale;
     }
+    const BoundingSphere sphere = localBoundingSphere(def.shape);
+    r.originRadius = (glm::length(sphere.center) + sphere.radius) * def.scale;
   } catch (const Error& e) {
     w.bodies.free(index);
     fail(std::string("shape: ") + e.what());
@@ -723,19 +724,36 @@ void World::Impl::narrowPhase(float dt) {
     ++tests;
     // A pair that has not moved relative to itself since its manifold was computed (a resting
     // stack, a crate on the terrain) gets that manifold placed again (Jolt's body pair cache).
+    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
     if (previous && !sensor &&
-        detail::reuseManifold(previous->cache, previous->manifold, ta, tb, def.contact.manifoldCacheDistance,
-                              def.contact.manifoldCacheAngle, c.manifold)) {
+        detail::reuseManifold(previous->cache, previous->manifold, ta, tb, ra.originRadius, rb.originRadius,
+                              def.contact.manifoldCacheDistance, c.manifold)) {
       c.cache = previous->cache;
       ++reused;
     } else {
-      const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
       collide::collide(ra.shape, ta, rb.shape, tb, c.manifold, margin);
-      if (c.manifold.count > 0 && !sensor) detail::storeManifold(c.manifold, ta, tb, c.cache);
+      // An empty manifold is cached only if the margin exceeds the cache's tolerance: a pair found
+      // apart by more than the margin then cannot touch before it moves beyond the tolerance.
+      if (!sensor && (c.manifold.count > 0 || margin > 2.0f * def.contact.manifoldCacheDistance))
+        detail::storeManifold(c.manifold, ta, tb, c.cache);
     }
     if (c.manifold.count == 0) {
-      contacts.pop_back();
       if (previous) endVanished(*previous);
+      if (!c.cache.valid) {
+        contacts.pop_back();
+        continue;
+      }
+      // Kept empty, so that next step can take the same "apart" while the pair does not move. It
+      // has no points: the solver, the events and the islands pass it by.
+      const detail::ManifoldCache cache = c.cache;
+      c = Contact{};
+      c.cache = cache;
+      c.key = key;
+      c.bodyA = ia;
+      c.bodyB = ib;
+      c.generationA = ra.generation;
+      c.generationB = rb.generation;
+      c.enabled = false;
       continue;
     }
     c.key = key;

@@ -65,11 +65,11 @@ struct ContactTuning {
   // A sticking friction patch holds its place (a point fixed in each body); when the two points
   // drift apart farther than this (m) along the surface, the anchor is taken again where the patch is.
   float frictionAnchorReach = 0.02f;
-  // A pair whose relative pose moved less than this (m, rad) since its manifold was computed gets
-  // that manifold placed at the new poses instead of a new narrow-phase query (Jolt's body pair
-  // cache): resting bodies cost almost nothing. 0 turns the cache off.
+  // A pair of which no point of either body moved more than this (m) relative to the other since
+  // its manifold was computed gets that manifold placed at the new poses instead of a new
+  // narrow-phase query (Jolt's body pair cache), and a pair found apart stays apart: resting bodies
+  // cost almost nothing. 0 turns the cache off.
   float manifoldCacheDistance = 0.001f;
-  float manifoldCacheAngle = 0.0087f;  // half a degree
 };
 
 // When a body counts as resting (Box2D's sleep tolerances and time to sleep).

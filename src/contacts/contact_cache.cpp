@@ -1,5 +1,6 @@
 #include "contacts/contact_cache.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace collide::detail {
@@ -74,15 +75,21 @@ void storeManifold(const Manifold& manifold, const Transform& a, const Transform
 }
 
 bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
-                   float distance, float angle, Manifold& out) {
+                   float radiusA, float radiusB, float distance, Manifold& out) {
   if (!cache.valid) return false;
   const Quat inverseA = glm::conjugate(a.rotation);
-  const Vec3 moved = inverseA * (b.position - a.position) - cache.relativePosition;
-  if (glm::dot(moved, moved) > distance * distance) return false;
-  // |q1 . q2| = cos(theta / 2) >= cos(angle / 2), compared as 1 - cos(theta / 2) <= angle^2 / 8
-  // (the first terms of the series; the tolerance is small).
-  const float cosHalf = std::abs(glm::dot(inverseA * b.rotation, cache.relativeRotation));
-  if (1.0f - cosHalf > 0.125f * angle * angle) return false;
+  const Quat rotation = inverseA * b.rotation;  // B's rotation in A's frame
+  const Vec3 position = inverseA * (b.position - a.position);
+  // The turn between the cached and the current relative rotation: 2 asin |vector part of the
+  // difference|, bounded above by pi/2 times that sine for the small angles that matter here.
+  const Quat turn = rotation * glm::conjugate(cache.relativeRotation);
+  const float angle = 0.5f * kPi * glm::length(Vec3(turn.x, turn.y, turn.z));
+  // B's points seen from A, and A's points seen from B; either bound holds, the smaller one decides.
+  const float movedB = glm::length(position - cache.relativePosition) + angle * radiusB;
+  const Vec3 positionA = glm::conjugate(rotation) * position;
+  const Vec3 cachedPositionA = glm::conjugate(cache.relativeRotation) * cache.relativePosition;
+  const float movedA = glm::length(positionA - cachedPositionA) + angle * radiusA;
+  if (std::min(movedA, movedB) > distance) return false;
   out.count = cached.count;
   out.normal = a.applyToDirection(cache.normal);
   for (int i = 0; i < cached.count; ++i) {

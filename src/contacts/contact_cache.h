@@ -41,13 +41,15 @@ struct ManifoldCache {
   bool valid = false;
 };
 
-// Fills the cache from a manifold just computed at these transforms.
+// Fills the cache from a manifold just computed at these transforms (an empty one too: the pair is
+// then known to be apart by more than the speculative margin).
 void storeManifold(const Manifold& manifold, const Transform& a, const Transform& b, ManifoldCache& cache);
-// If B's pose relative to A is within `distance` (m) and `angle` (rad) of the cached one, writes the
-// cached manifold placed at these transforms (same points and ids, depths measured anew) and
-// returns true.
+// If no point of either body moved by more than `distance` (m) relative to the other since the cache
+// was filled, writes the cached manifold placed at these transforms (same points and ids, depths
+// measured anew) and returns true. radiusA, radiusB bound the bodies about their origins: a body's
+// points move by at most |its origin's move| + (turn angle) x radius relative to the other body.
 bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
-                   float distance, float angle, Manifold& out);
+                   float radiusA, float radiusB, float distance, Manifold& out);
 
 struct Contact {
   std::uint64_t key = 0;  // proxy a index << 32 | proxy b index

@@ -40,6 +40,7 @@ struct BodyRecord {
   bool isotropicInertia = true;
   float mass = 0.0f;
   float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
+  float originRadius = 0.0f;    // around the body origin, every body type (the manifold cache)
   float bounciness = 0.0f;
   float friction = 0.5f;
   std::uint32_t layer = 1;
