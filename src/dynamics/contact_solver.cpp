@@ -19,38 +19,61 @@ Softness makeSoftness(float hertz, float dampingRatio, float h) {
 
 namespace {
 
-// Four solver bodies as lanes. A lane without a body (static, or an empty lane) reads a body at
+// Four solver bodies as lanes: their velocities (what the solver changes) and their change of pose
+// since the step began (read once per batch for the current separations, then dropped, so that the
+// velocities keep the registers). A lane without a body (static, or an empty lane) reads a body at
 // rest that has not moved.
-struct BodyW {
-  Vec3W v, w, dp;
+struct VelocityW {
+  Vec3W v, w;
+};
+struct PoseW {
+  Vec3W dp;
   FloatW qx, qy, qz, qw;
 };
 
 const SolverBody kRestingBody{};
 
-COLLIDE_INLINE BodyW gather(const std::vector<SolverBody>& bodies,
-                            const std::array<std::int32_t, kLanes>& index) {
-  const SolverBody* b[kLanes];
-  for (int i = 0; i < kLanes; ++i) b[i] = index[i] >= 0 ? &bodies[index[i]] : &kRestingBody;
-  BodyW out;
+COLLIDE_INLINE void bodyPointers(const std::vector<SolverBody>& bodies,
+                                 const std::array<std::int32_t, kLanes>& index, const float* (&out)[kLanes]) {
+  for (int i = 0; i < kLanes; ++i)
+    out[i] = reinterpret_cast<const float*>(index[i] >= 0 ? &bodies[index[i]] : &kRestingBody);
+}
+
+// Four rows of a field (x, y, z, and the fourth float) of the four lanes' bodies, as columns.
+COLLIDE_INLINE void gatherRows(const float* const (&b)[kLanes], std::size_t offset, FloatW& x, FloatW& y,
+                               FloatW& z, FloatW& last) {
+  x = loadW(b[0] + offset);
+  y = loadW(b[1] + offset);
+  z = loadW(b[2] + offset);
+  last = loadW(b[3] + offset);
+  transpose(x, y, z, last);
+}
+
+COLLIDE_INLINE VelocityW gatherVelocities(const std::vector<SolverBody>& bodies,
+                                          const std::array<std::int32_t, kLanes>& index) {
+  const float* b[kLanes];
+  bodyPointers(bodies, index, b);
+  VelocityW out;
   FloatW pad;
-  const auto rows = [&](std::size_t offset, FloatW& x, FloatW& y, FloatW& z, FloatW& last) {
-    x = loadW(reinterpret_cast<const float*>(b[0]) + offset);
-    y = loadW(reinterpret_cast<const float*>(b[1]) + offset);
-    z = loadW(reinterpret_cast<const float*>(b[2]) + offset);
-    last = loadW(reinterpret_cast<const float*>(b[3]) + offset);
-    transpose(x, y, z, last);
-  };
-  rows(0, out.v.x, out.v.y, out.v.z, pad);
-  rows(4, out.w.x, out.w.y, out.w.z, pad);
-  rows(8, out.dp.x, out.dp.y, out.dp.z, pad);
-  rows(12, out.qx, out.qy, out.qz, out.qw);
+  gatherRows(b, 0, out.v.x, out.v.y, out.v.z, pad);
+  gatherRows(b, 4, out.w.x, out.w.y, out.w.z, pad);
+  return out;
+}
+
+COLLIDE_INLINE PoseW gatherPoses(const std::vector<SolverBody>& bodies,
+                                 const std::array<std::int32_t, kLanes>& index) {
+  const float* b[kLanes];
+  bodyPointers(bodies, index, b);
+  PoseW out;
+  FloatW pad;
+  gatherRows(b, 8, out.dp.x, out.dp.y, out.dp.z, pad);
+  gatherRows(b, 12, out.qx, out.qy, out.qz, out.qw);
   return out;
 }
 
 // The contact solver changes velocities only; lanes of bodies it must not write are skipped.
 COLLIDE_INLINE void scatter(std::vector<SolverBody>& bodies, const std::array<std::int32_t, kLanes>& index,
-                            const std::array<bool, kLanes>& write, const BodyW& body) {
+                            const std::array<bool, kLanes>& write, const VelocityW& body) {
   FloatW v0 = body.v.x, v1 = body.v.y, v2 = body.v.z, v3 = zeroW();
   FloatW w0 = body.w.x, w1 = body.w.y, w2 = body.w.z, w3 = zeroW();
   transpose(v0, v1, v2, v3);
@@ -66,7 +89,7 @@ COLLIDE_INLINE void scatter(std::vector<SolverBody>& bodies, const std::array<st
 }
 
 // conj(q) v q for unit q: v seen in the frame before the rotation q.
-COLLIDE_INLINE Vec3W rotateInverse(const BodyW& q, const Vec3W& v) {
+COLLIDE_INLINE Vec3W rotateInverse(const PoseW& q, const Vec3W& v) {
   const Vec3W u{-q.qx, -q.qy, -q.qz};
   const Vec3W t = splat(2.0f) * cross(u, v);
   return v + q.qw * t + cross(u, t);
@@ -74,13 +97,13 @@ COLLIDE_INLINE Vec3W rotateInverse(const BodyW& q, const Vec3W& v) {
 
 // The small-angle rotation vector of q (2 x its vector part, on the shortest arc): the static
 // anchors are kept only while the bodies barely turn, where this is exact to second order.
-COLLIDE_INLINE Vec3W smallRotation(const BodyW& q) {
+COLLIDE_INLINE Vec3W smallRotation(const PoseW& q) {
   const FloatW negative = greaterW(zeroW(), q.qw);
   const FloatW two = selectW(negative, splat(-2.0f), splat(2.0f));
   return {two * q.qx, two * q.qy, two * q.qz};
 }
 
-COLLIDE_INLINE void applyLinear(BodyW& a, BodyW& b, const ContactBatch& c, FloatW impulse,
+COLLIDE_INLINE void applyLinear(VelocityW& a, VelocityW& b, const ContactBatch& c, FloatW impulse,
                                 const Vec3W& direction) {
   addScaled(a.v, -(impulse * c.inverseMassA), direction);
   addScaled(b.v, impulse * c.inverseMassB, direction);
@@ -287,8 +310,8 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
 
 void ContactSolver::warmStart(std::vector<SolverBody>& bodies) {
   for (ContactBatch& c : batches) {
-    BodyW a = gather(bodies, c.bodyA);
-    BodyW b = gather(bodies, c.bodyB);
+    VelocityW a = gatherVelocities(bodies, c.bodyA);
+    VelocityW b = gatherVelocities(bodies, c.bodyB);
     for (int k = 0; k < c.pointCount; ++k) {
       BatchPoint& p = c.points[k];
       // The events' impulse counts every substep's warm start as well as the solve's increments.
@@ -311,19 +334,42 @@ void ContactSolver::warmStart(std::vector<SolverBody>& bodies) {
 }
 
 void ContactSolver::solve(std::vector<SolverBody>& bodies, float h, bool useBias) {
+  if (useBias) {
+    solvePass<true>(bodies, h);
+  } else {
+    solvePass<false>(bodies, h);
+  }
+}
+
+// One pass; the biased and the relax pass are two instantiations, so neither tests the flag inside.
+template <bool useBias>
+void ContactSolver::solvePass(std::vector<SolverBody>& bodies, float h) {
   const FloatW zero = zeroW();
   const FloatW one = splat(1.0f);
   const FloatW inverseH = splat(1.0f / h);
   const FloatW maxPushOut = splat(-pushOutSpeed_);
   for (ContactBatch& c : batches) {
-    BodyW a = gather(bodies, c.bodyA);
-    BodyW b = gather(bodies, c.bodyB);
-
     // The current separation from the anchors carried along with each body's change of pose, without
-    // a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r.
-    const Vec3W normalA = rotateInverse(a, c.normal);
-    const Vec3W normalB = rotateInverse(b, c.normal);
-    const FloatW moved = dot(b.dp - a.dp, c.normal);
+    // a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r. And in the biased pass,
+    // how far the static anchors drifted apart along the tangents.
+    Vec3W normalA, normalB;
+    FloatW moved, drift1 = zero, drift2 = zero;
+    {
+      const PoseW pa = gatherPoses(bodies, c.bodyA);
+      const PoseW pb = gatherPoses(bodies, c.bodyB);
+      normalA = rotateInverse(pa, c.normal);
+      normalB = rotateInverse(pb, c.normal);
+      const Vec3W dp = pb.dp - pa.dp;
+      moved = dot(dp, c.normal);
+      if constexpr (useBias) {
+        const Vec3W drift = dp + cross(smallRotation(pb), c.stickB) - cross(smallRotation(pa), c.stickA);
+        drift1 = c.stickGap1 + dot(drift, c.tangent1);
+        drift2 = c.stickGap2 + dot(drift, c.tangent2);
+      }
+    }
+    VelocityW a = gatherVelocities(bodies, c.bodyA);
+    VelocityW b = gatherVelocities(bodies, c.bodyB);
+
     FloatW normalSum = zero;
     for (int k = 0; k < c.pointCount; ++k) {
       BatchPoint& p = c.points[k];
@@ -333,7 +379,7 @@ void ContactSolver::solve(std::vector<SolverBody>& bodies, float h, bool useBias
       FloatW bias = separation * inverseH;
       FloatW massScale = one;
       FloatW impulseScale = zero;
-      if (useBias) {
+      if constexpr (useBias) {
         bias = selectW(apart, bias, maxW(c.biasRate * separation, maxPushOut));
         massScale = selectW(apart, one, c.massScale);
         impulseScale = selectW(apart, zero, c.impulseScale);
@@ -363,12 +409,9 @@ void ContactSolver::solve(std::vector<SolverBody>& bodies, float h, bool useBias
         dot(dv, c.tangent2) + dot(b.w, c.tangent2CrossB) - dot(a.w, c.tangent2CrossA) - c.surfaceSpeed2;
     FloatW massScale = one;
     FloatW impulseScale = zero;
-    if (useBias) {
-      const Vec3W turnA = smallRotation(a);
-      const Vec3W turnB = smallRotation(b);
-      const Vec3W drift = (b.dp - a.dp) + cross(turnB, c.stickB) - cross(turnA, c.stickA);
-      v1 = v1 + c.stickRate * (c.stickGap1 + dot(drift, c.tangent1));
-      v2 = v2 + c.stickRate * (c.stickGap2 + dot(drift, c.tangent2));
+    if constexpr (useBias) {
+      v1 = v1 + c.stickRate * drift1;
+      v2 = v2 + c.stickRate * drift2;
       massScale = c.massScale;
       impulseScale = c.impulseScale;
     }
@@ -382,7 +425,7 @@ void ContactSolver::solve(std::vector<SolverBody>& bodies, float h, bool useBias
     const FloatW scale = selectW(beyond, limit / maxW(length, splat(1e-30f)), one);
     next1 = next1 * scale;
     next2 = next2 * scale;
-    if (useBias) c.sliding = orW(c.sliding, beyond);
+    if constexpr (useBias) c.sliding = orW(c.sliding, beyond);
     const FloatW d1 = next1 - c.tangentImpulse1;
     const FloatW d2 = next2 - c.tangentImpulse2;
     c.tangentImpulse1 = next1;
@@ -415,8 +458,8 @@ void ContactSolver::applyRestitution(std::vector<SolverBody>& bodies) {
   const FloatW threshold = splat(-restitutionThreshold_);
   for (ContactBatch& c : batches) {
     if (!anyW(greaterW(c.restitution, zero))) continue;
-    BodyW a = gather(bodies, c.bodyA);
-    BodyW b = gather(bodies, c.bodyB);
+    VelocityW a = gatherVelocities(bodies, c.bodyA);
+    VelocityW b = gatherVelocities(bodies, c.bodyB);
     for (int k = 0; k < c.pointCount; ++k) {
       BatchPoint& p = c.points[k];
       const FloatW bounce =

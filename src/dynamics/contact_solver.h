@@ -121,6 +121,9 @@ struct ContactSolver {
   void store(std::vector<Contact>& contacts) const;
 
  private:
+  template <bool useBias>
+  void solvePass(std::vector<SolverBody>& bodies, float h);
+
   float pushOutSpeed_ = 3.0f;
   float restitutionThreshold_ = 1.0f;
   float anchorReach_ = 0.02f;
