@@ -959,6 +959,8 @@ void World::Impl::emitEvents() {
     }
     if (c.touching) ++touchingCount;
     if (c.touching && !c.wasTouching) contactEvents.push_back(makeEvent(c, ContactEvent::Type::Begin));
+    if (c.touching && c.wasTouching && def.persistEvents && !c.asleep)
+      contactEvents.push_back(makeEvent(c, ContactEvent::Type::Persist));
     if (!c.touching && c.wasTouching) contactEvents.push_back(makeEvent(c, ContactEvent::Type::End));
   }
   lastStats.contactPairs = touchingCount;

@@ -154,7 +154,9 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
       ++summary.contactEvents;
       if (events) {
         const nlohmann::json line = {{"step", step},
-                                     {"type", e.type == ContactEvent::Type::Begin ? "begin" : "end"},
+                                     {"type", e.type == ContactEvent::Type::Begin     ? "begin"
+                                              : e.type == ContactEvent::Type::Persist ? "persist"
+                                                                                      : "end"},
                                      {"a", names[e.a.index]},
                                      {"b", names[e.b.index]},
                                      {"point", jsonVec3(e.point)},

@@ -38,6 +38,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.world.broadPhase.type, BroadPhaseType::SweepAndPrune);
   EXPECT_FALSE(s.world.ccd);  // the engine default is true
   EXPECT_FALSE(s.world.sleeping);
+  EXPECT_TRUE(s.world.persistEvents);  // the engine default is false
   EXPECT_EQ(s.world.bouncinessCombine, CombineRule::Multiply);
   EXPECT_EQ(s.world.frictionCombine, CombineRule::Min);
   EXPECT_EQ(s.world.impactModel, ImpactModel::Interpolated);

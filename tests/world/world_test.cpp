@@ -218,6 +218,39 @@ TEST(World, PreSolveCallbackMakesAOneWayPlatform) {
   EXPECT_LT(glm::length(world.linearVelocity(ball)), 0.05f);
 }
 
+// With persistEvents, a box set down on the ground reports Begin once, Persist every following step
+// it stays (lecture: the prolonged contact), and End when it is lifted off; without, no Persist.
+TEST(World, PersistEventsFollowAProlongedContact) {
+  for (const bool persist : {true, false}) {
+    WorldDef def;
+    def.persistEvents = persist;
+    World world(def);
+    world.createBody(test::groundBox());
+    const BodyId box = world.createBody(test::boxBody(Vec3(0.0f, 0.5f, 0.0f), Vec3(0.5f), 1.0f));
+    int begins = 0, persists = 0, ends = 0;
+    const auto count = [&] {
+      for (const ContactEvent& e : world.contactEvents()) {
+        begins += e.type == ContactEvent::Type::Begin;
+        ends += e.type == ContactEvent::Type::End;
+        if (e.type != ContactEvent::Type::Persist) continue;
+        ++persists;
+        EXPECT_NEAR(e.impulse, 9.81f * kDt, 0.02f * 9.81f * kDt);  // the box's weight, over one step
+        EXPECT_NEAR(e.normal.y, 1.0f, 1e-4f);
+      }
+    };
+    for (int i = 0; i < 30; ++i) {
+      world.step(kDt);
+      count();
+    }
+    world.setTransform(box, Vec3(0.0f, 5.0f, 0.0f), Quat(1.0f, 0.0f, 0.0f, 0.0f));
+    world.step(kDt);
+    count();
+    EXPECT_EQ(begins, 1);
+    EXPECT_EQ(persists, persist ? 29 : 0);
+    EXPECT_EQ(ends, 1);
+  }
+}
+
 // The pre-solve callback may change a contact: a conveyor belt is a static box whose contacts get a
 // surface velocity. A box set on it accelerates at mu g (Coulomb) until it rides at the belt's speed:
 // after 1 s, v = 2 m/s and x = v^2 / (2 mu g) + v (1 - v / (mu g)).
