@@ -47,6 +47,8 @@ inline FloatW minW(FloatW a, FloatW b) { return {_mm_min_ps(a.v, b.v)}; }
 inline FloatW sqrtW(FloatW a) { return {_mm_sqrt_ps(a.v)}; }
 // Lane masks: all bits set where the comparison holds.
 inline FloatW greaterW(FloatW a, FloatW b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+// Unordered or different: true for NaN lanes.
+inline FloatW notEqualW(FloatW a, FloatW b) { return {_mm_cmpneq_ps(a.v, b.v)}; }
 // mask ? a : b, per lane.
 inline FloatW selectW(FloatW mask, FloatW a, FloatW b) {
   return {_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v))};
@@ -106,6 +108,11 @@ inline FloatW sqrtW(FloatW a) {
 inline FloatW greaterW(FloatW a, FloatW b) {
   FloatW r;
   for (int i = 0; i < kLanes; ++i) r.v[i] = a.v[i] > b.v[i] ? 1.0f : 0.0f;
+  return r;
+}
+inline FloatW notEqualW(FloatW a, FloatW b) {
+  FloatW r;
+  for (int i = 0; i < kLanes; ++i) r.v[i] = !(a.v[i] == b.v[i]) ? 1.0f : 0.0f;
   return r;
 }
 inline FloatW selectW(FloatW mask, FloatW a, FloatW b) {
