@@ -37,6 +37,10 @@ using detail::DistanceJoint;
 
 namespace {
 
+// A body's world box is recomputed once any of its points may have moved this far (m) since the box
+// was computed; until then the old box grown by the possible motion stands in (conservative).
+constexpr float kBoundsReuseDistance = 0.002f;
+
 std::string formatVec(const Vec3& v) {
   std::ostringstream out;
   out << "(" << v.x << ", " << v.y << ", " << v.z << ")";
@@ -175,10 +179,35 @@ struct World::Impl {
     return s.centerOfMass + s.rotation * localAnchor;
   }
 
-  Aabb proxyBounds(std::uint32_t index, float dt) const {
+  // How far any point of the body can have moved between two poses: the centre's move plus the turn
+  // angle times the radius about the centre. The turn angle is 2 asin |vector part of the turn|,
+  // at most pi times that |vector part|.
+  static float pointMotionBound(const BodyRecord& r, const Vec3& com0, const Quat& q0, const Vec3& com1,
+                                const Quat& q1) {
+    const Quat turn = q1 * glm::conjugate(q0);
+    return glm::length(com1 - com0) + kPi * glm::length(Vec3(turn.x, turn.y, turn.z)) * r.boundingRadius;
+  }
+
+  // The body's world box. A body that barely moved since its box was last computed (a resting hull
+  // transforms all its vertices for it) gets the old box grown by how far it can have moved.
+  Aabb currentBounds(std::uint32_t index) {
+    BodyRecord& r = bodies.records[index];
+    const BodyState& s = bodies.states[index];
+    if (r.boundsValid && r.type != BodyType::Static) {
+      const float moved = pointMotionBound(r, r.boundsCenter, r.boundsRotation, s.centerOfMass, s.rotation);
+      if (moved <= kBoundsReuseDistance) return r.bounds.expanded(moved);
+    }
+    r.bounds = worldBounds(r.shape, detail::bodyTransform(r, s));
+    r.boundsCenter = s.centerOfMass;
+    r.boundsRotation = s.rotation;
+    r.boundsValid = true;
+    return r.bounds;
+  }
+
+  Aabb proxyBounds(std::uint32_t index, float dt) {
     const BodyRecord& r = bodies.records[index];
     const BodyState& s = bodies.states[index];
-    Aabb box = worldBounds(r.shape, detail::bodyTransform(r, s));
+    Aabb box = currentBounds(index);
     if (r.type == BodyType::Static) return box;
     // Speculative contacts need the pair before the bodies meet: grow by the step's motion.
     const Vec3 motion = dt * s.linearVelocity;
@@ -935,7 +964,13 @@ void World::Impl::refreshEscapedProxies() {
   for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
     const BodyRecord& r = bodies.records[i];
     if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
-    const Aabb now = worldBounds(r.shape, detail::bodyTransform(r, bodies.states[i]));
+    // The step's box was grown by at least the speculative distance all round: a body whose points
+    // moved less than that since the step began is still inside it.
+    const BodyState& s = bodies.states[i];
+    if (pointMotionBound(r, s.centerOfMass0, s.rotation0, s.centerOfMass, s.rotation) <
+        def.contact.speculativeDistance)
+      continue;
+    const Aabb now = currentBounds(i);
     if (!broadPhase->bounds(r.proxy).contains(now)) broadPhase->update(r.proxy, proxyBounds(i, 0.0f));
   }
 }

@@ -68,8 +68,10 @@ struct ContactTuning {
   // A pair of which no point of either body moved more than this (m) relative to the other since
   // its manifold was computed gets that manifold placed at the new poses instead of a new
   // narrow-phase query (Jolt's body pair cache), and a pair found apart stays apart: resting bodies
-  // cost almost nothing. 0 turns the cache off.
-  float manifoldCacheDistance = 0.001f;
+  // cost almost nothing. Kept well under the linear slop (what a feature the cached manifold lacks
+  // could sink by) and the speculative distance (what a pair found apart could close). 0 turns the
+  // cache off.
+  float manifoldCacheDistance = 0.002f;
 };
 
 // When a body counts as resting (Box2D's sleep tolerances and time to sleep).

@@ -81,9 +81,9 @@ bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Tra
   const Quat rotation = inverseA * b.rotation;  // B's rotation in A's frame
   const Vec3 position = inverseA * (b.position - a.position);
   // The turn between the cached and the current relative rotation: 2 asin |vector part of the
-  // difference|, bounded above by pi/2 times that sine for the small angles that matter here.
+  // difference|, at most pi times that |vector part|.
   const Quat turn = rotation * glm::conjugate(cache.relativeRotation);
-  const float angle = 0.5f * kPi * glm::length(Vec3(turn.x, turn.y, turn.z));
+  const float angle = kPi * glm::length(Vec3(turn.x, turn.y, turn.z));
   // B's points seen from A, and A's points seen from B; either bound holds, the smaller one decides.
   const float movedB = glm::length(position - cache.relativePosition) + angle * radiusB;
   const Vec3 positionA = glm::conjugate(rotation) * position;

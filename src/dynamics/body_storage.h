@@ -57,6 +57,11 @@ struct BodyRecord {
   bool alive = false;
   std::uint32_t generation = 1;
   ProxyId proxy;
+  // The last exactly computed world box and the pose it was computed at (World::currentBounds).
+  Aabb bounds;
+  Vec3 boundsCenter{0.0f};
+  Quat boundsRotation{1.0f, 0.0f, 0.0f, 0.0f};
+  bool boundsValid = false;
   Vec3 force{0.0f};
   Vec3 torque{0.0f};
 };
