@@ -1,9 +1,9 @@
 // The soft-step contact solver (Catto, "Solver2D" 2024 and Box2D v3's contact_solver.c), written for
-// 3D and four lanes wide. Per step, prepare() turns the contacts into batches of four manifolds
+// 3D and four or eight lanes wide. Per step, prepare() turns the contacts into batches of manifolds
 // that share no dynamic body (constraint_graph.h colours them), so a batch is solved in SIMD lanes
-// exactly as four sequential solves would be. Per substep: warm start, solve with the soft position
-// bias, (integrate positions), relax without it. At the end: restitution, and the impulses go back
-// to the contacts for warm starting and events.
+// exactly as sequential solves would be (contact_lanes.h has the kernels). Per substep: warm start, solve
+// with the soft position bias, (integrate positions), relax without it. At the end: restitution, and the
+// impulses go back to the contacts for warm starting and events.
 //
 // Each manifold is solved as
 //   - up to four normal points, each a soft constraint (Catto, GDC 2011 "Soft Constraints"): a
@@ -23,13 +23,14 @@
 
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
-#include "dynamics/simd.h"
+#include "dynamics/constraint_graph.h"
 #include "dynamics/solver_body.h"
 
 #include <collide/world.h>
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace collide::detail {
@@ -53,80 +54,76 @@ inline constexpr float kMaxHertzPerSubstepRate = 0.25f;
 // its rim 0.67. The square's value, since box faces are the common patch.
 inline constexpr float kTwistRadiusScale = 0.54f;
 
-// One normal point of a batch, four lanes.
-struct BatchPoint {
-  Vec3W anchorA, anchorB;  // from each centre of mass to the contact point, world, at the step start
-  Vec3W crossA, crossB;    // anchor x normal
-  Vec3W turnA, turnB;      // I^-1 (anchor x normal): the spin one unit of normal impulse gives
-  FloatW baseSeparation;   // separation at the step start minus normal . (anchorB - anchorA)
-  FloatW normalMass;
-  FloatW normalImpulse;  // accumulated per substep (warm start)
-  FloatW maxNormalImpulse;
-  FloatW totalNormalImpulse;
-  FloatW approachVelocity;  // normal relative velocity before the solve (restitution, events)
-};
-
-// Four manifolds, solved together (Box2D v3's b2ContactConstraintSIMD).
-struct ContactBatch {
-  std::array<std::int32_t, kLanes> bodyA{};  // solver body, or kNoSolverBody
-  std::array<std::int32_t, kLanes> bodyB{};
-  std::array<std::int32_t, kLanes> contact{};  // index in the contact array, -1 for an empty lane
-  std::array<bool, kLanes> writeA{};           // a dynamic body takes the result (not kinematic)
-  std::array<bool, kLanes> writeB{};
-  int pointCount = 0;  // the most points of the four manifolds
-  FloatW inverseMassA, inverseMassB;
-  Vec3W normal, tangent1, tangent2;
-  FloatW friction, restitution;
-  FloatW biasRate, massScale, impulseScale;
-  std::array<BatchPoint, Manifold::kMaxPoints> points;
-  // Friction patch.
-  Vec3W tangent1CrossA, tangent2CrossA, tangent1CrossB, tangent2CrossB;  // centroid anchor x tangent
-  Vec3W tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;      // I^-1 of those
-  FloatW tangentMass11, tangentMass12, tangentMass22;                    // inverse of the 2x2 block
-  FloatW tangentImpulse1, tangentImpulse2;
-  FloatW surfaceSpeed1, surfaceSpeed2;  // the sliding friction drives towards (a conveyor belt)
-  Vec3W twistTurnA, twistTurnB;  // I^-1 normal
-  FloatW twistMass, twistRadius, twistImpulse;
-  // Static-friction anchor: offsets of the anchored points from the centres at the step start, and
-  // their tangential gap B - A then.
-  Vec3W stickA, stickB;
-  FloatW stickGap1, stickGap2;
-  FloatW stickRate;  // the softness's bias rate, or 0 where the patch has no anchor (a belt)
-  FloatW sliding;  // lane mask: the patch reached the friction bound in a biased pass
-};
-
 struct ContactSolverSettings {
   ContactTuning tuning;
   bool friction = true;  // Coulomb friction (off under the viscous and damping models)
 };
 
-// Once per step: batches for the enabled, awake, non-sensor contacts with points, in colours of
-// the constraint graph (batches of one colour share no dynamic body) and then the overflow (one
-// contact per batch, solved one after another). Approach velocities are taken here, before the
-// solve. The vectors are reused across steps: no allocation after warm-up.
-struct ContactSolver {
-  std::vector<ContactBatch> batches;
-  std::vector<std::uint32_t> solvedContacts;  // the contacts in the batches, in solve order
+// What the lane kernels need to build their batches: the contacts to solve, ordered by colour (the
+// contacts of colour c are order[colorStart[c] .. colorStart[c + 1]), the overflow last), and the
+// step's bodies and settings.
+struct ContactBatchInput {
+  std::vector<Contact>& contacts;
+  const std::vector<std::uint32_t>& order;
+  const std::array<std::uint32_t, kGraphColors + 2>& colorStart;
+  const BodyStorage& storage;
+  const std::vector<SolverBody>& bodies;
+  const std::vector<SolverBodyInfo>& infos;
+  const std::vector<std::int32_t>& solverOf;
+  Softness softness;
+  Softness oneWaySoftness;
+  bool friction = true;
+  float anchorReach = 0.0f;
+  float pushOutSpeed = 0.0f;
+  float restitutionThreshold = 0.0f;
+};
+
+// The kernels of one lane width (contact_lanes.h): batches of that many manifolds, and the passes.
+class ContactLanes {
+ public:
+  virtual ~ContactLanes() = default;
+  virtual int width() const = 0;
+  virtual void build(const ContactBatchInput& input) = 0;
+  virtual void warmStart(std::vector<SolverBody>& bodies) = 0;
+  virtual void solve(std::vector<SolverBody>& bodies, float h, bool useBias) = 0;
+  virtual void applyRestitution(std::vector<SolverBody>& bodies) = 0;
+  virtual void store(std::vector<Contact>& contacts) const = 0;
+};
+
+// The widest lanes this machine runs: 8 where the AVX2 kernel is built and the processor has AVX2,
+// else 4. Every width gives the same result, bit for bit.
+int widestContactLanes();
+
+// Once per step: the enabled, awake, non-sensor contacts with points, coloured (constraint_graph.h:
+// the contacts of a colour share no dynamic body) and handed to the lane kernels in batches; then the
+// passes of the substep loop. The vectors are reused across steps: no allocation after warm-up.
+class ContactSolver {
+ public:
+  // laneWidth 4 or 8; 0 for the widest this machine runs. Throws Error for a width it cannot run.
+  explicit ContactSolver(int laneWidth = 0);
+  ~ContactSolver();
+  ContactSolver(ContactSolver&&) noexcept;
+  ContactSolver& operator=(ContactSolver&&) noexcept;
+
+  int laneWidth() const { return lanes_->width(); }
+  // The contacts in the batches, in solve order (the response models and revert walk them).
+  const std::vector<std::uint32_t>& solvedContacts() const { return solvedContacts_; }
 
   void prepare(std::vector<Contact>& contacts, const BodyStorage& storage,
                const std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
                const std::vector<std::int32_t>& solverOf, const ContactSolverSettings& settings, float h);
   // Per substep: apply the accumulated impulses.
-  void warmStart(std::vector<SolverBody>& bodies);
+  void warmStart(std::vector<SolverBody>& bodies) { lanes_->warmStart(bodies); }
   // Per substep: one pass; useBias = false is the relax pass.
-  void solve(std::vector<SolverBody>& bodies, float h, bool useBias);
+  void solve(std::vector<SolverBody>& bodies, float h, bool useBias) { lanes_->solve(bodies, h, useBias); }
   // Once at the end: Newton's restitution from the approach velocity taken in prepare().
-  void applyRestitution(std::vector<SolverBody>& bodies);
+  void applyRestitution(std::vector<SolverBody>& bodies) { lanes_->applyRestitution(bodies); }
   // The impulses back into the contacts (warm starting next step, events, response models).
-  void store(std::vector<Contact>& contacts) const;
+  void store(std::vector<Contact>& contacts) const { lanes_->store(contacts); }
 
  private:
-  template <bool useBias>
-  void solvePass(std::vector<SolverBody>& bodies, float h);
-
-  float pushOutSpeed_ = 3.0f;
-  float restitutionThreshold_ = 1.0f;
-  float anchorReach_ = 0.02f;
+  std::unique_ptr<ContactLanes> lanes_;
+  std::vector<std::uint32_t> solvedContacts_;
   // Colouring scratch (constraint_graph.h).
   std::vector<std::array<std::int32_t, 2>> writtenBodies_;
   std::vector<std::uint64_t> colorBits_;

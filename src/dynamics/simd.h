@@ -1,12 +1,18 @@
-// Four float lanes for the contact solver (Box2D v3's b2FloatW, in 3D): SSE2 on x86-64, where it is
-// always available, and a plain array elsewhere. Every operation is the IEEE operation of each lane,
-// and min/max follow SSE's rule (a > b ? a : b) in both builds, so the lanes give bit for bit what one
-// lane would: the solver's result does not depend on which build or how many constraints share a batch.
+// Float lanes for the contact solver (Box2D v3's b2FloatW, in 3D). FloatW is four lanes: SSE2 on
+// x86-64, where it is always available, and a plain array elsewhere; simd_avx2.h adds FloatW8, eight
+// AVX2 lanes, for a kernel built separately and chosen at run time. Every operation is the IEEE
+// operation of each lane (no fused multiply-add), and min/max follow SSE's rule (a > b ? a : b) in
+// every build, so the lanes give bit for bit what one lane would: the solver's result does not depend
+// on the build, on the lane width, or on how many constraints share a batch.
+//
+// The kernels are written once over a lane type F: splatT<F>, zeroT<F>, loadT<F>, Vec3T<F> and the
+// overloaded operations below, plus gatherRows/scatterRows for the bodies.
 #pragma once
 
 #include <collide/math.h>
 
 #include <cmath>
+#include <cstddef>
 
 #if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
@@ -144,35 +150,99 @@ inline void transpose(FloatW& r0, FloatW& r1, FloatW& r2, FloatW& r3) {
 
 #endif
 
-// One lane of a FloatW, to fill and read the batches outside the hot loops.
-inline float& laneOf(FloatW& w, int lane) { return reinterpret_cast<float*>(&w)[lane]; }
-inline float laneOf(const FloatW& w, int lane) { return reinterpret_cast<const float*>(&w)[lane]; }
+template <typename F>
+inline constexpr int kLaneCount = static_cast<int>(sizeof(F) / sizeof(float));
 
-struct Vec3W {
-  FloatW x, y, z;
+template <typename F>
+F splatT(float x);
+template <typename F>
+F zeroT();
+template <typename F>
+F loadT(const float* p);
+template <>
+inline FloatW splatT<FloatW>(float x) {
+  return splat(x);
+}
+template <>
+inline FloatW zeroT<FloatW>() {
+  return zeroW();
+}
+template <>
+inline FloatW loadT<FloatW>(const float* p) {
+  return loadW(p);
+}
+
+// One lane, to fill and read the batches outside the hot loops.
+template <typename F>
+inline float& laneOf(F& w, int lane) {
+  return reinterpret_cast<float*>(&w)[lane];
+}
+template <typename F>
+inline float laneOf(const F& w, int lane) {
+  return reinterpret_cast<const float*>(&w)[lane];
+}
+
+template <typename F>
+struct Vec3T {
+  F x, y, z;
 };
+using Vec3W = Vec3T<FloatW>;
 
-inline Vec3W operator+(const Vec3W& a, const Vec3W& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Vec3W operator-(const Vec3W& a, const Vec3W& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline Vec3W operator*(FloatW s, const Vec3W& a) { return {s * a.x, s * a.y, s * a.z}; }
-inline FloatW dot(const Vec3W& a, const Vec3W& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Vec3W cross(const Vec3W& a, const Vec3W& b) {
+template <typename F>
+COLLIDE_INLINE Vec3T<F> operator+(const Vec3T<F>& a, const Vec3T<F>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <typename F>
+COLLIDE_INLINE Vec3T<F> operator-(const Vec3T<F>& a, const Vec3T<F>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <typename F>
+COLLIDE_INLINE Vec3T<F> operator*(F s, const Vec3T<F>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <typename F>
+COLLIDE_INLINE F dot(const Vec3T<F>& a, const Vec3T<F>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <typename F>
+COLLIDE_INLINE Vec3T<F> cross(const Vec3T<F>& a, const Vec3T<F>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline void setLane(Vec3W& w, int lane, const Vec3& v) {
+template <typename F>
+inline void setLane(Vec3T<F>& w, int lane, const Vec3& v) {
   laneOf(w.x, lane) = v.x;
   laneOf(w.y, lane) = v.y;
   laneOf(w.z, lane) = v.z;
 }
-inline Vec3 laneOf(const Vec3W& w, int lane) {
+template <typename F>
+inline Vec3 laneOf(const Vec3T<F>& w, int lane) {
   return {laneOf(w.x, lane), laneOf(w.y, lane), laneOf(w.z, lane)};
 }
-
 // a += s * b, the impulse application.
-inline void addScaled(Vec3W& a, FloatW s, const Vec3W& b) {
+template <typename F>
+COLLIDE_INLINE void addScaled(Vec3T<F>& a, F s, const Vec3T<F>& b) {
   a.x = a.x + s * b.x;
   a.y = a.y + s * b.y;
   a.z = a.z + s * b.z;
+}
+
+// Four floats at `offset` of each lane's record, as four columns (x, y, z and the fourth float):
+// the solver bodies' rows (solver_body.h) to lanes, and back.
+COLLIDE_INLINE void gatherRows(const float* const (&records)[4], std::size_t offset, FloatW& x, FloatW& y,
+                               FloatW& z, FloatW& w) {
+  x = loadW(records[0] + offset);
+  y = loadW(records[1] + offset);
+  z = loadW(records[2] + offset);
+  w = loadW(records[3] + offset);
+  transpose(x, y, z, w);
+}
+// The rows of the four lanes, to be stored by the caller (only for the bodies it may write).
+COLLIDE_INLINE void scatterRows(FloatW x, FloatW y, FloatW z, FloatW w, FloatW (&rows)[4]) {
+  transpose(x, y, z, w);
+  rows[0] = x;
+  rows[1] = y;
+  rows[2] = z;
+  rows[3] = w;
 }
 
 }  // namespace collide::detail

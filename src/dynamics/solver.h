@@ -37,7 +37,7 @@ class StepSolver {
              const StepSettings& settings, float dt, std::vector<FaultEvent>& faults);
 
   // The contacts the last solve took, in solve order (the response models and revert walk them).
-  const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts; }
+  const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
 
  private:
   void gatherBodies(BodyStorage& storage);

@@ -1,0 +1,508 @@
+// The contact solver's kernels, written once over a lane type F (simd.h): FloatW, four lanes, in
+// contact_solver.cpp; FloatW8, eight AVX2 lanes, in contact_solver_avx2.cpp. What the kernels solve
+// is described in contact_solver.h; this file is how.
+#pragma once
+
+#include "dynamics/contact_solver.h"
+#include "dynamics/simd.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace collide::detail {
+
+// One normal point of a batch.
+template <typename F>
+struct BatchPoint {
+  Vec3T<F> anchorA, anchorB;  // from each centre of mass to the contact point, world, at the step start
+  Vec3T<F> crossA, crossB;    // anchor x normal
+  Vec3T<F> turnA, turnB;      // I^-1 (anchor x normal): the spin one unit of normal impulse gives
+  F baseSeparation;           // separation at the step start minus normal . (anchorB - anchorA)
+  F normalMass;
+  F normalImpulse;  // accumulated per substep (warm start)
+  F maxNormalImpulse;
+  F totalNormalImpulse;
+  F approachVelocity;  // normal relative velocity before the solve (restitution, events)
+};
+
+// kLaneCount<F> manifolds, solved together (Box2D v3's b2ContactConstraintSIMD).
+template <typename F>
+struct ContactBatch {
+  static constexpr int kWidth = kLaneCount<F>;
+  std::array<std::int32_t, kWidth> bodyA;  // solver body, or kNoSolverBody
+  std::array<std::int32_t, kWidth> bodyB;
+  std::array<std::int32_t, kWidth> contact;  // index in the contact array, -1 for an empty lane
+  std::array<bool, kWidth> writeA;           // a dynamic body takes the result (not kinematic)
+  std::array<bool, kWidth> writeB;
+  int pointCount;  // the most points of the manifolds
+  F inverseMassA, inverseMassB;
+  Vec3T<F> normal, tangent1, tangent2;
+  F friction, restitution;
+  F biasRate, massScale, impulseScale;
+  std::array<BatchPoint<F>, Manifold::kMaxPoints> points;
+  // Friction patch.
+  Vec3T<F> tangent1CrossA, tangent2CrossA, tangent1CrossB, tangent2CrossB;  // centroid anchor x tangent
+  Vec3T<F> tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;      // I^-1 of those
+  F tangentMass11, tangentMass12, tangentMass22;                            // inverse of the 2x2 block
+  F tangentImpulse1, tangentImpulse2;
+  F surfaceSpeed1, surfaceSpeed2;   // the sliding friction drives towards (a conveyor belt)
+  Vec3T<F> twistTurnA, twistTurnB;  // I^-1 normal
+  F twistMass, twistRadius, twistImpulse;
+  // Static-friction anchor: offsets of the anchored points from the centres at the step start, and
+  // their tangential gap B - A then.
+  Vec3T<F> stickA, stickB;
+  F stickGap1, stickGap2;
+  F stickRate;  // the softness's bias rate, or 0 where the patch has no anchor (a belt)
+  F sliding;    // lane mask: the patch reached the friction bound in a biased pass
+};
+
+template <typename F>
+class LaneContactSolver final : public ContactLanes {
+ public:
+  static constexpr int kWidth = kLaneCount<F>;
+  using Batch = ContactBatch<F>;
+  using Vec = Vec3T<F>;
+
+  int width() const override { return kWidth; }
+
+  void build(const ContactBatchInput& in) override {
+    pushOutSpeed_ = in.pushOutSpeed;
+    restitutionThreshold_ = in.restitutionThreshold;
+    batches_.clear();
+    for (int color = 0; color <= kGraphColors; ++color) {
+      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
+      for (std::uint32_t first = in.colorStart[color]; first < in.colorStart[color + 1]; first += perBatch) {
+        Batch& batch = batches_.emplace_back();
+        std::memset(static_cast<void*>(&batch), 0, sizeof(Batch));
+        batch.bodyA.fill(kNoSolverBody);
+        batch.bodyB.fill(kNoSolverBody);
+        batch.contact.fill(-1);
+        const std::uint32_t last = std::min(first + perBatch, in.colorStart[color + 1]);
+        for (std::uint32_t i = first; i < last; ++i)
+          fillLane(in, batch, static_cast<int>(i - first), in.order[i]);
+      }
+    }
+  }
+
+  void warmStart(std::vector<SolverBody>& bodies) override {
+    for (Batch& c : batches_) {
+      Velocities a = gatherVelocities(bodies, c.bodyA);
+      Velocities b = gatherVelocities(bodies, c.bodyB);
+      for (int k = 0; k < c.pointCount; ++k) {
+        BatchPoint<F>& p = c.points[k];
+        // The events' impulse counts every substep's warm start as well as the solve's increments.
+        p.totalNormalImpulse = p.totalNormalImpulse + p.normalImpulse;
+        applyLinear(a, b, c, p.normalImpulse, c.normal);
+        addScaled(a.w, -p.normalImpulse, p.turnA);
+        addScaled(b.w, p.normalImpulse, p.turnB);
+      }
+      applyLinear(a, b, c, c.tangentImpulse1, c.tangent1);
+      applyLinear(a, b, c, c.tangentImpulse2, c.tangent2);
+      addScaled(a.w, -c.tangentImpulse1, c.tangent1TurnA);
+      addScaled(a.w, -c.tangentImpulse2, c.tangent2TurnA);
+      addScaled(b.w, c.tangentImpulse1, c.tangent1TurnB);
+      addScaled(b.w, c.tangentImpulse2, c.tangent2TurnB);
+      addScaled(a.w, -c.twistImpulse, c.twistTurnA);
+      addScaled(b.w, c.twistImpulse, c.twistTurnB);
+      scatter(bodies, c.bodyA, c.writeA, a);
+      scatter(bodies, c.bodyB, c.writeB, b);
+    }
+  }
+
+  void solve(std::vector<SolverBody>& bodies, float h, bool useBias) override {
+    if (useBias) {
+      solvePass<true>(bodies, h);
+    } else {
+      solvePass<false>(bodies, h);
+    }
+  }
+
+  // Newton's restitution on the approach velocity measured before the solve: the soft contact has
+  // absorbed the impact by now, so the bounce is added at the end (Box2D v3's b2ApplyRestitution).
+  void applyRestitution(std::vector<SolverBody>& bodies) override {
+    const F zero = zeroT<F>();
+    const F threshold = splatT<F>(-restitutionThreshold_);
+    for (Batch& c : batches_) {
+      if (!anyW(greaterW(c.restitution, zero))) continue;
+      Velocities a = gatherVelocities(bodies, c.bodyA);
+      Velocities b = gatherVelocities(bodies, c.bodyB);
+      for (int k = 0; k < c.pointCount; ++k) {
+        BatchPoint<F>& p = c.points[k];
+        const F bounce =
+            andW(andW(greaterW(threshold, p.approachVelocity), greaterW(p.maxNormalImpulse, zero)),
+                 greaterW(c.restitution, zero));
+        if (!anyW(bounce)) continue;
+        const F vn = dot(b.v - a.v, c.normal) + dot(b.w, p.crossB) - dot(a.w, p.crossA);
+        F impulse = -(p.normalMass * (vn + c.restitution * p.approachVelocity));
+        const F total = maxW(p.normalImpulse + impulse, zero);
+        impulse = selectW(bounce, total - p.normalImpulse, zero);
+        p.normalImpulse = p.normalImpulse + impulse;
+        p.maxNormalImpulse = maxW(p.maxNormalImpulse, impulse);
+        p.totalNormalImpulse = p.totalNormalImpulse + impulse;
+        applyLinear(a, b, c, impulse, c.normal);
+        addScaled(a.w, -impulse, p.turnA);
+        addScaled(b.w, impulse, p.turnB);
+      }
+      scatter(bodies, c.bodyA, c.writeA, a);
+      scatter(bodies, c.bodyB, c.writeB, b);
+    }
+  }
+
+  void store(std::vector<Contact>& contacts) const override {
+    for (const Batch& c : batches_) {
+      for (int lane = 0; lane < kWidth; ++lane) {
+        if (c.contact[lane] < 0) continue;
+        Contact& contact = contacts[static_cast<std::size_t>(c.contact[lane])];
+        for (int k = 0; k < contact.manifold.count; ++k) {
+          const BatchPoint<F>& p = c.points[k];
+          ContactPointState& state = contact.points[k];
+          state.normalImpulse = laneOf(p.normalImpulse, lane);
+          state.maxNormalImpulse = laneOf(p.maxNormalImpulse, lane);
+          state.totalNormalImpulse = laneOf(p.totalNormalImpulse, lane);
+          state.relativeVelocity = laneOf(p.approachVelocity, lane);
+        }
+        contact.frictionImpulse = laneOf(c.tangentImpulse1, lane) * laneOf(c.tangent1, lane) +
+                                  laneOf(c.tangentImpulse2, lane) * laneOf(c.tangent2, lane);
+        contact.twistImpulse = laneOf(c.twistImpulse, lane);
+        contact.sliding = laneSet(c.sliding, lane);
+      }
+    }
+  }
+
+ private:
+  // The lanes' solver bodies: their velocities (what the solver changes) and their change of pose
+  // since the step began (read once per batch for the current separations, then dropped, so that
+  // the velocities keep the registers). A lane without a body (static, or an empty lane) reads a
+  // body at rest that has not moved.
+  struct Velocities {
+    Vec v, w;
+  };
+  struct Poses {
+    Vec dp;
+    F qx, qy, qz, qw;
+  };
+
+  static COLLIDE_INLINE void records(const std::vector<SolverBody>& bodies,
+                                     const std::array<std::int32_t, kWidth>& index,
+                                     const float* (&out)[kWidth]) {
+    static const SolverBody kRestingBody{};
+    for (int i = 0; i < kWidth; ++i)
+      out[i] = reinterpret_cast<const float*>(index[i] >= 0 ? &bodies[index[i]] : &kRestingBody);
+  }
+
+  static COLLIDE_INLINE Velocities gatherVelocities(const std::vector<SolverBody>& bodies,
+                                                    const std::array<std::int32_t, kWidth>& index) {
+    const float* b[kWidth];
+    records(bodies, index, b);
+    Velocities out;
+    F pad;
+    gatherRows(b, 0, out.v.x, out.v.y, out.v.z, pad);
+    gatherRows(b, 4, out.w.x, out.w.y, out.w.z, pad);
+    return out;
+  }
+
+  static COLLIDE_INLINE Poses gatherPoses(const std::vector<SolverBody>& bodies,
+                                          const std::array<std::int32_t, kWidth>& index) {
+    const float* b[kWidth];
+    records(bodies, index, b);
+    Poses out;
+    F pad;
+    gatherRows(b, 8, out.dp.x, out.dp.y, out.dp.z, pad);
+    gatherRows(b, 12, out.qx, out.qy, out.qz, out.qw);
+    return out;
+  }
+
+  // The contact solver changes velocities only; lanes of bodies it must not write are skipped.
+  static COLLIDE_INLINE void scatter(std::vector<SolverBody>& bodies,
+                                     const std::array<std::int32_t, kWidth>& index,
+                                     const std::array<bool, kWidth>& write, const Velocities& body) {
+    FloatW vRows[kWidth];  // one row of four floats per lane
+    FloatW wRows[kWidth];
+    scatterRows(body.v.x, body.v.y, body.v.z, zeroT<F>(), vRows);
+    scatterRows(body.w.x, body.w.y, body.w.z, zeroT<F>(), wRows);
+    for (int i = 0; i < kWidth; ++i) {
+      if (!write[i]) continue;
+      float* target = reinterpret_cast<float*>(&bodies[index[i]]);
+      storeW(target, vRows[i]);
+      storeW(target + 4, wRows[i]);
+    }
+  }
+
+  // conj(q) v q for unit q: v seen in the frame before the rotation q.
+  static COLLIDE_INLINE Vec rotateInverse(const Poses& q, const Vec& v) {
+    const Vec u{-q.qx, -q.qy, -q.qz};
+    const Vec t = splatT<F>(2.0f) * cross(u, v);
+    return v + q.qw * t + cross(u, t);
+  }
+
+  // The small-angle rotation vector of q (2 x its vector part, on the shortest arc): the static
+  // anchors are kept only while the bodies barely turn, where this is exact to second order.
+  static COLLIDE_INLINE Vec smallRotation(const Poses& q) {
+    const F negative = greaterW(zeroT<F>(), q.qw);
+    const F two = selectW(negative, splatT<F>(-2.0f), splatT<F>(2.0f));
+    return {two * q.qx, two * q.qy, two * q.qz};
+  }
+
+  static COLLIDE_INLINE void applyLinear(Velocities& a, Velocities& b, const Batch& c, F impulse,
+                                         const Vec& direction) {
+    addScaled(a.v, -(impulse * c.inverseMassA), direction);
+    addScaled(b.v, impulse * c.inverseMassB, direction);
+  }
+
+  // One pass; the biased and the relax pass are two instantiations, so neither tests the flag inside.
+  template <bool useBias>
+  void solvePass(std::vector<SolverBody>& bodies, float h) {
+    const F zero = zeroT<F>();
+    const F one = splatT<F>(1.0f);
+    const F inverseH = splatT<F>(1.0f / h);
+    const F maxPushOut = splatT<F>(-pushOutSpeed_);
+    for (Batch& c : batches_) {
+      // The current separation from the anchors carried along with each body's change of pose,
+      // without a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r. And in the biased
+      // pass, how far the static anchors drifted apart along the tangents.
+      Vec normalA, normalB;
+      F moved, drift1 = zero, drift2 = zero;
+      {
+        const Poses pa = gatherPoses(bodies, c.bodyA);
+        const Poses pb = gatherPoses(bodies, c.bodyB);
+        normalA = rotateInverse(pa, c.normal);
+        normalB = rotateInverse(pb, c.normal);
+        const Vec dp = pb.dp - pa.dp;
+        moved = dot(dp, c.normal);
+        if constexpr (useBias) {
+          const Vec drift = dp + cross(smallRotation(pb), c.stickB) - cross(smallRotation(pa), c.stickA);
+          drift1 = c.stickGap1 + dot(drift, c.tangent1);
+          drift2 = c.stickGap2 + dot(drift, c.tangent2);
+        }
+      }
+      Velocities a = gatherVelocities(bodies, c.bodyA);
+      Velocities b = gatherVelocities(bodies, c.bodyB);
+
+      F normalSum = zero;
+      for (int k = 0; k < c.pointCount; ++k) {
+        BatchPoint<F>& p = c.points[k];
+        const F separation = moved + dot(normalB, p.anchorB) - dot(normalA, p.anchorA) + p.baseSeparation;
+        // Speculative: a point still apart may close exactly its gap within the substep.
+        const F apart = greaterW(separation, zero);
+        F bias = separation * inverseH;
+        F massScale = one;
+        F impulseScale = zero;
+        if constexpr (useBias) {
+          bias = selectW(apart, bias, maxW(c.biasRate * separation, maxPushOut));
+          massScale = selectW(apart, one, c.massScale);
+          impulseScale = selectW(apart, zero, c.impulseScale);
+        } else {
+          bias = selectW(apart, bias, zero);
+        }
+        const F vn = dot(b.v - a.v, c.normal) + dot(b.w, p.crossB) - dot(a.w, p.crossA);
+        F impulse = -(p.normalMass * massScale * (vn + bias)) - impulseScale * p.normalImpulse;
+        // Contacts only push: the accumulated impulse stays >= 0.
+        const F total = maxW(p.normalImpulse + impulse, zero);
+        impulse = total - p.normalImpulse;
+        p.normalImpulse = total;
+        p.maxNormalImpulse = maxW(p.maxNormalImpulse, impulse);
+        p.totalNormalImpulse = p.totalNormalImpulse + impulse;
+        normalSum = normalSum + total;
+        applyLinear(a, b, c, impulse, c.normal);
+        addScaled(a.w, -impulse, p.turnA);
+        addScaled(b.w, impulse, p.turnB);
+      }
+
+      // Friction patch: the tangential velocity at the centroid (relative to the surface velocity),
+      // plus in the biased pass the gap of the static anchors, driven to zero inside the Coulomb disc.
+      const Vec dv = b.v - a.v;
+      F v1 = dot(dv, c.tangent1) + dot(b.w, c.tangent1CrossB) - dot(a.w, c.tangent1CrossA) - c.surfaceSpeed1;
+      F v2 = dot(dv, c.tangent2) + dot(b.w, c.tangent2CrossB) - dot(a.w, c.tangent2CrossA) - c.surfaceSpeed2;
+      F massScale = one;
+      F impulseScale = zero;
+      if constexpr (useBias) {
+        v1 = v1 + c.stickRate * drift1;
+        v2 = v2 + c.stickRate * drift2;
+        massScale = c.massScale;
+        impulseScale = c.impulseScale;
+      }
+      F next1 = c.tangentImpulse1 - massScale * (c.tangentMass11 * v1 + c.tangentMass12 * v2) -
+                impulseScale * c.tangentImpulse1;
+      F next2 = c.tangentImpulse2 - massScale * (c.tangentMass12 * v1 + c.tangentMass22 * v2) -
+                impulseScale * c.tangentImpulse2;
+      const F limit = c.friction * normalSum;
+      const F length = sqrtW(next1 * next1 + next2 * next2);
+      const F beyond = greaterW(length, limit);
+      const F scale = selectW(beyond, limit / maxW(length, splatT<F>(1e-30f)), one);
+      next1 = next1 * scale;
+      next2 = next2 * scale;
+      if constexpr (useBias) c.sliding = orW(c.sliding, beyond);
+      const F d1 = next1 - c.tangentImpulse1;
+      const F d2 = next2 - c.tangentImpulse2;
+      c.tangentImpulse1 = next1;
+      c.tangentImpulse2 = next2;
+      applyLinear(a, b, c, d1, c.tangent1);
+      applyLinear(a, b, c, d2, c.tangent2);
+      addScaled(a.w, -d1, c.tangent1TurnA);
+      addScaled(a.w, -d2, c.tangent2TurnA);
+      addScaled(b.w, d1, c.tangent1TurnB);
+      addScaled(b.w, d2, c.tangent2TurnB);
+
+      // Twist about the normal.
+      const F spin = dot(b.w - a.w, c.normal);
+      const F twistLimit = c.friction * c.twistRadius * normalSum;
+      const F twist = maxW(minW(c.twistImpulse - c.twistMass * spin, twistLimit), -twistLimit);
+      const F dt = twist - c.twistImpulse;
+      c.twistImpulse = twist;
+      addScaled(a.w, -dt, c.twistTurnA);
+      addScaled(b.w, dt, c.twistTurnB);
+
+      scatter(bodies, c.bodyA, c.writeA, a);
+      scatter(bodies, c.bodyB, c.writeB, b);
+    }
+  }
+
+  // One contact into one lane: anchors, effective masses, the approach velocity before the solve, the
+  // friction patch and its static anchor.
+  static void fillLane(const ContactBatchInput& in, Batch& c, int lane, std::uint32_t contactIndex) {
+    Contact& contact = in.contacts[contactIndex];
+    const BodyState& stateA = in.storage.states[contact.bodyA];
+    const BodyState& stateB = in.storage.states[contact.bodyB];
+    const std::int32_t ia = in.solverOf[contact.bodyA];
+    const std::int32_t ib = in.solverOf[contact.bodyB];
+    c.contact[lane] = static_cast<std::int32_t>(contactIndex);
+    c.bodyA[lane] = ia;
+    c.bodyB[lane] = ib;
+    c.writeA[lane] = ia >= 0 && in.infos[ia].dynamic;
+    c.writeB[lane] = ib >= 0 && in.infos[ib].dynamic;
+    const float mA = c.writeA[lane] ? in.infos[ia].inverseMass : 0.0f;
+    const float mB = c.writeB[lane] ? in.infos[ib].inverseMass : 0.0f;
+    const Mat3 iA = c.writeA[lane] ? in.infos[ia].inverseInertiaWorld : Mat3(0.0f);
+    const Mat3 iB = c.writeB[lane] ? in.infos[ib].inverseInertiaWorld : Mat3(0.0f);
+    const Vec3 vA = ia >= 0 ? in.bodies[ia].linearVelocity : Vec3(0.0f);
+    const Vec3 wA = ia >= 0 ? in.bodies[ia].angularVelocity : Vec3(0.0f);
+    const Vec3 vB = ib >= 0 ? in.bodies[ib].linearVelocity : Vec3(0.0f);
+    const Vec3 wB = ib >= 0 ? in.bodies[ib].angularVelocity : Vec3(0.0f);
+    laneOf(c.inverseMassA, lane) = mA;
+    laneOf(c.inverseMassB, lane) = mB;
+
+    const Vec3 n = contact.manifold.normal;
+    Vec3 t1, t2;
+    orthonormalBasis(n, t1, t2);
+    setLane(c.normal, lane, n);
+    setLane(c.tangent1, lane, t1);
+    setLane(c.tangent2, lane, t2);
+    const float friction = in.friction ? contact.friction : 0.0f;
+    laneOf(c.friction, lane) = friction;
+    laneOf(c.restitution, lane) = contact.restitution;
+    const Softness& s = (mA == 0.0f || mB == 0.0f) ? in.oneWaySoftness : in.softness;
+    laneOf(c.biasRate, lane) = s.biasRate;
+    laneOf(c.massScale, lane) = s.massScale;
+    laneOf(c.impulseScale, lane) = s.impulseScale;
+
+    const int count = contact.manifold.count;
+    c.pointCount = std::max(c.pointCount, count);
+    Vec3 centroid(0.0f);
+    for (int k = 0; k < count; ++k) {
+      const ContactPoint& mp = contact.manifold.points[k];
+      const ContactPointState& state = contact.points[k];
+      BatchPoint<F>& p = c.points[k];
+      const Vec3 point = mp.midpoint();
+      centroid += point;
+      const Vec3 rA = point - stateA.centerOfMass;
+      const Vec3 rB = point - stateB.centerOfMass;
+      const Vec3 crossA = glm::cross(rA, n);
+      const Vec3 crossB = glm::cross(rB, n);
+      setLane(p.anchorA, lane, rA);
+      setLane(p.anchorB, lane, rB);
+      setLane(p.crossA, lane, crossA);
+      setLane(p.crossB, lane, crossB);
+      const Vec3 turnA = iA * crossA;
+      const Vec3 turnB = iB * crossB;
+      setLane(p.turnA, lane, turnA);
+      setLane(p.turnB, lane, turnB);
+      laneOf(p.baseSeparation, lane) = -mp.depth - glm::dot(rB - rA, n);
+      const float kn = mA + mB + glm::dot(crossA, turnA) + glm::dot(crossB, turnB);
+      laneOf(p.normalMass, lane) = kn > 0.0f ? 1.0f / kn : 0.0f;
+      laneOf(p.normalImpulse, lane) = state.normalImpulse;
+      const Vec3 dv = vB + glm::cross(wB, rB) - vA - glm::cross(wA, rA);
+      laneOf(p.approachVelocity, lane) = glm::dot(dv, n);
+    }
+    centroid /= static_cast<float>(count);
+
+    // The friction patch at the centroid.
+    const Vec3 rA = centroid - stateA.centerOfMass;
+    const Vec3 rB = centroid - stateB.centerOfMass;
+    const Vec3 t1A = glm::cross(rA, t1), t2A = glm::cross(rA, t2);
+    const Vec3 t1B = glm::cross(rB, t1), t2B = glm::cross(rB, t2);
+    setLane(c.tangent1CrossA, lane, t1A);
+    setLane(c.tangent2CrossA, lane, t2A);
+    setLane(c.tangent1CrossB, lane, t1B);
+    setLane(c.tangent2CrossB, lane, t2B);
+    const Vec3 u1A = iA * t1A, u2A = iA * t2A;
+    const Vec3 u1B = iB * t1B, u2B = iB * t2B;
+    setLane(c.tangent1TurnA, lane, u1A);
+    setLane(c.tangent2TurnA, lane, u2A);
+    setLane(c.tangent1TurnB, lane, u1B);
+    setLane(c.tangent2TurnB, lane, u2B);
+    // The tangents are orthonormal, so the linear part of the off-diagonal term vanishes.
+    const float k11 = mA + mB + glm::dot(t1A, u1A) + glm::dot(t1B, u1B);
+    const float k12 = glm::dot(t1A, u2A) + glm::dot(t1B, u2B);
+    const float k22 = mA + mB + glm::dot(t2A, u2A) + glm::dot(t2B, u2B);
+    const float det = k11 * k22 - k12 * k12;
+    if (det > 0.0f) {
+      laneOf(c.tangentMass11, lane) = k22 / det;
+      laneOf(c.tangentMass12, lane) = -k12 / det;
+      laneOf(c.tangentMass22, lane) = k11 / det;
+    }
+    const Vec3 twistA = iA * n, twistB = iB * n;
+    setLane(c.twistTurnA, lane, twistA);
+    setLane(c.twistTurnB, lane, twistB);
+    const float kt = glm::dot(n, twistA) + glm::dot(n, twistB);
+    laneOf(c.twistMass, lane) = kt > 0.0f ? 1.0f / kt : 0.0f;
+    float radius = 0.0f;
+    for (int k = 0; k < count; ++k) radius += glm::length(contact.manifold.points[k].midpoint() - centroid);
+    laneOf(c.twistRadius, lane) = kTwistRadiusScale * radius / static_cast<float>(count);
+    if (friction == 0.0f) {
+      contact.frictionImpulse = Vec3(0.0f);
+      contact.twistImpulse = 0.0f;
+    }
+    // Warm start: last step's friction impulse, on this step's tangents (the tangent basis of a
+    // normal can turn by 180 degrees between steps, so coefficients would not carry over).
+    laneOf(c.tangentImpulse1, lane) = glm::dot(contact.frictionImpulse, t1);
+    laneOf(c.tangentImpulse2, lane) = glm::dot(contact.frictionImpulse, t2);
+    laneOf(c.twistImpulse, lane) = contact.twistImpulse;
+
+    // The static anchor: kept in each body's frame from where the patch stuck; re-taken here when
+    // the patch slid last step, is new, or has drifted beyond the reach.
+    const auto anchorHere = [&] {
+      contact.stickLocalA = glm::conjugate(stateA.rotation) * rA;
+      contact.stickLocalB = glm::conjugate(stateB.rotation) * rB;
+    };
+    laneOf(c.surfaceSpeed1, lane) = glm::dot(contact.surfaceVelocity, t1);
+    laneOf(c.surfaceSpeed2, lane) = glm::dot(contact.surfaceVelocity, t2);
+    const bool anchored = friction > 0.0f && contact.surfaceVelocity == Vec3(0.0f);
+    laneOf(c.stickRate, lane) = anchored ? s.biasRate : 0.0f;
+    if (!contact.stuck || contact.sliding || !anchored) anchorHere();
+    Vec3 stickA = stateA.rotation * contact.stickLocalA;
+    Vec3 stickB = stateB.rotation * contact.stickLocalB;
+    Vec3 gap = (stateB.centerOfMass + stickB) - (stateA.centerOfMass + stickA);
+    gap -= glm::dot(gap, n) * n;
+    if (glm::dot(gap, gap) > in.anchorReach * in.anchorReach) {
+      anchorHere();
+      stickA = rA;
+      stickB = rB;
+      gap = Vec3(0.0f);
+    }
+    contact.stuck = anchored;
+    contact.sliding = false;
+    setLane(c.stickA, lane, stickA);
+    setLane(c.stickB, lane, stickB);
+    laneOf(c.stickGap1, lane) = glm::dot(gap, t1);
+    laneOf(c.stickGap2, lane) = glm::dot(gap, t2);
+  }
+
+  std::vector<Batch> batches_;
+  float pushOutSpeed_ = 3.0f;
+  float restitutionThreshold_ = 1.0f;
+};
+
+}  // namespace collide::detail
