@@ -32,7 +32,14 @@ int widestContactLanes() {
   return 4;
 }
 
+namespace {
+int defaultLaneWidth = 0;
+}  // namespace
+
+void setDefaultContactLanes(int laneWidth) { defaultLaneWidth = laneWidth; }
+
 ContactSolver::ContactSolver(int laneWidth) {
+  if (laneWidth == 0) laneWidth = defaultLaneWidth;
   if (laneWidth == 0) laneWidth = widestContactLanes();
   if (laneWidth == 4) {
     lanes_ = std::make_unique<LaneContactSolver<FloatW>>();

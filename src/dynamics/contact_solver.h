@@ -93,6 +93,9 @@ class ContactLanes {
 // The widest lanes this machine runs: 8 where the AVX2 kernel is built and the processor has AVX2,
 // else 4. Every width gives the same result, bit for bit.
 int widestContactLanes();
+// For tests and benchmarks: the width a ContactSolver made with laneWidth 0 takes from now on (0:
+// the widest again). Worlds created afterwards use it.
+void setDefaultContactLanes(int laneWidth);
 
 // Once per step: the enabled, awake, non-sensor contacts with points, coloured (constraint_graph.h:
 // the contacts of a colour share no dynamic body) and handed to the lane kernels in batches; then the

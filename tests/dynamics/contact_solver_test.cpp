@@ -1,5 +1,6 @@
 // The contact solver's own promises: the colouring, lanes that give what one constraint alone gives,
 // and the friction patch (static friction that holds on a slope, sliding at the Coulomb rate, twist).
+#include "dynamics/contact_solver.h"
 #include "dynamics/constraint_graph.h"
 #include "world/world_helpers.h"
 
@@ -69,8 +70,9 @@ TEST(ConstraintGraph, ABodyInMoreConstraintsThanColoursOverflows) {
 TEST(ContactSolver, LanesGiveWhatEachContactGivesAlone) {
   std::vector<BodyDef> boxes;
   for (int i = 0; i < 4; ++i) {
-    BodyDef def = test::boxBody(Vec3(10.0f * static_cast<float>(i), 0.6f + 0.1f * static_cast<float>(i), 0.0f),
-                                Vec3(0.5f, 0.25f + 0.05f * static_cast<float>(i), 0.4f), 1.0f + static_cast<float>(i));
+    BodyDef def =
+        test::boxBody(Vec3(10.0f * static_cast<float>(i), 0.6f + 0.1f * static_cast<float>(i), 0.0f),
+                      Vec3(0.5f, 0.25f + 0.05f * static_cast<float>(i), 0.4f), 1.0f + static_cast<float>(i));
     def.rotation = glm::normalize(Quat(1.0f, 0.05f * static_cast<float>(i), 0.1f, -0.02f));
     def.linearVelocity = Vec3(0.5f * static_cast<float>(i), 0.0f, -0.3f);
     def.angularVelocity = Vec3(0.0f, 1.0f, 0.2f * static_cast<float>(i));
@@ -93,6 +95,45 @@ TEST(ContactSolver, LanesGiveWhatEachContactGivesAlone) {
     const Vec3 va = alone.linearVelocity(id), vt = together.linearVelocity(ids[i]);
     EXPECT_EQ(std::memcmp(&va, &vt, sizeof(Vec3)), 0) << "box " << i;
   }
+}
+
+// Four and eight lanes (where the processor runs the AVX2 kernel) solve the same pile of boxes, bit
+// for bit: the batches differ, the colours and every lane's arithmetic do not.
+TEST(ContactSolver, EveryLaneWidthGivesTheSameResult) {
+  const auto run = [](int laneWidth) {
+    detail::setDefaultContactLanes(laneWidth);
+    World world;
+    detail::setDefaultContactLanes(0);
+    world.createBody(test::groundBox());
+    std::vector<BodyId> ids;
+    for (int i = 0; i < 60; ++i) {
+      BodyDef def =
+          test::boxBody(Vec3(0.3f * static_cast<float>(i % 5), 0.5f + 1.05f * static_cast<float>(i / 5),
+                             0.2f * static_cast<float>(i % 3)),
+                        Vec3(0.5f, 0.4f, 0.45f), 1.0f + 0.1f * static_cast<float>(i % 4));
+      def.angularVelocity = Vec3(0.1f * static_cast<float>(i % 3), 0.0f, 0.05f);
+      ids.push_back(world.createBody(def));
+    }
+    for (int s = 0; s < 200; ++s) world.step(kDt);
+    std::vector<float> state;
+    for (const BodyId id : ids) {
+      const Transform t = world.transform(id);
+      const Vec3 v = world.linearVelocity(id);
+      state.insert(state.end(), {t.position.x, t.position.y, t.position.z, t.rotation.x, t.rotation.y,
+                                 t.rotation.z, t.rotation.w, v.x, v.y, v.z});
+    }
+    return state;
+  };
+  const std::vector<float> four = run(4);
+  if (detail::widestContactLanes() < 8) GTEST_SKIP() << "no AVX2 here: only the four-lane kernel runs";
+  const std::vector<float> eight = run(8);
+  ASSERT_EQ(four.size(), eight.size());
+  EXPECT_EQ(std::memcmp(four.data(), eight.data(), four.size() * sizeof(float)), 0);
+}
+
+TEST(ContactSolver, AnUnavailableLaneWidthIsRefused) {
+  EXPECT_THROW(detail::ContactSolver(3), Error);
+  EXPECT_THROW(detail::ContactSolver(16), Error);
 }
 
 // A static ramp of slope theta (the reference scenes' ground box, turned about z) and a unit cube
