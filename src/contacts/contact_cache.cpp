@@ -71,6 +71,7 @@ void storeManifold(const Manifold& manifold, const Transform& a, const Transform
   const Quat inverseA = glm::conjugate(a.rotation);
   cache.relativePosition = inverseA * (b.position - a.position);
   cache.relativeRotation = inverseA * b.rotation;
+  cache.relativePositionInB = glm::conjugate(cache.relativeRotation) * cache.relativePosition;
   cache.valid = true;
 }
 
@@ -86,16 +87,21 @@ bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Tra
   const float angle = kPi * glm::length(Vec3(turn.x, turn.y, turn.z));
   // B's points seen from A, and A's points seen from B; either bound holds, the smaller one decides.
   const float movedB = glm::length(position - cache.relativePosition) + angle * radiusB;
-  const Vec3 positionA = glm::conjugate(rotation) * position;
-  const Vec3 cachedPositionA = glm::conjugate(cache.relativeRotation) * cache.relativePosition;
-  const float movedA = glm::length(positionA - cachedPositionA) + angle * radiusA;
-  if (std::min(movedA, movedB) > distance) return false;
+  if (movedB > distance) {
+    const Vec3 positionA = glm::conjugate(rotation) * position;
+    const float movedA = glm::length(positionA - cache.relativePositionInB) + angle * radiusA;
+    if (movedA > distance) return false;
+  }
+  // Placed with the two rotations as matrices: two conversions instead of a quaternion rotation per
+  // point.
+  const Mat3 rotationA = glm::mat3_cast(a.rotation) * a.scale;
+  const Mat3 rotationB = glm::mat3_cast(b.rotation) * b.scale;
   out.count = cached.count;
-  out.normal = a.applyToDirection(cache.normal);
+  out.normal = rotationA * cache.normal / a.scale;
   for (int i = 0; i < cached.count; ++i) {
     ContactPoint& p = out.points[i];
-    p.pointOnA = a.applyToPoint(cache.pointsOnA[i]);
-    p.pointOnB = b.applyToPoint(cache.pointsOnB[i]);
+    p.pointOnA = a.position + rotationA * cache.pointsOnA[i];
+    p.pointOnB = b.position + rotationB * cache.pointsOnB[i];
     p.depth = glm::dot(p.pointOnA - p.pointOnB, out.normal);
     p.featureId = cached.points[i].featureId;
   }

@@ -37,6 +37,7 @@ struct ManifoldCache {
   std::array<Vec3, Manifold::kMaxPoints> pointsOnA{};  // in A's frame
   std::array<Vec3, Manifold::kMaxPoints> pointsOnB{};  // in B's frame
   Vec3 relativePosition{0.0f};                         // B's origin in A's frame
+  Vec3 relativePositionInB{0.0f};                      // conj(relativeRotation) relativePosition
   Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};       // conj(qA) qB
   bool valid = false;
 };

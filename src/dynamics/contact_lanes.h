@@ -415,8 +415,9 @@ class LaneContactSolver final : public ContactLanes {
       setLane(p.anchorB, lane, rB);
       setLane(p.crossA, lane, crossA);
       setLane(p.crossB, lane, crossB);
-      const Vec3 turnA = iA * crossA;
-      const Vec3 turnB = iB * crossB;
+      // A side the solver does not move (static, kinematic) keeps the zeros of the cleared batch.
+      const Vec3 turnA = c.writeA[lane] ? iA * crossA : Vec3(0.0f);
+      const Vec3 turnB = c.writeB[lane] ? iB * crossB : Vec3(0.0f);
       setLane(p.turnA, lane, turnA);
       setLane(p.turnB, lane, turnB);
       laneOf(p.baseSeparation, lane) = -mp.depth - glm::dot(rB - rA, n);
@@ -437,8 +438,8 @@ class LaneContactSolver final : public ContactLanes {
     setLane(c.tangent2CrossA, lane, t2A);
     setLane(c.tangent1CrossB, lane, t1B);
     setLane(c.tangent2CrossB, lane, t2B);
-    const Vec3 u1A = iA * t1A, u2A = iA * t2A;
-    const Vec3 u1B = iB * t1B, u2B = iB * t2B;
+    const Vec3 u1A = c.writeA[lane] ? iA * t1A : Vec3(0.0f), u2A = c.writeA[lane] ? iA * t2A : Vec3(0.0f);
+    const Vec3 u1B = c.writeB[lane] ? iB * t1B : Vec3(0.0f), u2B = c.writeB[lane] ? iB * t2B : Vec3(0.0f);
     setLane(c.tangent1TurnA, lane, u1A);
     setLane(c.tangent2TurnA, lane, u2A);
     setLane(c.tangent1TurnB, lane, u1B);
@@ -453,7 +454,7 @@ class LaneContactSolver final : public ContactLanes {
       laneOf(c.tangentMass12, lane) = -k12 / det;
       laneOf(c.tangentMass22, lane) = k11 / det;
     }
-    const Vec3 twistA = iA * n, twistB = iB * n;
+    const Vec3 twistA = c.writeA[lane] ? iA * n : Vec3(0.0f), twistB = c.writeB[lane] ? iB * n : Vec3(0.0f);
     setLane(c.twistTurnA, lane, twistA);
     setLane(c.twistTurnB, lane, twistB);
     const float kt = glm::dot(n, twistA) + glm::dot(n, twistB);
