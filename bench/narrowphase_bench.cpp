@@ -15,6 +15,9 @@
 #if defined(COLLIDE_HAVE_CCD)
 #include <ccd/ccd.h>
 #endif
+#if defined(COLLIDE_HAVE_FCL)
+#include <fcl/narrowphase/detail/convexity_based_algorithm/gjk_libccd.h>
+#endif
 #if defined(COLLIDE_BENCH_WITH_BULLET)
 #include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
@@ -281,11 +284,17 @@ std::size_t visit(std::size_t i) {
 void BM_GjkDistanceHull32Cold(benchmark::State& state) {
   const HullPairs pairs = makeHullPairs();
   std::size_t i = 0;
+  double sum = 0.0, iterations = 0.0;
   for (auto _ : state) {
     const std::size_t k = visit(i++);
     detail::ConvexSupport a = pairs.a[k], b = pairs.b[k];
-    benchmark::DoNotOptimize(detail::gjkDistance(a, b));
+    const detail::GjkResult result = detail::gjkDistance(a, b);
+    benchmark::DoNotOptimize(result);
+    sum += result.distance;
+    iterations += result.iterations;
   }
+  state.counters["mean_distance"] = benchmark::Counter(sum / double(std::max<std::size_t>(i, 1)));
+  state.counters["iterations"] = benchmark::Counter(iterations / double(std::max<std::size_t>(i, 1)));
 }
 BENCHMARK(BM_GjkDistanceHull32Cold);
 
@@ -375,6 +384,33 @@ void BM_LibccdGjkIntersectPoints32(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_LibccdGjkIntersectPoints32);
+
+#if defined(COLLIDE_HAVE_FCL)
+// libccd's GJK as a distance query: FCL's extension of it (fcl::detail::GJKDistance: libccd's
+// intersection GJK, then its distance iterations from that simplex), with FCL's default tolerance
+// (1e-6) and the same support function.
+template <bool kPoints>
+void runLibccdDistance(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    const std::size_t k = visit(i++);
+    detail::ConvexSupport a = kPoints ? pairs.pointsA[k] : pairs.a[k];
+    detail::ConvexSupport b = kPoints ? pairs.pointsB[k] : pairs.b[k];
+    double distance = 0.0;
+    fcl::Vector3d p1, p2;
+    benchmark::DoNotOptimize(
+        fcl::detail::GJKDistance<double>(&a, ccdSupport, &b, ccdSupport, 1000, 1e-6, &distance, &p1, &p2));
+    sum += distance;
+  }
+  state.counters["mean_distance"] = benchmark::Counter(sum / double(std::max<std::size_t>(i, 1)));
+}
+void BM_LibccdGjkDistanceHull32(benchmark::State& s) { runLibccdDistance<false>(s); }
+void BM_LibccdGjkDistancePoints32(benchmark::State& s) { runLibccdDistance<true>(s); }
+BENCHMARK(BM_LibccdGjkDistanceHull32);
+BENCHMARK(BM_LibccdGjkDistancePoints32);
+#endif
 #endif
 
 }  // namespace

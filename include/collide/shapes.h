@@ -104,6 +104,8 @@ public:
 private:
   friend class HullBuilder;
   std::vector<Vec3> vertices_;
+  // The vertices again as blocks of x, y and z coordinates, for support() (geometry/support_scan.h).
+  std::vector<float> blockedVertices_;
   std::vector<HalfEdge> halfEdges_;
   std::vector<Face> faces_;
   float volume_ = 0.0f;
