@@ -103,6 +103,13 @@ bool isRoundedForTriangles(const Shape& shape);
 void collideTrianglesRounded(std::span<const SatTriangle> triangles, const Shape& shape,
                              const Transform& transform, float margin, std::vector<NormalContact>& contacts);
 
+// Contacts of each triangle (A) with any other convex shape (B; the table sends ellipsoids and
+// cylinders), normal from the triangle: GJK/EPA for the best axis, the face preferred, a face
+// contact from the shape's lowest features (a cylinder's rim points) clipped to the triangle, and
+// internal edges replaced by face contacts (triangle_generic.cpp). Appends to `contacts`.
+void collideTrianglesGeneric(std::span<const SatTriangle> triangles, const Shape& shape,
+                             const Transform& transform, float margin, std::vector<NormalContact>& contacts);
+
 bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
