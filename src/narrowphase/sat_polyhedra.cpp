@@ -71,14 +71,31 @@ const UnitCube& unitCube() {
   return cube;
 }
 
+// An edge of a placed polyhedron, once (the smaller of its two half-edges), with what the edge
+// query needs: its world segment, its two faces and the normal of its Gauss-map arc's great circle.
+struct WorldEdge {
+  Vec3 origin{0.0f};
+  Vec3 direction{0.0f};  // end - origin
+  // cross(n2, n1) for the normals n1 of the half-edge's face and n2 of its twin's: the arc's
+  // endpoints lie on either side of a plane through the origin exactly when their dot products with
+  // it differ in sign (Gregorius 2013).
+  Vec3 arcNormal{0.0f};
+  std::uint32_t halfEdge = 0;
+  std::uint32_t face1 = 0, face2 = 0;
+};
+
 // A polyhedron placed in the world: the hull's topology with world vertices and face planes.
 struct WorldPolyhedron {
   const ConvexHull* hull = nullptr;
-  const UnitCube* cube = nullptr;  // set for a box: its features are named by box codes
-  std::span<const Vec3> vertices;  // world
-  std::span<const Plane> planes;   // world, outward unit normals
-  Vec3 center{0.0f};               // a point inside, to orient edge axes
-  float size = 0.0f;               // a length of the shape's scale, for tolerances
+  const UnitCube* cube = nullptr;    // set for a box: its features are named by box codes
+  std::span<const Vec3> vertices;    // world
+  std::span<const Plane> planes;     // world, outward unit normals
+  std::span<const WorldEdge> edges;  // once placeEdges() has run
+  // The face normals and distances again as blocks of x, y, z and d (planes.size() each), for
+  // loops over the faces that the compiler vectorises.
+  std::span<const float> normalBlocks;
+  Vec3 inside{0.0f};  // a point inside the solid (its centroid): edge axes point away from it
+  float size = 0.0f;  // a length of the shape's scale, for tolerances
 
   std::uint32_t vertexFeature(std::uint32_t v) const { return cube ? cube->vertexCode[v] : (v & kIndexMask); }
   std::uint32_t faceFeature(std::uint32_t f) const {
@@ -97,6 +114,11 @@ struct WorldPolyhedron {
 struct Scratch {
   std::vector<Vec3> vertices[2];
   std::vector<Plane> planes[2];
+  std::vector<WorldEdge> edges[2];
+  std::vector<float> normalBlocks[2];
+  std::vector<float> lowest;          // the face query's lowest vertex per face
+  std::vector<float> arcSides;        // the edge query's dot products of one edge's arc normal with B's faces
+  std::vector<std::uint32_t> edgesB;  // the edges of B that the edge query keeps
 };
 
 WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, Scratch& scratch) {
@@ -130,12 +152,39 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
     const Vec3 normal = rotation * face.plane.normal;
     planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
   }
+  std::vector<float>& blocks = scratch.normalBlocks[slot];
+  blocks.resize(4 * planes.size());
+  for (std::size_t f = 0; f < planes.size(); ++f) {
+    for (int axis = 0; axis < 3; ++axis) blocks[axis * planes.size() + f] = planes[f].normal[axis];
+    blocks[3 * planes.size() + f] = planes[f].distance;
+  }
   poly.vertices = vertices;
   poly.planes = planes;
+  poly.normalBlocks = blocks;
   const Aabb bounds = hull.bounds();
-  poly.center = transform.position + rotation * (localScale * bounds.center());
+  poly.inside = transform.position + rotation * (localScale * hull.centroid());
   poly.size = glm::length(localScale * bounds.halfExtents());
   return poly;
+}
+
+// The edges of a placed polyhedron with their arc normals, for the edge query: only pairs that no
+// face axis has separated need them.
+void placeEdges(WorldPolyhedron& poly, int slot, Scratch& scratch) {
+  std::vector<WorldEdge>& edges = scratch.edges[slot];
+  edges.clear();
+  const auto halfEdges = poly.hull->halfEdges();
+  for (std::uint32_t h = 0; h < halfEdges.size(); ++h) {
+    const ConvexHull::HalfEdge& edge = halfEdges[h];
+    if (edge.twin < h) continue;
+    WorldEdge& world = edges.emplace_back();
+    world.origin = poly.vertices[edge.origin];
+    world.direction = poly.vertices[halfEdges[edge.next].origin] - world.origin;
+    world.face1 = edge.face;
+    world.face2 = halfEdges[edge.twin].face;
+    world.arcNormal = glm::cross(poly.planes[world.face2].normal, poly.planes[world.face1].normal);
+    world.halfEdge = h;
+  }
+  poly.edges = edges;
 }
 
 struct FaceQuery {
@@ -145,13 +194,26 @@ struct FaceQuery {
 
 // The largest separation of B from a face plane of A: the plane's distance to B's support against
 // its normal.
-FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b) {
+FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b, Scratch& scratch) {
+  // Vertex by vertex of B, all faces of A at once: an element-wise minimum over blocked normals that
+  // the compiler vectorises (the same dot products as face by face, so the same answer).
+  const std::size_t faces = a.planes.size();
+  std::vector<float>& lowest = scratch.lowest;
+  lowest.assign(faces, 1e30f);
+  const float* xs = a.normalBlocks.data();
+  const float* ys = xs + faces;
+  const float* zs = ys + faces;
+  const float* ds = zs + faces;
+  float* low = lowest.data();
+  for (const Vec3& v : b.vertices) {
+    for (std::size_t f = 0; f < faces; ++f) {
+      const float d = xs[f] * v.x + ys[f] * v.y + zs[f] * v.z;
+      low[f] = d < low[f] ? d : low[f];
+    }
+  }
   FaceQuery best;
-  for (std::uint32_t f = 0; f < a.planes.size(); ++f) {
-    const Plane& plane = a.planes[f];
-    float lowest = 1e30f;
-    for (const Vec3& v : b.vertices) lowest = std::min(lowest, glm::dot(plane.normal, v));
-    const float separation = lowest - plane.distance;
+  for (std::uint32_t f = 0; f < faces; ++f) {
+    const float separation = low[f] - ds[f];
     if (separation > best.separation) {
       best.separation = separation;
       best.face = f;
@@ -166,51 +228,80 @@ struct EdgeQuery {
   Vec3 axis{0.0f};                     // from A to B
 };
 
-// Whether the arcs (a, b) and (c, d) cross on the unit sphere. Arc (a, b) is the Gauss image of an
-// edge of A between faces with normals a and b; (c, d) that of an edge of B, negated (the Minkowski
-// difference A - B has -B's normals). Two arcs cross when each one's endpoints lie on opposite sides
-// of the other's great circle, and they lie on the same hemisphere (Gregorius 2013).
-bool arcsCross(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 bxa = glm::cross(b, a);
-  const Vec3 dxc = glm::cross(d, c);
-  const float cba = glm::dot(c, bxa);
-  const float dba = glm::dot(d, bxa);
-  const float adc = glm::dot(a, dxc);
-  const float bdc = glm::dot(b, dxc);
-  return cba * dba < 0.0f && adc * bdc < 0.0f && cba * bdc > 0.0f;
+// Whether an edge can be part of an edge pair whose separation exceeds `threshold` (<= 0 here)
+// against the other shape, a point inside which is `inside`. The pair's axis L lies on the edge's
+// Gauss-map arc (between its faces' normals n1 and n2, where the edge is its shape's support), and
+// the separation along L is at most L · (inside - p) for p on the edge. Over the arc that linear
+// function peaks at an end unless its direction lies inside the arc, where one end already sees a
+// positive value; so when n1 · w and n2 · w (w = inside - p) are both at most the threshold, so is
+// every pair of this edge: the other shape's inside lies behind both of its faces.
+bool edgeMayMatter(const Vec3& n1, const Vec3& n2, const Vec3& w, float threshold) {
+  return glm::dot(n1, w) > threshold || glm::dot(n2, w) > threshold;
 }
 
-EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b) {
+// The edge pairs whose Gauss-map arcs cross, and the largest separation along their cross
+// products. Arc (a, b) is the Gauss image of an edge of A between faces with normals a and b; (c, d)
+// that of an edge of B, negated (the Minkowski difference A - B has -B's normals). Two arcs cross
+// when each one's endpoints lie on opposite sides of the other's great circle, and they lie on the
+// same hemisphere (Gregorius 2013). The first half of that test needs, for an edge of A, the side
+// of every face normal of B against A's arc: computed once per edge of A over B's blocked normals
+// (F_B dot products, vectorised) instead of twice per pair, it rejects most pairs with two loads and
+// a product; the survivors take the rest of the test and then their axis.
+//
+// Pairs whose separation cannot exceed `irrelevantBelow` are skipped (edgeMayMatter): the caller
+// decides nothing by them (a face is preferred unless an edge pair is clearly better, and only a
+// separation above the margin makes the pair apart), and for resting pairs that is most edges of
+// both shapes, those facing away from the other. The answer is the plain pairwise test's whenever
+// its separation exceeds irrelevantBelow. Returns as soon as a separation above `stopAbove` is
+// found (the pair is apart: the caller needs no more).
+EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float stopAbove,
+                     float irrelevantBelow, Scratch& scratch) {
   EdgeQuery best;
-  const auto edgesA = a.hull->halfEdges();
-  const auto edgesB = b.hull->halfEdges();
-  for (std::uint32_t i = 0; i < edgesA.size(); ++i) {
-    const ConvexHull::HalfEdge& edgeA = edgesA[i];
-    if (edgeA.twin < i) continue;  // each edge once
-    const Vec3 pA = a.vertices[edgeA.origin];
-    const Vec3 directionA = a.edgeEnd(i) - pA;
-    const Vec3 normalA1 = a.planes[edgeA.face].normal;
-    const Vec3 normalA2 = a.planes[edgesA[edgeA.twin].face].normal;
-    for (std::uint32_t j = 0; j < edgesB.size(); ++j) {
-      const ConvexHull::HalfEdge& edgeB = edgesB[j];
-      if (edgeB.twin < j) continue;
-      const Vec3 normalB1 = b.planes[edgeB.face].normal;
-      const Vec3 normalB2 = b.planes[edgesB[edgeB.twin].face].normal;
-      if (!arcsCross(normalA1, normalA2, -normalB1, -normalB2)) continue;
-      const Vec3 pB = b.vertices[edgeB.origin];
-      const Vec3 directionB = b.edgeEnd(j) - pB;
-      Vec3 axis = glm::cross(directionA, directionB);
+  // Rounding of the bound: the pruned separations are below the threshold by more than this.
+  const float threshold = std::min(irrelevantBelow, 0.0f) - 1e-5f * (a.size + b.size);
+  std::vector<std::uint32_t>& kept = scratch.edgesB;
+  kept.clear();
+  for (std::uint32_t j = 0; j < b.edges.size(); ++j) {
+    const WorldEdge& edge = b.edges[j];
+    if (edgeMayMatter(b.planes[edge.face1].normal, b.planes[edge.face2].normal, a.inside - edge.origin,
+                      threshold))
+      kept.push_back(j);
+  }
+  if (kept.empty()) return best;
+  const std::size_t facesB = b.planes.size();
+  std::vector<float>& sides = scratch.arcSides;
+  sides.resize(facesB);
+  const float* xs = b.normalBlocks.data();
+  const float* ys = xs + facesB;
+  const float* zs = ys + facesB;
+  for (const WorldEdge& edgeA : a.edges) {
+    const Vec3 normalA1 = a.planes[edgeA.face1].normal;
+    const Vec3 normalA2 = a.planes[edgeA.face2].normal;
+    if (!edgeMayMatter(normalA1, normalA2, b.inside - edgeA.origin, threshold)) continue;
+    const Vec3 u = edgeA.arcNormal;
+    float* side = sides.data();
+    for (std::size_t f = 0; f < facesB; ++f) side[f] = xs[f] * u.x + ys[f] * u.y + zs[f] * u.z;
+    for (const std::uint32_t j : kept) {
+      const WorldEdge& edgeB = b.edges[j];
+      // c = -nB1 and d = -nB2 against A's arc: (c · u)(d · u) < 0.
+      const float cba = -side[edgeB.face1], dba = -side[edgeB.face2];
+      if (!(cba * dba < 0.0f)) continue;
+      const float adc = glm::dot(normalA1, edgeB.arcNormal);
+      const float bdc = glm::dot(normalA2, edgeB.arcNormal);
+      if (!(adc * bdc < 0.0f && cba * bdc > 0.0f)) continue;
+      Vec3 axis = glm::cross(edgeA.direction, edgeB.direction);
       const float length = glm::length(axis);
       // Parallel edges: their cross product has no direction (the face axes cover that case).
-      if (length < 1e-5f * glm::length(directionA) * glm::length(directionB)) continue;
+      if (length < 1e-5f * glm::length(edgeA.direction) * glm::length(edgeB.direction)) continue;
       axis /= length;
-      if (glm::dot(axis, pA - a.center) < 0.0f) axis = -axis;
-      const float separation = glm::dot(axis, pB - pA);
+      if (glm::dot(axis, edgeA.origin - a.inside) < 0.0f) axis = -axis;
+      const float separation = glm::dot(axis, edgeB.origin - edgeA.origin);
       if (separation > best.separation) {
         best.separation = separation;
-        best.edgeA = i;
-        best.edgeB = j;
+        best.edgeA = edgeA.halfEdge;
+        best.edgeB = edgeB.halfEdge;
         best.axis = axis;
+        if (separation > stopAbove) return best;
       }
     }
   }
@@ -349,11 +440,13 @@ bool edgeContact(const WorldPolyhedron& a, const WorldPolyhedron& b, const EdgeQ
 SatAxis polyhedraSeparation(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                             const Transform& transformB) {
   thread_local Scratch scratch;
-  const WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
-  const WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
-  const FaceQuery faceA = queryFaces(a, b);
-  const FaceQuery faceB = queryFaces(b, a);
-  const EdgeQuery edge = queryEdges(a, b);
+  WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
+  WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
+  const FaceQuery faceA = queryFaces(a, b, scratch);
+  const FaceQuery faceB = queryFaces(b, a, scratch);
+  placeEdges(a, 0, scratch);
+  placeEdges(b, 1, scratch);
+  const EdgeQuery edge = queryEdges(a, b, 1e30f, -1e30f, scratch);
   SatAxis best{faceA.separation, a.planes[faceA.face].normal};
   if (faceB.separation > best.separation) best = {faceB.separation, -b.planes[faceB.face].normal};
   if (edge.separation > best.separation) best = {edge.separation, edge.axis};
@@ -364,15 +457,13 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
                       const Transform& transformB, float margin, Manifold& out) {
   out.count = 0;
   thread_local Scratch scratch;
-  const WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
-  const WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
+  WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
+  WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
 
-  const FaceQuery faceA = queryFaces(a, b);
+  const FaceQuery faceA = queryFaces(a, b, scratch);
   if (faceA.separation > margin) return false;
-  const FaceQuery faceB = queryFaces(b, a);
+  const FaceQuery faceB = queryFaces(b, a, scratch);
   if (faceB.separation > margin) return false;
-  const EdgeQuery edge = queryEdges(a, b);
-  if (edge.separation > margin) return false;
 
   // Prefer a face over an edge pair unless the edge is clearly better (Box2D's relative 0.98 plus
   // an absolute tolerance, here relative to the shapes' size), so that a resting pair keeps its
@@ -389,6 +480,12 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
     if (std::abs(areaA - areaB) > 1e-4f * std::max(areaA, areaB)) referenceIsB = areaB > areaA;
   }
   const float faceSeparation = referenceIsB ? faceB.separation : faceA.separation;
+  // Edge pairs matter only if they separate the pair (beyond the margin) or beat the face.
+  const float edgeMatters = std::min(margin, kRelative * faceSeparation + absolute);
+  placeEdges(a, 0, scratch);
+  placeEdges(b, 1, scratch);
+  const EdgeQuery edge = queryEdges(a, b, margin, edgeMatters, scratch);
+  if (edge.separation > margin) return false;
   if (edge.separation > kRelative * faceSeparation + absolute && edgeContact(a, b, edge, margin, out)) {
     return true;
   }
@@ -510,8 +607,14 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
                                 const Transform& transform, float margin,
                                 std::vector<NormalContact>& contacts) {
   thread_local Scratch scratch;
-  const WorldPolyhedron poly = place(shape, transform, 0, scratch);
+  WorldPolyhedron poly = place(shape, transform, 0, scratch);
   const auto edges = poly.hull->halfEdges();
+  const std::size_t faceCount = poly.planes.size();
+  const float* xs = poly.normalBlocks.data();
+  const float* ys = xs + faceCount;
+  const float* zs = ys + faceCount;
+  const float* ds = zs + faceCount;
+  bool edgesPlaced = false;
   for (const SatTriangle& triangle : triangles) {
     const TriangleFrame t = frameOf(triangle.vertices);
     // 1. The triangle's face, from the side the polyhedron is on.
@@ -526,52 +629,26 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
     const float triangleSeparation = std::max(frontSeparation, backSeparation);
     if (triangleSeparation > margin) continue;
-    // 2. The polyhedron's faces against the triangle's vertices.
+    // 2. The polyhedron's faces against the triangle's vertices (all faces at once, vectorised).
+    std::vector<float>& lowestOnFace = scratch.lowest;
+    lowestOnFace.resize(faceCount);
+    float* low = lowestOnFace.data();
+    for (std::size_t f = 0; f < faceCount; ++f) {
+      const float d0 = xs[f] * t.v[0].x + ys[f] * t.v[0].y + zs[f] * t.v[0].z;
+      const float d1 = xs[f] * t.v[1].x + ys[f] * t.v[1].y + zs[f] * t.v[1].z;
+      const float d2 = xs[f] * t.v[2].x + ys[f] * t.v[2].y + zs[f] * t.v[2].z;
+      const float d01 = d1 < d0 ? d1 : d0;
+      low[f] = (d2 < d01 ? d2 : d01) - ds[f];
+    }
     float faceSeparation = -1e30f;
     std::uint32_t face = 0;
-    for (std::uint32_t f = 0; f < poly.planes.size(); ++f) {
-      const Plane& plane = poly.planes[f];
-      const float s = std::min({glm::dot(plane.normal, t.v[0]), glm::dot(plane.normal, t.v[1]),
-                                glm::dot(plane.normal, t.v[2])}) -
-                      plane.distance;
-      if (s > faceSeparation) {
-        faceSeparation = s;
+    for (std::uint32_t f = 0; f < faceCount; ++f) {
+      if (low[f] > faceSeparation) {
+        faceSeparation = low[f];
         face = f;
       }
     }
     if (faceSeparation > margin) continue;
-    // 3. Edge pairs crossing on the Gauss map.
-    float edgeSeparation = -1e30f;
-    int edgeT = 0;
-    std::uint32_t edgeP = 0;
-    Vec3 edgeAxis(0.0f);
-    for (std::uint32_t j = 0; j < edges.size(); ++j) {
-      const ConvexHull::HalfEdge& halfEdge = edges[j];
-      if (halfEdge.twin < j) continue;
-      const Vec3 a = -poly.planes[halfEdge.face].normal, b = -poly.planes[edges[halfEdge.twin].face].normal;
-      const Vec3 origin = poly.vertices[halfEdge.origin];
-      const Vec3 direction = poly.edgeEnd(j) - origin;
-      for (int k = 0; k < 3; ++k) {
-        const float da = glm::dot(a, t.edge[k]), db = glm::dot(b, t.edge[k]);
-        if (!(da * db < 0.0f)) continue;
-        const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
-        if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
-        Vec3 axis = glm::cross(t.edge[k], direction);
-        const float length = glm::length(axis);
-        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
-        axis /= length;
-        if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
-        const float separation = glm::dot(axis, origin - t.v[k]);
-        if (separation > edgeSeparation) {
-          edgeSeparation = separation;
-          edgeT = k;
-          edgeP = j;
-          edgeAxis = axis;
-        }
-      }
-    }
-    if (edgeSeparation > margin) continue;
-
     // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
     // face unless an edge pair is clearly better (the tolerances of collidePolyhedra): the surface
     // under a resting body stays the reference whatever the triangle's size.
@@ -579,6 +656,58 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float absolute = 1e-3f * std::min(t.size, poly.size);
     const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
     const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
+    if (!edgesPlaced) {
+      placeEdges(poly, 0, scratch);
+      edgesPlaced = true;
+    }
+    // 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
+    // great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
+    // each face normal's dot product with the three edges is computed once (vectorised over the
+    // blocked normals) rather than twice per pair.
+    // Edges of the polyhedron whose pairs cannot separate the pair or beat the face are skipped
+    // (edgeMayMatter: the triangle's centroid lies behind both of their faces).
+    const float edgeMatters =
+        std::min(std::min(margin, kRelative * bestFace + absolute), 0.0f) - 1e-5f * (t.size + poly.size);
+    const Vec3 centroid = (t.v[0] + t.v[1] + t.v[2]) / 3.0f;
+    std::vector<float>& along = scratch.arcSides;
+    along.resize(3 * faceCount);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 e = t.edge[k];
+      float* out = along.data() + k * faceCount;
+      for (std::size_t f = 0; f < faceCount; ++f) out[f] = xs[f] * e.x + ys[f] * e.y + zs[f] * e.z;
+    }
+    float edgeSeparation = -1e30f;
+    int edgeT = 0;
+    std::uint32_t edgeP = 0;
+    Vec3 edgeAxis(0.0f);
+    for (const WorldEdge& edge : poly.edges) {
+      if (!edgeMayMatter(poly.planes[edge.face1].normal, poly.planes[edge.face2].normal,
+                         centroid - edge.origin, edgeMatters))
+        continue;
+      for (int k = 0; k < 3; ++k) {
+        // da = (-n1) · e_k, db = (-n2) · e_k.
+        const float da = -along[k * faceCount + edge.face1], db = -along[k * faceCount + edge.face2];
+        if (!(da * db < 0.0f)) continue;
+        const Vec3 a = -poly.planes[edge.face1].normal, b = -poly.planes[edge.face2].normal;
+        const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
+        if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
+        Vec3 axis = glm::cross(t.edge[k], edge.direction);
+        const float length = glm::length(axis);
+        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(edge.direction)) continue;
+        axis /= length;
+        if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
+        const float separation = glm::dot(axis, edge.origin - t.v[k]);
+        if (separation > edgeSeparation) {
+          edgeSeparation = separation;
+          edgeT = k;
+          edgeP = edge.halfEdge;
+          edgeAxis = axis;
+        }
+      }
+      if (edgeSeparation > margin) break;  // apart: the rest cannot change that
+    }
+    if (edgeSeparation > margin) continue;
+
     const std::size_t before = contacts.size();
     Vec3 normal = side * t.normal;
     if (edgeSeparation > kRelative * bestFace + absolute) {
