@@ -22,9 +22,11 @@ namespace collide::detail {
 
 namespace {
 
-// The box of `shape` in the local frame of `frame`, grown by a world margin.
+// The box of `shape` in the local frame of `frame`, grown by a world margin: the shape's own world
+// box in that frame, exact for primitives and polyhedra (their vertices placed), so that the BVH
+// yields only the triangles the shape can reach (the rotated local box is up to √3 times wider).
 Aabb boundsInFrame(const Shape& shape, const Transform& transform, const Transform& frame, float margin) {
-  return transformAabb(localBounds(shape), frame.inverse() * transform).expanded(margin / frame.scale);
+  return worldBounds(shape, frame.inverse() * transform).expanded(margin / frame.scale);
 }
 
 bool isPolyhedron(const Shape& shape) {
@@ -105,7 +107,9 @@ bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const S
   triangles.clear();
   mesh.forEachTriangleOverlapping(
       bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, transformA)); });
-  std::vector<NormalContact> contacts;
+  // Per-thread, like the triangles: no allocation once warm (the step calls this per pair).
+  thread_local std::vector<NormalContact> contacts;
+  contacts.clear();
   collideTriangles(triangles, shapeB, transformB, margin, contacts);
   return mergeContacts(contacts, margin, out);
 }

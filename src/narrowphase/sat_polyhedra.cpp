@@ -73,6 +73,7 @@ const UnitCube& unitCube() {
 
 // An edge of a placed polyhedron, once (the smaller of its two half-edges), with what the edge
 // query needs: its world segment, its two faces and the normal of its Gauss-map arc's great circle.
+// Made only for the edges of B that the query keeps (facesBehind).
 struct WorldEdge {
   Vec3 origin{0.0f};
   Vec3 direction{0.0f};  // end - origin
@@ -87,10 +88,9 @@ struct WorldEdge {
 // A polyhedron placed in the world: the hull's topology with world vertices and face planes.
 struct WorldPolyhedron {
   const ConvexHull* hull = nullptr;
-  const UnitCube* cube = nullptr;    // set for a box: its features are named by box codes
-  std::span<const Vec3> vertices;    // world
-  std::span<const Plane> planes;     // world, outward unit normals
-  std::span<const WorldEdge> edges;  // once placeEdges() has run
+  const UnitCube* cube = nullptr;  // set for a box: its features are named by box codes
+  std::span<const Vec3> vertices;  // world
+  std::span<const Plane> planes;   // world, outward unit normals
   // The face normals and distances again as blocks of x, y, z and d (planes.size() each), for
   // loops over the faces that the compiler vectorises.
   std::span<const float> normalBlocks;
@@ -114,11 +114,11 @@ struct WorldPolyhedron {
 struct Scratch {
   std::vector<Vec3> vertices[2];
   std::vector<Plane> planes[2];
-  std::vector<WorldEdge> edges[2];
   std::vector<float> normalBlocks[2];
-  std::vector<float> lowest;          // the face query's lowest vertex per face
-  std::vector<float> arcSides;        // the edge query's dot products of one edge's arc normal with B's faces
-  std::vector<std::uint32_t> edgesB;  // the edges of B that the edge query keeps
+  std::vector<float> lowest;      // the face query's lowest vertex per face
+  std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
+  std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
+  std::vector<std::uint8_t> behind[2];  // per face: which of the other shape's points lie behind it
 };
 
 WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, Scratch& scratch) {
@@ -167,26 +167,6 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
   return poly;
 }
 
-// The edges of a placed polyhedron with their arc normals, for the edge query: only pairs that no
-// face axis has separated need them.
-void placeEdges(WorldPolyhedron& poly, int slot, Scratch& scratch) {
-  std::vector<WorldEdge>& edges = scratch.edges[slot];
-  edges.clear();
-  const auto halfEdges = poly.hull->halfEdges();
-  for (std::uint32_t h = 0; h < halfEdges.size(); ++h) {
-    const ConvexHull::HalfEdge& edge = halfEdges[h];
-    if (edge.twin < h) continue;
-    WorldEdge& world = edges.emplace_back();
-    world.origin = poly.vertices[edge.origin];
-    world.direction = poly.vertices[halfEdges[edge.next].origin] - world.origin;
-    world.face1 = edge.face;
-    world.face2 = halfEdges[edge.twin].face;
-    world.arcNormal = glm::cross(poly.planes[world.face2].normal, poly.planes[world.face1].normal);
-    world.halfEdge = h;
-  }
-  poly.edges = edges;
-}
-
 struct FaceQuery {
   float separation = -1e30f;
   std::uint32_t face = 0;
@@ -228,15 +208,45 @@ struct EdgeQuery {
   Vec3 axis{0.0f};                     // from A to B
 };
 
-// Whether an edge can be part of an edge pair whose separation exceeds `threshold` (<= 0 here)
-// against the other shape, a point inside which is `inside`. The pair's axis L lies on the edge's
+// Which edges can be part of an edge pair whose separation exceeds `threshold` (<= 0 here)
+// against the other shape, of which `others` are points. The pair's axis L lies on the edge's
 // Gauss-map arc (between its faces' normals n1 and n2, where the edge is its shape's support), and
-// the separation along L is at most L · (inside - p) for p on the edge. Over the arc that linear
-// function peaks at an end unless its direction lies inside the arc, where one end already sees a
-// positive value; so when n1 · w and n2 · w (w = inside - p) are both at most the threshold, so is
-// every pair of this edge: the other shape's inside lies behind both of its faces.
-bool edgeMayMatter(const Vec3& n1, const Vec3& n2, const Vec3& w, float threshold) {
-  return glm::dot(n1, w) > threshold || glm::dot(n2, w) > threshold;
+// the separation along L is at most L · (q - p) for any q of the other shape and p on the edge. Over
+// the arc that linear function peaks at an end unless its direction lies inside the arc, where one
+// end already sees a positive value; so when n1 · (q - p) and n2 · (q - p) are both at most the
+// threshold, so is every pair of this edge. p lies on both faces' planes: those are q's signed
+// distances from them, one per face for all edges. Bit k of mask[f] says that others[k] lies
+// behind face f by more than -threshold (the planes hold their vertices to the hull's merge
+// tolerance, 1e-6 of its size, well inside the callers' rounding allowance); an edge whose two
+// faces share a bit cannot matter.
+void facesBehind(const WorldPolyhedron& poly, std::span<const Vec3> others, float threshold,
+                 std::vector<std::uint8_t>& mask) {
+  const std::size_t faces = poly.planes.size();
+  mask.assign(faces, 0);
+  const float* xs = poly.normalBlocks.data();
+  const float* ys = xs + faces;
+  const float* zs = ys + faces;
+  const float* ds = zs + faces;
+  std::uint8_t* out = mask.data();
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    const Vec3 q = others[k];
+    const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
+    for (std::size_t f = 0; f < faces; ++f) {
+      const float distance = xs[f] * q.x + ys[f] * q.y + zs[f] * q.z - ds[f];
+      out[f] |= distance <= threshold ? bit : std::uint8_t(0);
+    }
+  }
+}
+
+// A vertex of `poly` farthest along `direction`.
+Vec3 farthestVertex(const WorldPolyhedron& poly, const Vec3& direction) {
+  Vec3 best = poly.vertices[0];
+  float bestDot = glm::dot(best, direction);
+  for (const Vec3& v : poly.vertices) {
+    const float d = glm::dot(v, direction);
+    if (d > bestDot) bestDot = d, best = v;
+  }
+  return best;
 }
 
 // The edge pairs whose Gauss-map arcs cross, and the largest separation along their cross
@@ -248,24 +258,37 @@ bool edgeMayMatter(const Vec3& n1, const Vec3& n2, const Vec3& w, float threshol
 // (F_B dot products, vectorised) instead of twice per pair, it rejects most pairs with two loads and
 // a product; the survivors take the rest of the test and then their axis.
 //
-// Pairs whose separation cannot exceed `irrelevantBelow` are skipped (edgeMayMatter): the caller
+// Pairs whose separation cannot exceed `irrelevantBelow` are skipped (facesBehind): the caller
 // decides nothing by them (a face is preferred unless an edge pair is clearly better, and only a
 // separation above the margin makes the pair apart), and for resting pairs that is most edges of
 // both shapes, those facing away from the other. The answer is the plain pairwise test's whenever
 // its separation exceeds irrelevantBelow. Returns as soon as a separation above `stopAbove` is
 // found (the pair is apart: the caller needs no more).
 EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float stopAbove,
-                     float irrelevantBelow, Scratch& scratch) {
+                     float irrelevantBelow, const Vec3& towardB, Scratch& scratch) {
   EdgeQuery best;
   // Rounding of the bound: the pruned separations are below the threshold by more than this.
   const float threshold = std::min(irrelevantBelow, 0.0f) - 1e-5f * (a.size + b.size);
-  std::vector<std::uint32_t>& kept = scratch.edgesB;
+  // Points of each shape to prune the other's edges with: its centroid and its vertex deepest
+  // towards the other along the reference normal (near the contact, where the relevant edges are).
+  const Vec3 pointsOfA[2] = {a.inside, farthestVertex(a, towardB)};
+  const Vec3 pointsOfB[2] = {b.inside, farthestVertex(b, -towardB)};
+  std::vector<std::uint8_t>& behindA = scratch.behind[0];
+  std::vector<std::uint8_t>& behindB = scratch.behind[1];
+  facesBehind(a, pointsOfB, threshold, behindA);
+  facesBehind(b, pointsOfA, threshold, behindB);
+  std::vector<WorldEdge>& kept = scratch.edgesB;
   kept.clear();
-  for (std::uint32_t j = 0; j < b.edges.size(); ++j) {
-    const WorldEdge& edge = b.edges[j];
-    if (edgeMayMatter(b.planes[edge.face1].normal, b.planes[edge.face2].normal, a.inside - edge.origin,
-                      threshold))
-      kept.push_back(j);
+  const auto halfEdgesB = b.hull->halfEdges();
+  for (std::uint32_t h = 0; h < halfEdgesB.size(); ++h) {
+    const ConvexHull::HalfEdge& edge = halfEdgesB[h];
+    if (edge.twin < h) continue;  // each edge once
+    const std::uint32_t face2 = halfEdgesB[edge.twin].face;
+    if (behindB[edge.face] & behindB[face2]) continue;
+    const Vec3 origin = b.vertices[edge.origin];
+    const Vec3 n1 = b.planes[edge.face].normal, n2 = b.planes[face2].normal;
+    kept.push_back(
+        {origin, b.vertices[halfEdgesB[edge.next].origin] - origin, glm::cross(n2, n1), h, edge.face, face2});
   }
   if (kept.empty()) return best;
   const std::size_t facesB = b.planes.size();
@@ -274,31 +297,36 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   const float* xs = b.normalBlocks.data();
   const float* ys = xs + facesB;
   const float* zs = ys + facesB;
-  for (const WorldEdge& edgeA : a.edges) {
-    const Vec3 normalA1 = a.planes[edgeA.face1].normal;
-    const Vec3 normalA2 = a.planes[edgeA.face2].normal;
-    if (!edgeMayMatter(normalA1, normalA2, b.inside - edgeA.origin, threshold)) continue;
-    const Vec3 u = edgeA.arcNormal;
+  const auto halfEdgesA = a.hull->halfEdges();
+  for (std::uint32_t h = 0; h < halfEdgesA.size(); ++h) {
+    const ConvexHull::HalfEdge& edge = halfEdgesA[h];
+    if (edge.twin < h) continue;
+    const std::uint32_t faceA2 = halfEdgesA[edge.twin].face;
+    if (behindA[edge.face] & behindA[faceA2]) continue;
+    const Vec3 originA = a.vertices[edge.origin];
+    const Vec3 normalA1 = a.planes[edge.face].normal;
+    const Vec3 normalA2 = a.planes[faceA2].normal;
+    const Vec3 u = glm::cross(normalA2, normalA1);
+    const Vec3 directionA = a.vertices[halfEdgesA[edge.next].origin] - originA;
     float* side = sides.data();
     for (std::size_t f = 0; f < facesB; ++f) side[f] = xs[f] * u.x + ys[f] * u.y + zs[f] * u.z;
-    for (const std::uint32_t j : kept) {
-      const WorldEdge& edgeB = b.edges[j];
+    for (const WorldEdge& edgeB : kept) {
       // c = -nB1 and d = -nB2 against A's arc: (c · u)(d · u) < 0.
       const float cba = -side[edgeB.face1], dba = -side[edgeB.face2];
       if (!(cba * dba < 0.0f)) continue;
       const float adc = glm::dot(normalA1, edgeB.arcNormal);
       const float bdc = glm::dot(normalA2, edgeB.arcNormal);
       if (!(adc * bdc < 0.0f && cba * bdc > 0.0f)) continue;
-      Vec3 axis = glm::cross(edgeA.direction, edgeB.direction);
+      Vec3 axis = glm::cross(directionA, edgeB.direction);
       const float length = glm::length(axis);
       // Parallel edges: their cross product has no direction (the face axes cover that case).
-      if (length < 1e-5f * glm::length(edgeA.direction) * glm::length(edgeB.direction)) continue;
+      if (length < 1e-5f * glm::length(directionA) * glm::length(edgeB.direction)) continue;
       axis /= length;
-      if (glm::dot(axis, edgeA.origin - a.inside) < 0.0f) axis = -axis;
-      const float separation = glm::dot(axis, edgeB.origin - edgeA.origin);
+      if (glm::dot(axis, originA - a.inside) < 0.0f) axis = -axis;
+      const float separation = glm::dot(axis, edgeB.origin - originA);
       if (separation > best.separation) {
         best.separation = separation;
-        best.edgeA = edgeA.halfEdge;
+        best.edgeA = h;
         best.edgeB = edgeB.halfEdge;
         best.axis = axis;
         if (separation > stopAbove) return best;
@@ -440,13 +468,11 @@ bool edgeContact(const WorldPolyhedron& a, const WorldPolyhedron& b, const EdgeQ
 SatAxis polyhedraSeparation(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                             const Transform& transformB) {
   thread_local Scratch scratch;
-  WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
-  WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
+  const WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
+  const WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
   const FaceQuery faceA = queryFaces(a, b, scratch);
   const FaceQuery faceB = queryFaces(b, a, scratch);
-  placeEdges(a, 0, scratch);
-  placeEdges(b, 1, scratch);
-  const EdgeQuery edge = queryEdges(a, b, 1e30f, -1e30f, scratch);
+  const EdgeQuery edge = queryEdges(a, b, 1e30f, -1e30f, Vec3(0.0f, 1.0f, 0.0f), scratch);
   SatAxis best{faceA.separation, a.planes[faceA.face].normal};
   if (faceB.separation > best.separation) best = {faceB.separation, -b.planes[faceB.face].normal};
   if (edge.separation > best.separation) best = {edge.separation, edge.axis};
@@ -457,8 +483,8 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
                       const Transform& transformB, float margin, Manifold& out) {
   out.count = 0;
   thread_local Scratch scratch;
-  WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
-  WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
+  const WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
+  const WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
 
   const FaceQuery faceA = queryFaces(a, b, scratch);
   if (faceA.separation > margin) return false;
@@ -482,9 +508,8 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
   const float faceSeparation = referenceIsB ? faceB.separation : faceA.separation;
   // Edge pairs matter only if they separate the pair (beyond the margin) or beat the face.
   const float edgeMatters = std::min(margin, kRelative * faceSeparation + absolute);
-  placeEdges(a, 0, scratch);
-  placeEdges(b, 1, scratch);
-  const EdgeQuery edge = queryEdges(a, b, margin, edgeMatters, scratch);
+  const Vec3 referenceNormal = referenceIsB ? -b.planes[faceB.face].normal : a.planes[faceA.face].normal;
+  const EdgeQuery edge = queryEdges(a, b, margin, edgeMatters, referenceNormal, scratch);
   if (edge.separation > margin) return false;
   if (edge.separation > kRelative * faceSeparation + absolute && edgeContact(a, b, edge, margin, out)) {
     return true;
@@ -607,14 +632,13 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
                                 const Transform& transform, float margin,
                                 std::vector<NormalContact>& contacts) {
   thread_local Scratch scratch;
-  WorldPolyhedron poly = place(shape, transform, 0, scratch);
+  const WorldPolyhedron poly = place(shape, transform, 0, scratch);
   const auto edges = poly.hull->halfEdges();
   const std::size_t faceCount = poly.planes.size();
   const float* xs = poly.normalBlocks.data();
   const float* ys = xs + faceCount;
   const float* zs = ys + faceCount;
   const float* ds = zs + faceCount;
-  bool edgesPlaced = false;
   for (const SatTriangle& triangle : triangles) {
     const TriangleFrame t = frameOf(triangle.vertices);
     // 1. The triangle's face, from the side the polyhedron is on.
@@ -656,19 +680,17 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float absolute = 1e-3f * std::min(t.size, poly.size);
     const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
     const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
-    if (!edgesPlaced) {
-      placeEdges(poly, 0, scratch);
-      edgesPlaced = true;
-    }
     // 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
     // great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
     // each face normal's dot product with the three edges is computed once (vectorised over the
     // blocked normals) rather than twice per pair.
     // Edges of the polyhedron whose pairs cannot separate the pair or beat the face are skipped
-    // (edgeMayMatter: the triangle's centroid lies behind both of their faces).
+    // (facesBehind: a point of the triangle lies behind both of their faces).
     const float edgeMatters =
         std::min(std::min(margin, kRelative * bestFace + absolute), 0.0f) - 1e-5f * (t.size + poly.size);
-    const Vec3 centroid = (t.v[0] + t.v[1] + t.v[2]) / 3.0f;
+    const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
+    std::vector<std::uint8_t>& behind = scratch.behind[0];
+    facesBehind(poly, trianglePoints, edgeMatters, behind);
     std::vector<float>& along = scratch.arcSides;
     along.resize(3 * faceCount);
     for (int k = 0; k < 3; ++k) {
@@ -680,27 +702,30 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     int edgeT = 0;
     std::uint32_t edgeP = 0;
     Vec3 edgeAxis(0.0f);
-    for (const WorldEdge& edge : poly.edges) {
-      if (!edgeMayMatter(poly.planes[edge.face1].normal, poly.planes[edge.face2].normal,
-                         centroid - edge.origin, edgeMatters))
-        continue;
+    for (std::uint32_t h = 0; h < edges.size(); ++h) {
+      const ConvexHull::HalfEdge& halfEdge = edges[h];
+      if (halfEdge.twin < h) continue;
+      const std::uint32_t face1 = halfEdge.face, face2 = edges[halfEdge.twin].face;
+      const Vec3 origin = poly.vertices[halfEdge.origin];
+      if (behind[face1] & behind[face2]) continue;
+      const Vec3 direction = poly.vertices[edges[halfEdge.next].origin] - origin;
       for (int k = 0; k < 3; ++k) {
         // da = (-n1) · e_k, db = (-n2) · e_k.
-        const float da = -along[k * faceCount + edge.face1], db = -along[k * faceCount + edge.face2];
+        const float da = -along[k * faceCount + face1], db = -along[k * faceCount + face2];
         if (!(da * db < 0.0f)) continue;
-        const Vec3 a = -poly.planes[edge.face1].normal, b = -poly.planes[edge.face2].normal;
+        const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
         const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
         if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
-        Vec3 axis = glm::cross(t.edge[k], edge.direction);
+        Vec3 axis = glm::cross(t.edge[k], direction);
         const float length = glm::length(axis);
-        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(edge.direction)) continue;
+        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
         axis /= length;
         if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
-        const float separation = glm::dot(axis, edge.origin - t.v[k]);
+        const float separation = glm::dot(axis, origin - t.v[k]);
         if (separation > edgeSeparation) {
           edgeSeparation = separation;
           edgeT = k;
-          edgeP = edge.halfEdge;
+          edgeP = h;
           edgeAxis = axis;
         }
       }
