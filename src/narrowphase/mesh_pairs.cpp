@@ -40,11 +40,21 @@ bool isPolyhedron(const Shape& shape) {
 constexpr std::uint16_t kMeshFace = 0x4000u, kMeshEdge = 0x8000u, kMeshVertex = 0xC000u;
 constexpr std::uint16_t kMeshIndex = 0x3fffu;
 
-SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Transform& transform) {
+// The mesh's placement as a matrix, made once per pair rather than a quaternion product per vertex.
+struct MeshPlacement {
+  Mat3 rotation;
+  Vec3 position;
+  float scale;
+  explicit MeshPlacement(const Transform& t)
+      : rotation(glm::mat3_cast(t.rotation)), position(t.position), scale(t.scale) {}
+  Vec3 apply(const Vec3& local) const { return position + rotation * (scale * local); }
+};
+
+SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const MeshPlacement& placement) {
   using Kind = TriangleMesh::EdgeKind;
   SatTriangle t;
   const MeshTriangle& indices = mesh.triangles()[index];
-  for (int k = 0; k < 3; ++k) t.vertices[k] = transform.applyToPoint(mesh.vertices()[indices.v[k]]);
+  for (int k = 0; k < 3; ++k) t.vertices[k] = placement.apply(mesh.vertices()[indices.v[k]]);
   t.activeEdgesFront = t.activeEdgesBack = 0;
   for (int k = 0; k < 3; ++k) {
     const Kind kind = mesh.edgeKind(index, k);
@@ -105,8 +115,9 @@ bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const S
   const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
   thread_local std::vector<SatTriangle> triangles;
   triangles.clear();
+  const MeshPlacement placement(transformA);
   mesh.forEachTriangleOverlapping(
-      bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, transformA)); });
+      bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, placement)); });
   // Per-thread, like the triangles: no allocation once warm (the step calls this per pair).
   thread_local std::vector<NormalContact> contacts;
   contacts.clear();

@@ -640,7 +640,7 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
   const float* zs = ys + faceCount;
   const float* ds = zs + faceCount;
   for (const SatTriangle& triangle : triangles) {
-    const TriangleFrame t = frameOf(triangle.vertices);
+    TriangleFrame t = planeFrameOf(triangle.vertices);
     // 1. The triangle's face, from the side the polyhedron is on.
     float lowest = 1e30f, highest = -1e30f;
     for (const Vec3& p : poly.vertices) {
@@ -673,6 +673,7 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
       }
     }
     if (faceSeparation > margin) continue;
+    completeFrame(t);
     // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
     // face unless an edge pair is clearly better (the tolerances of collidePolyhedra): the surface
     // under a resting body stays the reference whatever the triangle's size.

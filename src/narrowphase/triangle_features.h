@@ -33,13 +33,24 @@ struct TriangleFrame {
   float size = 0.0f;
 };
 
-inline TriangleFrame frameOf(const std::array<Vec3, 3>& v) {
+// The vertices, edges and normal: enough for the face tests that reject most triangles.
+inline TriangleFrame planeFrameOf(const std::array<Vec3, 3>& v) {
   TriangleFrame t;
   t.v = v;
   for (int k = 0; k < 3; ++k) t.edge[k] = v[(k + 1) % 3] - v[k];
   t.normal = glm::normalize(glm::cross(t.edge[0], -t.edge[2]));
+  return t;
+}
+
+// The side normals and the size, for the edge tests and clipping.
+inline void completeFrame(TriangleFrame& t) {
   for (int k = 0; k < 3; ++k) t.outward[k] = glm::normalize(glm::cross(t.edge[k], t.normal));
   t.size = std::max({glm::length(t.edge[0]), glm::length(t.edge[1]), glm::length(t.edge[2])});
+}
+
+inline TriangleFrame frameOf(const std::array<Vec3, 3>& v) {
+  TriangleFrame t = planeFrameOf(v);
+  completeFrame(t);
   return t;
 }
 
