@@ -336,15 +336,27 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   return best;
 }
 
-// The face of `poly` whose normal is most anti-parallel to `normal`.
+// The incident face for a reference face with outward `normal`: of the faces around `poly`'s
+// deepest vertex along -normal, the one most anti-parallel to the normal. The most anti-parallel face
+// of the whole polyhedron need not hold that vertex (a hull resting on a ridge whose two faces are
+// steep, next to a flatter face at one end of it), and clipping it would lose the deepest point: in
+// R4 a hull sank 5 cm into the terrain at the vertex its manifold left out. Every face around the
+// deepest vertex holds it, and among them the most anti-parallel one is the face a resting body
+// lies on (for a box: the face the global search finds).
 std::uint32_t incidentFace(const WorldPolyhedron& poly, const Vec3& normal) {
+  std::uint32_t deepest = 0;
+  for (std::uint32_t v = 1; v < poly.vertices.size(); ++v) {
+    if (glm::dot(poly.vertices[v], normal) < glm::dot(poly.vertices[deepest], normal)) deepest = v;
+  }
+  const auto edges = poly.hull->halfEdges();
   std::uint32_t best = 0;
   float lowest = 1e30f;
-  for (std::uint32_t f = 0; f < poly.planes.size(); ++f) {
-    const float d = glm::dot(poly.planes[f].normal, normal);
+  for (const ConvexHull::HalfEdge& edge : edges) {
+    if (edge.origin != deepest) continue;
+    const float d = glm::dot(poly.planes[edge.face].normal, normal);
     if (d < lowest) {
       lowest = d;
-      best = f;
+      best = edge.face;
     }
   }
   return best;
