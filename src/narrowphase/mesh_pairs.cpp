@@ -63,6 +63,7 @@ SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Mes
     if (kind == Kind::Boundary || kind == Kind::Concave) t.activeEdgesBack |= 1u << k;
     if (kind == Kind::Flat) t.flatEdges |= 1u << k;
     if (mesh.isFlatVertex(indices.v[k])) t.flatVertices |= 1u << k;
+    t.bendCosine[k] = mesh.edgeBendCosine(index, k);
     const std::uint32_t a = indices.v[k], b = indices.v[(k + 1) % 3];
     const std::uint32_t low = std::min(a, b), high = std::max(a, b);
     t.edgeFeature[k] =

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "narrowphase/pair_functions.h"
@@ -93,7 +94,18 @@ inline bool normalAllowed(const TriangleFrame& t, const SatTriangle& triangle, c
   }
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t edgeBits = (1u << k) | (1u << ((k + 1) % 3));
-    if (top == edgeBits) return (active >> k) & 1u;
+    // An active edge (outline or convex bend) has the normals between its two faces': beyond the
+    // bend (the per-triangle SAT's edge-edge axis can be anywhere on the triangle's half circle) the
+    // neighbour's face is nearer, and the face contacts hold the shape (R4: a 35° normal on a
+    // 2.8° bend). 1e-3 rad of slack for rounding.
+    if (top == edgeBits) {
+      if (!((active >> k) & 1u)) return false;
+      const float bend = triangle.bendCosine[k];
+      if (bend <= -1.0f) return true;  // the outline: any normal on its outer half circle
+      // cos(bend angle + 1e-3) ~ cos(bend) - 1e-3 sin(bend), and 1e-6 for rounding.
+      const float slack = 1e-3f * std::sqrt(std::max(0.0f, 1.0f - bend * bend)) + 1e-6f;
+      return std::abs(along) >= bend - slack;
+    }
     // A vertex: active unless it lies inside a flat patch and neither of the triangle's edges at it
     // is active (an outline vertex or a vertex at a bend may push any way).
     if (top == (1u << k)) {
