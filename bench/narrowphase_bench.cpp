@@ -4,6 +4,7 @@
 #include <collide/narrowphase.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -14,6 +15,9 @@
 
 #if defined(COLLIDE_HAVE_CCD)
 #include <ccd/ccd.h>
+#endif
+#if defined(COLLIDE_HAVE_FCL)
+#include <fcl/narrowphase/detail/convexity_based_algorithm/gjk_libccd.h>
 #endif
 #if defined(COLLIDE_BENCH_WITH_BULLET)
 #include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
@@ -110,13 +114,13 @@ std::vector<Placed> makeRestingBoxPairs() {
 }
 
 template <detail::CollideFunction F>
-void runKernel(benchmark::State& state, const std::vector<Placed>& pairs) {
+void runKernel(benchmark::State& state, const std::vector<Placed>& pairs, float margin = 0.0f) {
   Manifold m;
   std::size_t i = 0;
   int points = 0;
   for (auto _ : state) {
     const Placed& p = pairs[i++ & (kPairs - 1)];
-    benchmark::DoNotOptimize(F(p.a, p.ta, p.b, p.tb, 0.0f, m));
+    benchmark::DoNotOptimize(F(p.a, p.ta, p.b, p.tb, margin, m));
     points += m.count;
     benchmark::ClobberMemory();
   }
@@ -224,6 +228,97 @@ BENCHMARK(BM_CollideBoxOnBoxResting);
 BENCHMARK(BM_CollideHullHullSat);
 BENCHMARK(BM_CollideEllipsoidCylinderGjkEpa);
 
+// ---- R4's pairs (reference-scenes.md): 12-point hulls on the sine terrain and on each other ----
+//
+// The terrain mesh and the hull generator of R4, built here as the scene library builds them; each
+// hull is placed resting: turned at random, its lowest point sunk 0.005 (the linear slop) into the
+// terrain under it, or onto another hull along a random direction, sunk 0.005 along the pair's
+// GJK normal. Through the table's functions (no validation), with R4's speculative margin order
+// (0.02).
+
+TriangleMesh r4Terrain() {
+  constexpr int kQuads = 100;
+  std::vector<Vec3> vertices;
+  std::vector<MeshTriangle> triangles;
+  for (int j = 0; j <= kQuads; ++j) {
+    for (int i = 0; i <= kQuads; ++i) {
+      const double x = i - kQuads / 2.0, z = j - kQuads / 2.0;
+      vertices.emplace_back(float(x), float(0.5 * std::sin(0.3 * x) * std::cos(0.3 * z)), float(z));
+    }
+  }
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (kQuads + 1) + i); };
+  for (int j = 0; j < kQuads; ++j) {
+    for (int i = 0; i < kQuads; ++i) {
+      triangles.push_back({{at(i, j), at(i, j + 1), at(i + 1, j)}});
+      triangles.push_back({{at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)}});
+    }
+  }
+  return TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
+}
+
+std::vector<Shape> r4Hulls(int count) {
+  std::mt19937 rng(42);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::vector<Shape> hulls;
+  for (int h = 0; h < count; ++h) {
+    std::vector<Vec3> points(12);
+    for (Vec3& p : points) {
+      const double x = gauss(rng);
+      const double y = gauss(rng);
+      const double z = gauss(rng);
+      const double scale = 0.5 / std::sqrt(x * x + y * y + z * z);
+      p = Vec3(float(x * scale), float(y * scale), float(z * scale));
+    }
+    hulls.push_back(Shape(ConvexHull::fromPoints(points)));
+  }
+  return hulls;
+}
+
+constexpr float kR4Margin = 0.02f;
+
+std::vector<Placed> makeHullsOnTerrain() {
+  const Shape terrain(r4Terrain());
+  const std::vector<Shape> hulls = r4Hulls(kPairs);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<Placed> pairs;
+  for (int i = 0; i < kPairs; ++i) {
+    Transform pose{Vec3(20.0f * unit(rng), 0.0f, 20.0f * unit(rng)), randomRotation(rng), 1.0f};
+    const Vec3 down = glm::conjugate(pose.rotation) * Vec3(0.0f, -1.0f, 0.0f);
+    const Vec3 lowest = pose.applyToPoint(support(hulls[i], down));
+    const Ray ray{Vec3(lowest.x, 10.0f, lowest.z), Vec3(0.0f, -1.0f, 0.0f), 100.0f};
+    const float ground = rayCast(terrain, Transform{}, ray)->point.y;
+    pose.position.y += ground - lowest.y - 0.005f;
+    pairs.push_back({terrain, hulls[i], Transform{}, pose});
+  }
+  return pairs;
+}
+
+std::vector<Placed> makeHullsOnHulls() {
+  const std::vector<Shape> hulls = r4Hulls(2 * kPairs);
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<Placed> pairs;
+  for (int i = 0; i < kPairs; ++i) {
+    const Transform ta{Vec3(0.0f), randomRotation(rng), 1.0f};
+    const Vec3 direction = glm::normalize(Vec3(unit(rng), 1.0f + unit(rng), unit(rng)));
+    Transform tb{2.0f * direction, randomRotation(rng), 1.0f};
+    const DistanceResult d = distance(hulls[2 * i], ta, hulls[2 * i + 1], tb);
+    tb.position -= (d.distance + 0.005f) * d.normal;
+    pairs.push_back({hulls[2 * i], hulls[2 * i + 1], ta, tb});
+  }
+  return pairs;
+}
+
+void BM_R4HullOnTerrain(benchmark::State& s) {
+  runKernel<detail::collideMeshConvex>(s, makeHullsOnTerrain(), kR4Margin);
+}
+void BM_R4HullOnHull(benchmark::State& s) {
+  runKernel<detail::collidePolyhedra>(s, makeHullsOnHulls(), kR4Margin);
+}
+BENCHMARK(BM_R4HullOnTerrain);
+BENCHMARK(BM_R4HullOnHull);
+
 // ---- GJK on 32-vertex convex hulls (hulls of 32 random points on a sphere), separated pairs ----
 //
 // Every variant runs on the same pairs and the same support functions as libccd: a ConvexHull's
@@ -281,11 +376,17 @@ std::size_t visit(std::size_t i) {
 void BM_GjkDistanceHull32Cold(benchmark::State& state) {
   const HullPairs pairs = makeHullPairs();
   std::size_t i = 0;
+  double sum = 0.0, iterations = 0.0;
   for (auto _ : state) {
     const std::size_t k = visit(i++);
     detail::ConvexSupport a = pairs.a[k], b = pairs.b[k];
-    benchmark::DoNotOptimize(detail::gjkDistance(a, b));
+    const detail::GjkResult result = detail::gjkDistance(a, b);
+    benchmark::DoNotOptimize(result);
+    sum += result.distance;
+    iterations += result.iterations;
   }
+  state.counters["mean_distance"] = benchmark::Counter(sum / double(std::max<std::size_t>(i, 1)));
+  state.counters["iterations"] = benchmark::Counter(iterations / double(std::max<std::size_t>(i, 1)));
 }
 BENCHMARK(BM_GjkDistanceHull32Cold);
 
@@ -375,6 +476,33 @@ void BM_LibccdGjkIntersectPoints32(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_LibccdGjkIntersectPoints32);
+
+#if defined(COLLIDE_HAVE_FCL)
+// libccd's GJK as a distance query: FCL's extension of it (fcl::detail::GJKDistance: libccd's
+// intersection GJK, then its distance iterations from that simplex), with FCL's default tolerance
+// (1e-6) and the same support function.
+template <bool kPoints>
+void runLibccdDistance(benchmark::State& state) {
+  const HullPairs pairs = makeHullPairs();
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    const std::size_t k = visit(i++);
+    detail::ConvexSupport a = kPoints ? pairs.pointsA[k] : pairs.a[k];
+    detail::ConvexSupport b = kPoints ? pairs.pointsB[k] : pairs.b[k];
+    double distance = 0.0;
+    fcl::Vector3d p1, p2;
+    benchmark::DoNotOptimize(
+        fcl::detail::GJKDistance<double>(&a, ccdSupport, &b, ccdSupport, 1000, 1e-6, &distance, &p1, &p2));
+    sum += distance;
+  }
+  state.counters["mean_distance"] = benchmark::Counter(sum / double(std::max<std::size_t>(i, 1)));
+}
+void BM_LibccdGjkDistanceHull32(benchmark::State& s) { runLibccdDistance<false>(s); }
+void BM_LibccdGjkDistancePoints32(benchmark::State& s) { runLibccdDistance<true>(s); }
+BENCHMARK(BM_LibccdGjkDistanceHull32);
+BENCHMARK(BM_LibccdGjkDistancePoints32);
+#endif
 #endif
 
 }  // namespace

@@ -104,6 +104,8 @@ public:
 private:
   friend class HullBuilder;
   std::vector<Vec3> vertices_;
+  // The vertices again as blocks of x, y and z coordinates, for support() (geometry/support_scan.h).
+  std::vector<float> blockedVertices_;
   std::vector<HalfEdge> halfEdges_;
   std::vector<Face> faces_;
   float volume_ = 0.0f;
@@ -184,6 +186,9 @@ public:
   // (convex), coplanar within 0.1° (flat), or bending towards it (concave).
   enum class EdgeKind : std::uint8_t { Boundary, Convex, Flat, Concave };
   EdgeKind edgeKind(std::uint32_t triangle, int edge) const { return edgeKinds_[3 * triangle + edge]; }
+  // The cosine of the angle between the normals of the two triangles at edge k (oriented alike), -1
+  // on the outline: the normals the surface has along that edge lie between the two faces'.
+  float edgeBendCosine(std::uint32_t triangle, int edge) const { return bendCosines_[3 * triangle + edge]; }
   // A vertex inside a flat patch: every edge at it is flat.
   bool isFlatVertex(std::uint32_t vertex) const { return flatVertices_[vertex] != 0; }
   // Triangles joined by flat edges share a patch number.
@@ -195,6 +200,7 @@ private:
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> triangleOrder_;
   std::vector<EdgeKind> edgeKinds_;
+  std::vector<float> bendCosines_;
   std::vector<std::uint8_t> flatVertices_;
   std::vector<std::uint32_t> patches_;
   bool closed_ = false;

@@ -3,6 +3,7 @@
 // half-edge polyhedron of shapes.h (Gregorius, "Implementing Quickhull", GDC 2014, explains why
 // merged faces and twin half-edges are what SAT and contact clipping want).
 #include "geometry/hull_builder.h"
+#include "geometry/support_scan.h"
 
 #include "shapes/shape_functions.h"
 
@@ -262,6 +263,7 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
     edge.twin = twin->second;
   }
 
+  hull.blockedVertices_ = detail::blockCoordinates(hull.vertices_);
   for (const Vec3& v : hull.vertices_) hull.bounds_.grow(v);
   // Integrate about the box centre: the polyhedron formulas lose precision far from the origin.
   const Vec3 reference = hull.bounds_.center();

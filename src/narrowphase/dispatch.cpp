@@ -214,7 +214,10 @@ constexpr PairTable buildPairTable() {
                      "replaced by face contacts; merged to four"
         : rounded  ? "BVH triangles near the shape, each by closest points of the core (a capsule's segment "
                      "clipped on a face); internal edges replaced by face contacts; merged to four"
-                   : "BVH triangles near the shape, each by GJK/EPA as a 3-point polytope; merged to four");
+                  : "BVH triangles near the shape, each by GJK/EPA as a 3-point polytope, the face preferred "
+                    "and its contact the shape's lowest features clipped to the triangle (a cylinder's "
+                    "rim: four points on a cap, two on its side); internal edges replaced by face "
+                    "contacts; merged to four");
   }
   b.add<collidePlaneMesh>(T::Plane, T::Mesh, A::Mesh, "mesh vertices below the surface, reduced to four");
   b.add<collideMeshMesh>(T::Mesh, T::Mesh, A::Mesh,

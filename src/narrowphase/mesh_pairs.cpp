@@ -9,8 +9,9 @@
 //   - Spheres and capsules: closest points of the core and each triangle, with the same
 //     internal-edge handling; a capsule lying on a face gets its two clipped ends
 //     (triangle_rounded.cpp).
-//   - Other convex shapes: each triangle is a three-point polytope for GJK/EPA (meshes are
-//     two-sided surfaces); one point per triangle.
+//   - Ellipsoids and cylinders: GJK/EPA per triangle for the best axis, the face preferred, and a
+//     face contact from the shape's lowest features (a cylinder's rim points, as on a plane)
+//     clipped to the triangle, with the same internal-edge handling (triangle_generic.cpp).
 #include <vector>
 
 #include "narrowphase/convex_distance.h"
@@ -21,26 +22,11 @@ namespace collide::detail {
 
 namespace {
 
-// The contact of one triangle (local vertices, placed by `transform`) with a convex shape.
-bool triangleContact(const std::array<Vec3, 3>& triangle, const Transform& transform,
-                     const ConvexSupport& convex, float margin, std::uint32_t featureId,
-                     std::vector<NormalContact>& contacts) {
-  const ConvexSupport support = makePointsSupport(triangle.data(), 3, transform);
-  DistanceResult distance;
-  if (!convexSignedDistance(support, convex, margin, distance)) return false;
-  NormalContact contact;
-  contact.point.pointOnA = distance.pointOnA;
-  contact.point.pointOnB = distance.pointOnB;
-  contact.point.depth = -distance.distance;
-  contact.point.featureId = featureId;
-  contact.normal = distance.normal;
-  contacts.push_back(contact);
-  return true;
-}
-
-// The box of `shape` in the local frame of `frame`, grown by a world margin.
+// The box of `shape` in the local frame of `frame`, grown by a world margin: the shape's own world
+// box in that frame, exact for primitives and polyhedra (their vertices placed), so that the BVH
+// yields only the triangles the shape can reach (the rotated local box is up to √3 times wider).
 Aabb boundsInFrame(const Shape& shape, const Transform& transform, const Transform& frame, float margin) {
-  return transformAabb(localBounds(shape), frame.inverse() * transform).expanded(margin / frame.scale);
+  return worldBounds(shape, frame.inverse() * transform).expanded(margin / frame.scale);
 }
 
 bool isPolyhedron(const Shape& shape) {
@@ -54,11 +40,21 @@ bool isPolyhedron(const Shape& shape) {
 constexpr std::uint16_t kMeshFace = 0x4000u, kMeshEdge = 0x8000u, kMeshVertex = 0xC000u;
 constexpr std::uint16_t kMeshIndex = 0x3fffu;
 
-SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Transform& transform) {
+// The mesh's placement as a matrix, made once per pair rather than a quaternion product per vertex.
+struct MeshPlacement {
+  Mat3 rotation;
+  Vec3 position;
+  float scale;
+  explicit MeshPlacement(const Transform& t)
+      : rotation(glm::mat3_cast(t.rotation)), position(t.position), scale(t.scale) {}
+  Vec3 apply(const Vec3& local) const { return position + rotation * (scale * local); }
+};
+
+SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const MeshPlacement& placement) {
   using Kind = TriangleMesh::EdgeKind;
   SatTriangle t;
   const MeshTriangle& indices = mesh.triangles()[index];
-  for (int k = 0; k < 3; ++k) t.vertices[k] = transform.applyToPoint(mesh.vertices()[indices.v[k]]);
+  for (int k = 0; k < 3; ++k) t.vertices[k] = placement.apply(mesh.vertices()[indices.v[k]]);
   t.activeEdgesFront = t.activeEdgesBack = 0;
   for (int k = 0; k < 3; ++k) {
     const Kind kind = mesh.edgeKind(index, k);
@@ -67,6 +63,7 @@ SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Tra
     if (kind == Kind::Boundary || kind == Kind::Concave) t.activeEdgesBack |= 1u << k;
     if (kind == Kind::Flat) t.flatEdges |= 1u << k;
     if (mesh.isFlatVertex(indices.v[k])) t.flatVertices |= 1u << k;
+    t.bendCosine[k] = mesh.edgeBendCosine(index, k);
     const std::uint32_t a = indices.v[k], b = indices.v[(k + 1) % 3];
     const std::uint32_t low = std::min(a, b), high = std::max(a, b);
     t.edgeFeature[k] =
@@ -79,33 +76,37 @@ SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Tra
 
 }  // namespace
 
+namespace {
+
+// The triangles' contacts with a convex shape by the routine for its kind.
+void collideTriangles(std::span<const SatTriangle> triangles, const Shape& convex, const Transform& transform,
+                      float margin, std::vector<NormalContact>& contacts) {
+  if (isPolyhedron(convex)) {
+    collideTrianglesPolyhedron(triangles, convex, transform, margin, contacts);
+  } else if (isRoundedForTriangles(convex)) {
+    collideTrianglesRounded(triangles, convex, transform, margin, contacts);
+  } else {
+    collideTrianglesGeneric(triangles, convex, transform, margin, contacts);
+  }
+}
+
+}  // namespace
+
 bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
                             const Transform& trianglesTransform, const Shape& convex,
                             const Transform& convexTransform, float margin, Manifold& out) {
-  std::vector<NormalContact> contacts;
-  if (isPolyhedron(convex) || isRoundedForTriangles(convex)) {
-    // Loose triangles: no adjacency, every edge active.
-    std::vector<SatTriangle> placed(triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-      for (int k = 0; k < 3; ++k) placed[i].vertices[k] = trianglesTransform.applyToPoint(triangles[i][k]);
-      placed[i].faceFeature = static_cast<std::uint16_t>(kMeshFace | (i & kMeshIndex));
-      for (int k = 0; k < 3; ++k) {
-        placed[i].edgeFeature[k] = static_cast<std::uint16_t>(kMeshEdge | ((3 * i + k) & kMeshIndex));
-        placed[i].vertexFeature[k] = static_cast<std::uint16_t>(kMeshVertex | ((3 * i + k) & kMeshIndex));
-      }
-    }
-    if (isPolyhedron(convex)) {
-      collideTrianglesPolyhedron(placed, convex, convexTransform, margin, contacts);
-    } else {
-      collideTrianglesRounded(placed, convex, convexTransform, margin, contacts);
-    }
-    return mergeContacts(contacts, margin, out);
-  }
-  const ConvexSupport support = makeConvexSupport(convex, convexTransform);
+  // Loose triangles: no adjacency, every edge active.
+  std::vector<SatTriangle> placed(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
-    triangleContact(triangles[i], trianglesTransform, support, margin, static_cast<std::uint32_t>(i),
-                    contacts);
+    for (int k = 0; k < 3; ++k) placed[i].vertices[k] = trianglesTransform.applyToPoint(triangles[i][k]);
+    placed[i].faceFeature = static_cast<std::uint16_t>(kMeshFace | (i & kMeshIndex));
+    for (int k = 0; k < 3; ++k) {
+      placed[i].edgeFeature[k] = static_cast<std::uint16_t>(kMeshEdge | ((3 * i + k) & kMeshIndex));
+      placed[i].vertexFeature[k] = static_cast<std::uint16_t>(kMeshVertex | ((3 * i + k) & kMeshIndex));
+    }
   }
+  std::vector<NormalContact> contacts;
+  collideTriangles(placed, convex, convexTransform, margin, contacts);
   return mergeContacts(contacts, margin, out);
 }
 
@@ -113,24 +114,15 @@ bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const S
                        const Transform& transformB, float margin, Manifold& out) {
   const TriangleMesh& mesh = shapeA.mesh();
   const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
-  std::vector<NormalContact> contacts;
-  if (isPolyhedron(shapeB) || isRoundedForTriangles(shapeB)) {
-    thread_local std::vector<SatTriangle> triangles;
-    triangles.clear();
-    mesh.forEachTriangleOverlapping(
-        bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, transformA)); });
-    if (isPolyhedron(shapeB)) {
-      collideTrianglesPolyhedron(triangles, shapeB, transformB, margin, contacts);
-    } else {
-      collideTrianglesRounded(triangles, shapeB, transformB, margin, contacts);
-    }
-    return mergeContacts(contacts, margin, out);
-  }
-  // Other convex shapes: contacts carry the triangle index as their whole feature id.
-  const ConvexSupport support = makeConvexSupport(shapeB, transformB);
-  mesh.forEachTriangleOverlapping(bounds, [&](std::uint32_t index) {
-    triangleContact(mesh.triangle(index), transformA, support, margin, index, contacts);
-  });
+  thread_local std::vector<SatTriangle> triangles;
+  triangles.clear();
+  const MeshPlacement placement(transformA);
+  mesh.forEachTriangleOverlapping(
+      bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, placement)); });
+  // Per-thread, like the triangles: no allocation once warm (the step calls this per pair).
+  thread_local std::vector<NormalContact> contacts;
+  contacts.clear();
+  collideTriangles(triangles, shapeB, transformB, margin, contacts);
   return mergeContacts(contacts, margin, out);
 }
 bool collideMeshMesh(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,

@@ -85,6 +85,9 @@ struct SatTriangle {
   std::uint8_t activeEdgesBack = 0x7;   // the same seen from the back (convex and concave swap)
   std::uint8_t flatEdges = 0;           // bit k: edge k joins a coplanar neighbour
   std::uint8_t flatVertices = 0;        // bit k: vertex k lies inside a flat patch
+  // Edge k's bend (TriangleMesh::edgeBendCosine): a normal at an active edge may turn from the face
+  // normal by at most that angle; -1 (any) for loose triangles and the outline.
+  std::array<float, 3> bendCosine{-1.0f, -1.0f, -1.0f};
   std::uint16_t faceFeature = 0;
   std::array<std::uint16_t, 3> edgeFeature{};
   std::array<std::uint16_t, 3> vertexFeature{};
@@ -101,6 +104,13 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
 // internal edges replaced by face contacts (triangle_rounded.cpp). Appends to `contacts`.
 bool isRoundedForTriangles(const Shape& shape);
 void collideTrianglesRounded(std::span<const SatTriangle> triangles, const Shape& shape,
+                             const Transform& transform, float margin, std::vector<NormalContact>& contacts);
+
+// Contacts of each triangle (A) with any other convex shape (B; the table sends ellipsoids and
+// cylinders), normal from the triangle: GJK/EPA for the best axis, the face preferred, a face
+// contact from the shape's lowest features (a cylinder's rim points) clipped to the triangle, and
+// internal edges replaced by face contacts (triangle_generic.cpp). Appends to `contacts`.
+void collideTrianglesGeneric(std::span<const SatTriangle> triangles, const Shape& shape,
                              const Transform& transform, float margin, std::vector<NormalContact>& contacts);
 
 bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);

@@ -21,6 +21,7 @@
 #include "geometry/clipping.h"
 #include "geometry/closest_points.h"
 #include "narrowphase/pair_functions.h"
+#include "narrowphase/triangle_features.h"
 
 namespace collide::detail {
 
@@ -70,14 +71,31 @@ const UnitCube& unitCube() {
   return cube;
 }
 
+// An edge of a placed polyhedron, once (the smaller of its two half-edges), with what the edge
+// query needs: its world segment, its two faces and the normal of its Gauss-map arc's great circle.
+// Made only for the edges of B that the query keeps (facesBehind).
+struct WorldEdge {
+  Vec3 origin{0.0f};
+  Vec3 direction{0.0f};  // end - origin
+  // cross(n2, n1) for the normals n1 of the half-edge's face and n2 of its twin's: the arc's
+  // endpoints lie on either side of a plane through the origin exactly when their dot products with
+  // it differ in sign (Gregorius 2013).
+  Vec3 arcNormal{0.0f};
+  std::uint32_t halfEdge = 0;
+  std::uint32_t face1 = 0, face2 = 0;
+};
+
 // A polyhedron placed in the world: the hull's topology with world vertices and face planes.
 struct WorldPolyhedron {
   const ConvexHull* hull = nullptr;
   const UnitCube* cube = nullptr;  // set for a box: its features are named by box codes
   std::span<const Vec3> vertices;  // world
   std::span<const Plane> planes;   // world, outward unit normals
-  Vec3 center{0.0f};               // a point inside, to orient edge axes
-  float size = 0.0f;               // a length of the shape's scale, for tolerances
+  // The face normals and distances again as blocks of x, y, z and d (planes.size() each), for
+  // loops over the faces that the compiler vectorises.
+  std::span<const float> normalBlocks;
+  Vec3 inside{0.0f};  // a point inside the solid (its centroid): edge axes point away from it
+  float size = 0.0f;  // a length of the shape's scale, for tolerances
 
   std::uint32_t vertexFeature(std::uint32_t v) const { return cube ? cube->vertexCode[v] : (v & kIndexMask); }
   std::uint32_t faceFeature(std::uint32_t f) const {
@@ -96,6 +114,11 @@ struct WorldPolyhedron {
 struct Scratch {
   std::vector<Vec3> vertices[2];
   std::vector<Plane> planes[2];
+  std::vector<float> normalBlocks[2];
+  std::vector<float> lowest;      // the face query's lowest vertex per face
+  std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
+  std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
+  std::vector<std::uint8_t> behind[2];  // per face: which of the other shape's points lie behind it
 };
 
 WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, Scratch& scratch) {
@@ -129,10 +152,17 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
     const Vec3 normal = rotation * face.plane.normal;
     planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
   }
+  std::vector<float>& blocks = scratch.normalBlocks[slot];
+  blocks.resize(4 * planes.size());
+  for (std::size_t f = 0; f < planes.size(); ++f) {
+    for (int axis = 0; axis < 3; ++axis) blocks[axis * planes.size() + f] = planes[f].normal[axis];
+    blocks[3 * planes.size() + f] = planes[f].distance;
+  }
   poly.vertices = vertices;
   poly.planes = planes;
+  poly.normalBlocks = blocks;
   const Aabb bounds = hull.bounds();
-  poly.center = transform.position + rotation * (localScale * bounds.center());
+  poly.inside = transform.position + rotation * (localScale * hull.centroid());
   poly.size = glm::length(localScale * bounds.halfExtents());
   return poly;
 }
@@ -144,13 +174,26 @@ struct FaceQuery {
 
 // The largest separation of B from a face plane of A: the plane's distance to B's support against
 // its normal.
-FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b) {
+FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b, Scratch& scratch) {
+  // Vertex by vertex of B, all faces of A at once: an element-wise minimum over blocked normals that
+  // the compiler vectorises (the same dot products as face by face, so the same answer).
+  const std::size_t faces = a.planes.size();
+  std::vector<float>& lowest = scratch.lowest;
+  lowest.assign(faces, 1e30f);
+  const float* xs = a.normalBlocks.data();
+  const float* ys = xs + faces;
+  const float* zs = ys + faces;
+  const float* ds = zs + faces;
+  float* low = lowest.data();
+  for (const Vec3& v : b.vertices) {
+    for (std::size_t f = 0; f < faces; ++f) {
+      const float d = xs[f] * v.x + ys[f] * v.y + zs[f] * v.z;
+      low[f] = d < low[f] ? d : low[f];
+    }
+  }
   FaceQuery best;
-  for (std::uint32_t f = 0; f < a.planes.size(); ++f) {
-    const Plane& plane = a.planes[f];
-    float lowest = 1e30f;
-    for (const Vec3& v : b.vertices) lowest = std::min(lowest, glm::dot(plane.normal, v));
-    const float separation = lowest - plane.distance;
+  for (std::uint32_t f = 0; f < faces; ++f) {
+    const float separation = low[f] - ds[f];
     if (separation > best.separation) {
       best.separation = separation;
       best.face = f;
@@ -165,66 +208,155 @@ struct EdgeQuery {
   Vec3 axis{0.0f};                     // from A to B
 };
 
-// Whether the arcs (a, b) and (c, d) cross on the unit sphere. Arc (a, b) is the Gauss image of an
-// edge of A between faces with normals a and b; (c, d) that of an edge of B, negated (the Minkowski
-// difference A - B has -B's normals). Two arcs cross when each one's endpoints lie on opposite sides
-// of the other's great circle, and they lie on the same hemisphere (Gregorius 2013).
-bool arcsCross(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 bxa = glm::cross(b, a);
-  const Vec3 dxc = glm::cross(d, c);
-  const float cba = glm::dot(c, bxa);
-  const float dba = glm::dot(d, bxa);
-  const float adc = glm::dot(a, dxc);
-  const float bdc = glm::dot(b, dxc);
-  return cba * dba < 0.0f && adc * bdc < 0.0f && cba * bdc > 0.0f;
+// Which edges can be part of an edge pair whose separation exceeds `threshold` (<= 0 here)
+// against the other shape, of which `others` are points. The pair's axis L lies on the edge's
+// Gauss-map arc (between its faces' normals n1 and n2, where the edge is its shape's support), and
+// the separation along L is at most L · (q - p) for any q of the other shape and p on the edge. Over
+// the arc that linear function peaks at an end unless its direction lies inside the arc, where one
+// end already sees a positive value; so when n1 · (q - p) and n2 · (q - p) are both at most the
+// threshold, so is every pair of this edge. p lies on both faces' planes: those are q's signed
+// distances from them, one per face for all edges. Bit k of mask[f] says that others[k] lies
+// behind face f by more than -threshold (the planes hold their vertices to the hull's merge
+// tolerance, 1e-6 of its size, well inside the callers' rounding allowance); an edge whose two
+// faces share a bit cannot matter.
+void facesBehind(const WorldPolyhedron& poly, std::span<const Vec3> others, float threshold,
+                 std::vector<std::uint8_t>& mask) {
+  const std::size_t faces = poly.planes.size();
+  mask.assign(faces, 0);
+  const float* xs = poly.normalBlocks.data();
+  const float* ys = xs + faces;
+  const float* zs = ys + faces;
+  const float* ds = zs + faces;
+  std::uint8_t* out = mask.data();
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    const Vec3 q = others[k];
+    const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
+    for (std::size_t f = 0; f < faces; ++f) {
+      const float distance = xs[f] * q.x + ys[f] * q.y + zs[f] * q.z - ds[f];
+      out[f] |= distance <= threshold ? bit : std::uint8_t(0);
+    }
+  }
 }
 
-EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b) {
+// A vertex of `poly` farthest along `direction`.
+Vec3 farthestVertex(const WorldPolyhedron& poly, const Vec3& direction) {
+  Vec3 best = poly.vertices[0];
+  float bestDot = glm::dot(best, direction);
+  for (const Vec3& v : poly.vertices) {
+    const float d = glm::dot(v, direction);
+    if (d > bestDot) bestDot = d, best = v;
+  }
+  return best;
+}
+
+// The edge pairs whose Gauss-map arcs cross, and the largest separation along their cross
+// products. Arc (a, b) is the Gauss image of an edge of A between faces with normals a and b; (c, d)
+// that of an edge of B, negated (the Minkowski difference A - B has -B's normals). Two arcs cross
+// when each one's endpoints lie on opposite sides of the other's great circle, and they lie on the
+// same hemisphere (Gregorius 2013). The first half of that test needs, for an edge of A, the side
+// of every face normal of B against A's arc: computed once per edge of A over B's blocked normals
+// (F_B dot products, vectorised) instead of twice per pair, it rejects most pairs with two loads and
+// a product; the survivors take the rest of the test and then their axis.
+//
+// Pairs whose separation cannot exceed `irrelevantBelow` are skipped (facesBehind): the caller
+// decides nothing by them (a face is preferred unless an edge pair is clearly better, and only a
+// separation above the margin makes the pair apart), and for resting pairs that is most edges of
+// both shapes, those facing away from the other. The answer is the plain pairwise test's whenever
+// its separation exceeds irrelevantBelow. Returns as soon as a separation above `stopAbove` is
+// found (the pair is apart: the caller needs no more).
+EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float stopAbove,
+                     float irrelevantBelow, const Vec3& towardB, Scratch& scratch) {
   EdgeQuery best;
-  const auto edgesA = a.hull->halfEdges();
-  const auto edgesB = b.hull->halfEdges();
-  for (std::uint32_t i = 0; i < edgesA.size(); ++i) {
-    const ConvexHull::HalfEdge& edgeA = edgesA[i];
-    if (edgeA.twin < i) continue;  // each edge once
-    const Vec3 pA = a.vertices[edgeA.origin];
-    const Vec3 directionA = a.edgeEnd(i) - pA;
-    const Vec3 normalA1 = a.planes[edgeA.face].normal;
-    const Vec3 normalA2 = a.planes[edgesA[edgeA.twin].face].normal;
-    for (std::uint32_t j = 0; j < edgesB.size(); ++j) {
-      const ConvexHull::HalfEdge& edgeB = edgesB[j];
-      if (edgeB.twin < j) continue;
-      const Vec3 normalB1 = b.planes[edgeB.face].normal;
-      const Vec3 normalB2 = b.planes[edgesB[edgeB.twin].face].normal;
-      if (!arcsCross(normalA1, normalA2, -normalB1, -normalB2)) continue;
-      const Vec3 pB = b.vertices[edgeB.origin];
-      const Vec3 directionB = b.edgeEnd(j) - pB;
-      Vec3 axis = glm::cross(directionA, directionB);
+  // Rounding of the bound: the pruned separations are below the threshold by more than this.
+  const float threshold = std::min(irrelevantBelow, 0.0f) - 1e-5f * (a.size + b.size);
+  // Points of each shape to prune the other's edges with: its centroid and its vertex deepest
+  // towards the other along the reference normal (near the contact, where the relevant edges are).
+  const Vec3 pointsOfA[2] = {a.inside, farthestVertex(a, towardB)};
+  const Vec3 pointsOfB[2] = {b.inside, farthestVertex(b, -towardB)};
+  std::vector<std::uint8_t>& behindA = scratch.behind[0];
+  std::vector<std::uint8_t>& behindB = scratch.behind[1];
+  facesBehind(a, pointsOfB, threshold, behindA);
+  facesBehind(b, pointsOfA, threshold, behindB);
+  std::vector<WorldEdge>& kept = scratch.edgesB;
+  kept.clear();
+  const auto halfEdgesB = b.hull->halfEdges();
+  for (std::uint32_t h = 0; h < halfEdgesB.size(); ++h) {
+    const ConvexHull::HalfEdge& edge = halfEdgesB[h];
+    if (edge.twin < h) continue;  // each edge once
+    const std::uint32_t face2 = halfEdgesB[edge.twin].face;
+    if (behindB[edge.face] & behindB[face2]) continue;
+    const Vec3 origin = b.vertices[edge.origin];
+    const Vec3 n1 = b.planes[edge.face].normal, n2 = b.planes[face2].normal;
+    kept.push_back(
+        {origin, b.vertices[halfEdgesB[edge.next].origin] - origin, glm::cross(n2, n1), h, edge.face, face2});
+  }
+  if (kept.empty()) return best;
+  const std::size_t facesB = b.planes.size();
+  std::vector<float>& sides = scratch.arcSides;
+  sides.resize(facesB);
+  const float* xs = b.normalBlocks.data();
+  const float* ys = xs + facesB;
+  const float* zs = ys + facesB;
+  const auto halfEdgesA = a.hull->halfEdges();
+  for (std::uint32_t h = 0; h < halfEdgesA.size(); ++h) {
+    const ConvexHull::HalfEdge& edge = halfEdgesA[h];
+    if (edge.twin < h) continue;
+    const std::uint32_t faceA2 = halfEdgesA[edge.twin].face;
+    if (behindA[edge.face] & behindA[faceA2]) continue;
+    const Vec3 originA = a.vertices[edge.origin];
+    const Vec3 normalA1 = a.planes[edge.face].normal;
+    const Vec3 normalA2 = a.planes[faceA2].normal;
+    const Vec3 u = glm::cross(normalA2, normalA1);
+    const Vec3 directionA = a.vertices[halfEdgesA[edge.next].origin] - originA;
+    float* side = sides.data();
+    for (std::size_t f = 0; f < facesB; ++f) side[f] = xs[f] * u.x + ys[f] * u.y + zs[f] * u.z;
+    for (const WorldEdge& edgeB : kept) {
+      // c = -nB1 and d = -nB2 against A's arc: (c · u)(d · u) < 0.
+      const float cba = -side[edgeB.face1], dba = -side[edgeB.face2];
+      if (!(cba * dba < 0.0f)) continue;
+      const float adc = glm::dot(normalA1, edgeB.arcNormal);
+      const float bdc = glm::dot(normalA2, edgeB.arcNormal);
+      if (!(adc * bdc < 0.0f && cba * bdc > 0.0f)) continue;
+      Vec3 axis = glm::cross(directionA, edgeB.direction);
       const float length = glm::length(axis);
       // Parallel edges: their cross product has no direction (the face axes cover that case).
-      if (length < 1e-5f * glm::length(directionA) * glm::length(directionB)) continue;
+      if (length < 1e-5f * glm::length(directionA) * glm::length(edgeB.direction)) continue;
       axis /= length;
-      if (glm::dot(axis, pA - a.center) < 0.0f) axis = -axis;
-      const float separation = glm::dot(axis, pB - pA);
+      if (glm::dot(axis, originA - a.inside) < 0.0f) axis = -axis;
+      const float separation = glm::dot(axis, edgeB.origin - originA);
       if (separation > best.separation) {
         best.separation = separation;
-        best.edgeA = i;
-        best.edgeB = j;
+        best.edgeA = h;
+        best.edgeB = edgeB.halfEdge;
         best.axis = axis;
+        if (separation > stopAbove) return best;
       }
     }
   }
   return best;
 }
 
-// The face of `poly` whose normal is most anti-parallel to `normal`.
+// The incident face for a reference face with outward `normal`: of the faces around `poly`'s
+// deepest vertex along -normal, the one most anti-parallel to the normal. The most anti-parallel face
+// of the whole polyhedron need not hold that vertex (a hull resting on a ridge whose two faces are
+// steep, next to a flatter face at one end of it), and clipping it would lose the deepest point: in
+// R4 a hull sank 5 cm into the terrain at the vertex its manifold left out. Every face around the
+// deepest vertex holds it, and among them the most anti-parallel one is the face a resting body
+// lies on (for a box: the face the global search finds).
 std::uint32_t incidentFace(const WorldPolyhedron& poly, const Vec3& normal) {
+  std::uint32_t deepest = 0;
+  for (std::uint32_t v = 1; v < poly.vertices.size(); ++v) {
+    if (glm::dot(poly.vertices[v], normal) < glm::dot(poly.vertices[deepest], normal)) deepest = v;
+  }
+  const auto edges = poly.hull->halfEdges();
   std::uint32_t best = 0;
   float lowest = 1e30f;
-  for (std::uint32_t f = 0; f < poly.planes.size(); ++f) {
-    const float d = glm::dot(poly.planes[f].normal, normal);
+  for (const ConvexHull::HalfEdge& edge : edges) {
+    if (edge.origin != deepest) continue;
+    const float d = glm::dot(poly.planes[edge.face].normal, normal);
     if (d < lowest) {
       lowest = d;
-      best = f;
+      best = edge.face;
     }
   }
   return best;
@@ -350,9 +482,9 @@ SatAxis polyhedraSeparation(const Shape& shapeA, const Transform& transformA, co
   thread_local Scratch scratch;
   const WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
   const WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
-  const FaceQuery faceA = queryFaces(a, b);
-  const FaceQuery faceB = queryFaces(b, a);
-  const EdgeQuery edge = queryEdges(a, b);
+  const FaceQuery faceA = queryFaces(a, b, scratch);
+  const FaceQuery faceB = queryFaces(b, a, scratch);
+  const EdgeQuery edge = queryEdges(a, b, 1e30f, -1e30f, Vec3(0.0f, 1.0f, 0.0f), scratch);
   SatAxis best{faceA.separation, a.planes[faceA.face].normal};
   if (faceB.separation > best.separation) best = {faceB.separation, -b.planes[faceB.face].normal};
   if (edge.separation > best.separation) best = {edge.separation, edge.axis};
@@ -366,12 +498,10 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
   const WorldPolyhedron a = place(shapeA, transformA, 0, scratch);
   const WorldPolyhedron b = place(shapeB, transformB, 1, scratch);
 
-  const FaceQuery faceA = queryFaces(a, b);
+  const FaceQuery faceA = queryFaces(a, b, scratch);
   if (faceA.separation > margin) return false;
-  const FaceQuery faceB = queryFaces(b, a);
+  const FaceQuery faceB = queryFaces(b, a, scratch);
   if (faceB.separation > margin) return false;
-  const EdgeQuery edge = queryEdges(a, b);
-  if (edge.separation > margin) return false;
 
   // Prefer a face over an edge pair unless the edge is clearly better (Box2D's relative 0.98 plus
   // an absolute tolerance, here relative to the shapes' size), so that a resting pair keeps its
@@ -388,6 +518,11 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
     if (std::abs(areaA - areaB) > 1e-4f * std::max(areaA, areaB)) referenceIsB = areaB > areaA;
   }
   const float faceSeparation = referenceIsB ? faceB.separation : faceA.separation;
+  // Edge pairs matter only if they separate the pair (beyond the margin) or beat the face.
+  const float edgeMatters = std::min(margin, kRelative * faceSeparation + absolute);
+  const Vec3 referenceNormal = referenceIsB ? -b.planes[faceB.face].normal : a.planes[faceA.face].normal;
+  const EdgeQuery edge = queryEdges(a, b, margin, edgeMatters, referenceNormal, scratch);
+  if (edge.separation > margin) return false;
   if (edge.separation > kRelative * faceSeparation + absolute && edgeContact(a, b, edge, margin, out)) {
     return true;
   }
@@ -405,57 +540,6 @@ bool collidePolyhedra(const Shape& shapeA, const Transform& transformA, const Sh
 // edge's side of the triangle.
 
 namespace {
-
-// The triangle half of a contact id while clipping against the triangle's sides: bit k set when
-// the point lies on side k (edge v[k] -> v[k+1]); none for the face, two for a corner.
-constexpr std::uint32_t kSideBits = 0x7u;
-
-int cornerBetween(std::uint32_t bits) {
-  // Sides k and k + 1 meet at vertex k + 1.
-  for (int k = 0; k < 3; ++k) {
-    if (bits == ((1u << k) | (1u << ((k + 1) % 3)))) return (k + 1) % 3;
-  }
-  return -1;
-}
-
-struct TriangleFrame {
-  std::array<Vec3, 3> v;
-  std::array<Vec3, 3> edge;     // v[k+1] - v[k]
-  std::array<Vec3, 3> outward;  // unit, in the plane, away from the triangle across edge k
-  Vec3 normal{0.0f};            // unit, counter-clockwise
-  float size = 0.0f;
-};
-
-TriangleFrame frameOf(const std::array<Vec3, 3>& v) {
-  TriangleFrame t;
-  t.v = v;
-  for (int k = 0; k < 3; ++k) t.edge[k] = v[(k + 1) % 3] - v[k];
-  t.normal = glm::normalize(glm::cross(t.edge[0], -t.edge[2]));
-  for (int k = 0; k < 3; ++k) t.outward[k] = glm::normalize(glm::cross(t.edge[k], t.normal));
-  t.size = std::max({glm::length(t.edge[0]), glm::length(t.edge[1]), glm::length(t.edge[2])});
-  return t;
-}
-
-// The mesh half of a contact's id from the side bits of its point on the triangle.
-std::uint32_t meshFeature(const SatTriangle& triangle, std::uint32_t bits) {
-  if (bits == 0) return triangle.faceFeature;
-  for (int k = 0; k < 3; ++k) {
-    if (bits == (1u << k)) return triangle.edgeFeature[k];
-  }
-  const int corner = cornerBetween(bits);
-  return corner >= 0 ? triangle.vertexFeature[corner] : triangle.faceFeature;
-}
-
-// Whether a contact point named by its side bits lies inside a flat patch of the mesh (on an edge
-// between coplanar triangles, or at a vertex all of whose edges are such): the neighbours'
-// points then span the contact region without it.
-bool insideFlatPatch(const SatTriangle& triangle, std::uint32_t bits) {
-  for (int k = 0; k < 3; ++k) {
-    if (bits == (1u << k)) return (triangle.flatEdges >> k) & 1u;
-  }
-  const int corner = cornerBetween(bits);
-  return corner >= 0 && ((triangle.flatVertices >> corner) & 1u);
-}
 
 // Face contact on the triangle's face, seen from `side` (+1: the polyhedron above the front):
 // the polyhedron's incident face clipped against the triangle's three side planes.
@@ -554,34 +638,6 @@ void polyhedronFaceContact(const TriangleFrame& t, const SatTriangle& triangle, 
   }
 }
 
-// Whether a contact normal (from the triangle) is one the surface can give: the triangle's face
-// normal, or the normal of an edge or vertex of the triangle that is active (on the mesh's outline
-// or a convex bend, seen from the normal's side). The triangle's features touching along the
-// normal are its vertices farthest along it.
-bool normalAllowed(const TriangleFrame& t, const SatTriangle& triangle, const Vec3& normal) {
-  const float along = glm::dot(normal, t.normal);
-  const Vec3 inPlane = normal - along * t.normal;
-  if (glm::length(inPlane) <= 1e-4f) return true;  // the face normal (within 0.006°)
-  const std::uint8_t active = along >= 0.0f ? triangle.activeEdgesFront : triangle.activeEdgesBack;
-  float heights[3], highest = -1e30f;
-  for (int k = 0; k < 3; ++k) highest = std::max(highest, heights[k] = glm::dot(normal, t.v[k]));
-  const float tolerance = 1e-4f * t.size;
-  std::uint32_t top = 0;  // vertex bits
-  for (int k = 0; k < 3; ++k) {
-    if (heights[k] >= highest - tolerance) top |= 1u << k;
-  }
-  for (int k = 0; k < 3; ++k) {
-    const std::uint32_t edgeBits = (1u << k) | (1u << ((k + 1) % 3));
-    if (top == edgeBits) return (active >> k) & 1u;
-    // A vertex: active unless it lies inside a flat patch and neither of the triangle's edges at it
-    // is active (an outline vertex or a vertex at a bend may push any way).
-    if (top == (1u << k)) {
-      return !((triangle.flatVertices >> k) & 1u) || ((active >> k) & 1u) || ((active >> ((k + 2) % 3)) & 1u);
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& shape,
@@ -590,8 +646,13 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
   thread_local Scratch scratch;
   const WorldPolyhedron poly = place(shape, transform, 0, scratch);
   const auto edges = poly.hull->halfEdges();
+  const std::size_t faceCount = poly.planes.size();
+  const float* xs = poly.normalBlocks.data();
+  const float* ys = xs + faceCount;
+  const float* zs = ys + faceCount;
+  const float* ds = zs + faceCount;
   for (const SatTriangle& triangle : triangles) {
-    const TriangleFrame t = frameOf(triangle.vertices);
+    TriangleFrame t = planeFrameOf(triangle.vertices);
     // 1. The triangle's face, from the side the polyhedron is on.
     float lowest = 1e30f, highest = -1e30f;
     for (const Vec3& p : poly.vertices) {
@@ -604,34 +665,68 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
     const float triangleSeparation = std::max(frontSeparation, backSeparation);
     if (triangleSeparation > margin) continue;
-    // 2. The polyhedron's faces against the triangle's vertices.
+    // 2. The polyhedron's faces against the triangle's vertices (all faces at once, vectorised).
+    std::vector<float>& lowestOnFace = scratch.lowest;
+    lowestOnFace.resize(faceCount);
+    float* low = lowestOnFace.data();
+    for (std::size_t f = 0; f < faceCount; ++f) {
+      const float d0 = xs[f] * t.v[0].x + ys[f] * t.v[0].y + zs[f] * t.v[0].z;
+      const float d1 = xs[f] * t.v[1].x + ys[f] * t.v[1].y + zs[f] * t.v[1].z;
+      const float d2 = xs[f] * t.v[2].x + ys[f] * t.v[2].y + zs[f] * t.v[2].z;
+      const float d01 = d1 < d0 ? d1 : d0;
+      low[f] = (d2 < d01 ? d2 : d01) - ds[f];
+    }
     float faceSeparation = -1e30f;
     std::uint32_t face = 0;
-    for (std::uint32_t f = 0; f < poly.planes.size(); ++f) {
-      const Plane& plane = poly.planes[f];
-      const float s = std::min({glm::dot(plane.normal, t.v[0]), glm::dot(plane.normal, t.v[1]),
-                                glm::dot(plane.normal, t.v[2])}) -
-                      plane.distance;
-      if (s > faceSeparation) {
-        faceSeparation = s;
+    for (std::uint32_t f = 0; f < faceCount; ++f) {
+      if (low[f] > faceSeparation) {
+        faceSeparation = low[f];
         face = f;
       }
     }
     if (faceSeparation > margin) continue;
-    // 3. Edge pairs crossing on the Gauss map.
+    completeFrame(t);
+    // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
+    // face unless an edge pair is clearly better (the tolerances of collidePolyhedra): the surface
+    // under a resting body stays the reference whatever the triangle's size.
+    constexpr float kRelative = 0.98f;
+    const float absolute = 1e-3f * std::min(t.size, poly.size);
+    const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
+    const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
+    // 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
+    // great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
+    // each face normal's dot product with the three edges is computed once (vectorised over the
+    // blocked normals) rather than twice per pair.
+    // Edges of the polyhedron whose pairs cannot separate the pair or beat the face are skipped
+    // (facesBehind: a point of the triangle lies behind both of their faces).
+    const float edgeMatters =
+        std::min(std::min(margin, kRelative * bestFace + absolute), 0.0f) - 1e-5f * (t.size + poly.size);
+    const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
+    std::vector<std::uint8_t>& behind = scratch.behind[0];
+    facesBehind(poly, trianglePoints, edgeMatters, behind);
+    std::vector<float>& along = scratch.arcSides;
+    along.resize(3 * faceCount);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 e = t.edge[k];
+      float* out = along.data() + k * faceCount;
+      for (std::size_t f = 0; f < faceCount; ++f) out[f] = xs[f] * e.x + ys[f] * e.y + zs[f] * e.z;
+    }
     float edgeSeparation = -1e30f;
     int edgeT = 0;
     std::uint32_t edgeP = 0;
     Vec3 edgeAxis(0.0f);
-    for (std::uint32_t j = 0; j < edges.size(); ++j) {
-      const ConvexHull::HalfEdge& halfEdge = edges[j];
-      if (halfEdge.twin < j) continue;
-      const Vec3 a = -poly.planes[halfEdge.face].normal, b = -poly.planes[edges[halfEdge.twin].face].normal;
+    for (std::uint32_t h = 0; h < edges.size(); ++h) {
+      const ConvexHull::HalfEdge& halfEdge = edges[h];
+      if (halfEdge.twin < h) continue;
+      const std::uint32_t face1 = halfEdge.face, face2 = edges[halfEdge.twin].face;
       const Vec3 origin = poly.vertices[halfEdge.origin];
-      const Vec3 direction = poly.edgeEnd(j) - origin;
+      if (behind[face1] & behind[face2]) continue;
+      const Vec3 direction = poly.vertices[edges[halfEdge.next].origin] - origin;
       for (int k = 0; k < 3; ++k) {
-        const float da = glm::dot(a, t.edge[k]), db = glm::dot(b, t.edge[k]);
+        // da = (-n1) · e_k, db = (-n2) · e_k.
+        const float da = -along[k * faceCount + face1], db = -along[k * faceCount + face2];
         if (!(da * db < 0.0f)) continue;
+        const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
         const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
         if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
         Vec3 axis = glm::cross(t.edge[k], direction);
@@ -643,20 +738,14 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
         if (separation > edgeSeparation) {
           edgeSeparation = separation;
           edgeT = k;
-          edgeP = j;
+          edgeP = h;
           edgeAxis = axis;
         }
       }
+      if (edgeSeparation > margin) break;  // apart: the rest cannot change that
     }
     if (edgeSeparation > margin) continue;
 
-    // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
-    // face unless an edge pair is clearly better (the tolerances of collidePolyhedra): the surface
-    // under a resting body stays the reference whatever the triangle's size.
-    constexpr float kRelative = 0.98f;
-    const float absolute = 1e-3f * std::min(t.size, poly.size);
-    const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
-    const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
     const std::size_t before = contacts.size();
     Vec3 normal = side * t.normal;
     if (edgeSeparation > kRelative * bestFace + absolute) {

@@ -55,6 +55,7 @@ constexpr double kFlatCosine = 0.99999847691;  // cos(0.1°)
 
 struct Adjacency {
   std::vector<TriangleMesh::EdgeKind> edgeKinds;  // 3 per triangle
+  std::vector<float> bendCosines;                 // 3 per triangle: -1 on the outline
   std::vector<std::uint8_t> flatVertices;
   std::vector<std::uint32_t> patches;
 };
@@ -96,6 +97,7 @@ Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTri
 
   Adjacency result;
   result.edgeKinds.assign(3 * count, Kind::Boundary);
+  result.bendCosines.assign(3 * count, -1.0f);
   result.patches.resize(count);
   for (std::uint32_t t = 0; t < count; ++t) result.patches[t] = t;
   // The kind of edge k of triangle t against its neighbour u: the neighbour's far vertex below t's
@@ -120,6 +122,14 @@ Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTri
       const Kind kindT = kindAcross(t, u), kindU = kindAcross(u, t);
       result.edgeKinds[entries[begin].triangleEdge] = kindT;
       result.edgeKinds[entries[begin + 1].triangleEdge] = kindU;
+      // The bend: the angle between the two normals oriented alike across the edge (it runs one
+      // way in each triangle of a consistently oriented pair; the same way means one is flipped).
+      const int kt = static_cast<int>(entries[begin].triangleEdge % 3);
+      const int ku = static_cast<int>(entries[begin + 1].triangleEdge % 3);
+      const bool sameWay = triangles[t].v[kt] == triangles[u].v[ku];
+      const double bend = (sameWay ? -1.0 : 1.0) * glm::dot(normals[t], normals[u]);
+      result.bendCosines[entries[begin].triangleEdge] = static_cast<float>(bend);
+      result.bendCosines[entries[begin + 1].triangleEdge] = static_cast<float>(bend);
       if (kindT == Kind::Flat) result.patches[findRoot(result.patches, t)] = findRoot(result.patches, u);
     }
     begin = end;
@@ -194,6 +204,7 @@ TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector
   mesh.triangleOrder_ = std::move(bvh.triangleOrder);
   Adjacency adjacency = buildAdjacency(mesh.vertices_, mesh.triangles_);
   mesh.edgeKinds_ = std::move(adjacency.edgeKinds);
+  mesh.bendCosines_ = std::move(adjacency.bendCosines);
   mesh.flatVertices_ = std::move(adjacency.flatVertices);
   mesh.patches_ = std::move(adjacency.patches);
   mesh.closed_ = isClosedSurface(mesh.triangles_);

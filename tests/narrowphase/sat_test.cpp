@@ -11,6 +11,7 @@
 #include "narrowphase/ccd_reference.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/test_helpers.h"
+#include "shapes/flat_grid.h"
 
 using namespace collide;
 using namespace collide::test;
@@ -104,6 +105,49 @@ TEST(SatPolyhedra, CrossedEdgesGiveOnePointAtTheirCrossing) {
   for (const std::uint32_t code : {m.points[0].featureId & 0xffffu, m.points[0].featureId >> 16}) {
     const int ones = int(code % 3 == 1) + int((code / 3) % 3 == 1) + int(code / 9 == 1);
     EXPECT_EQ(ones, 1) << code;
+  }
+}
+
+TEST(SatPolyhedra, HullRestingOnARidgeKeepsItsDeepestVertex) {
+  // A hull resting on a ridge edge from v0 = (0, 0, 0) to v3 = (1, 0.002, 0), the ridge's two faces
+  // at 45°, and beyond v3 a flatter face (normal 31° from -y) that does not contain v0: the face
+  // most anti-parallel to the ground's normal is that one, and clipping it alone loses v0, the
+  // deepest vertex (R4: a hull whose lowest vertex sank 5 cm into the terrain, held only at the
+  // other end of its edge). Sunk 0.01 at v0 into a box, a flat grid and a hull: two points, v0 at
+  // depth 0.01 and v3 at 0.008.
+  const std::vector<Vec3> points = {{0.0f, 0.0f, 0.0f},  {1.0f, 0.002f, 0.0f}, {1.5f, 0.3f, 0.1f},
+                                    {1.5f, 0.3f, -0.1f}, {0.5f, 0.5f, 0.5f},   {0.5f, 0.5f, -0.5f},
+                                    {0.6f, 1.0f, 0.0f}};
+  const Shape hull(ConvexHull::fromPoints(points));
+  const Transform pose = at({0.2f, -0.01f, 0.3f});
+  const std::vector<Vec3> slab = {{-4, -1, -4}, {4, -1, -4}, {-4, -1, 4}, {4, -1, 4},
+                                  {-4, 0, -4},  {4, 0, -4},  {-4, 0, 4},  {4, 0, 4}};
+  const Shape grounds[] = {Box{Vec3(5.0f, 0.5f, 5.0f)}, Shape(test::flatGrid(8)),
+                           Shape(ConvexHull::fromPoints(slab))};
+  const Transform groundPoses[] = {at({0.0f, -0.5f, 0.0f}), Transform{}, Transform{}};
+  for (int g = 0; g < 3; ++g) {
+    for (const bool mirrored : {false, true}) {
+      Manifold m;
+      const bool hit = mirrored ? collide::collide(hull, pose, grounds[g], groundPoses[g], m)
+                                : collide::collide(grounds[g], groundPoses[g], hull, pose, m);
+      ASSERT_TRUE(hit) << "ground " << g;
+      ASSERT_EQ(m.count, 2) << "ground " << g << (mirrored ? " mirrored" : "");
+      EXPECT_LT(angleDegrees(m.normal, mirrored ? Vec3(0, -1, 0) : Vec3(0, 1, 0)), 1e-3f);
+      EXPECT_NEAR(m.maxDepth(), 0.01f, 1e-6f) << "ground " << g;
+      for (const Vec3& local : {points[0], points[1]}) {
+        const Vec3 vertex = pose.applyToPoint(local);
+        bool found = false;
+        for (int k = 0; k < m.count; ++k) {
+          const Vec3 onHull = mirrored ? m.points[k].pointOnA : m.points[k].pointOnB;
+          if (glm::length(onHull - vertex) < 1e-5f) {
+            found = true;
+            EXPECT_NEAR(m.points[k].depth, -vertex.y, 1e-6f);
+          }
+        }
+        EXPECT_TRUE(found) << "ground " << g << ": no point at (" << vertex.x << ", " << vertex.y << ", "
+                           << vertex.z << ")";
+      }
+    }
   }
 }
 

@@ -422,6 +422,27 @@ TEST(TriangleMesh, EdgeKindsOfAHingeFollowItsBend) {
   }
 }
 
+TEST(TriangleMesh, EdgeBendIsTheAngleBetweenTheFacesNormals) {
+  // The hinge's second triangle lifted by h over 1 turns its normal by atan(h): the shared edge's
+  // bend cosine is cos(atan(h)) = 1 / sqrt(1 + h²) for either triangle, whichever way it bends;
+  // the outline's is -1. A neighbour with the opposite winding (its normal flipped) bends the same.
+  for (const float lift : {0.0f, -0.05f, 0.5f, -2.0f}) {
+    const float expected = 1.0f / std::sqrt(1.0f + lift * lift);
+    const TriangleMesh mesh = hinge(lift);
+    std::vector<Vec3> vertices = {{0, 0, -1}, {0, 0, 1}, {-1, 0, 0}, {1, lift, 0}};
+    const TriangleMesh flipped =
+        TriangleMesh::fromTriangles(std::move(vertices), {{{{0, 2, 1}}}, {{{0, 3, 1}}}});
+    for (const TriangleMesh* m : {&mesh, &flipped}) {
+      for (std::uint32_t t = 0; t < 2; ++t) {
+        const int shared = sharedEdge(*m, t);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_NEAR(m->edgeBendCosine(t, k), k == shared ? expected : -1.0f, 1e-6f) << "lift " << lift;
+        }
+      }
+    }
+  }
+}
+
 TEST(TriangleMesh, FlatGridHasFlatInteriorEdgesAndVertices) {
   // A 3 × 3 grid of quads (two triangles each) on y = 0: edges inside are flat, the outline's are
   // boundary; the 4 inner vertices are inside the flat patch, the 12 outline ones are not; one patch.

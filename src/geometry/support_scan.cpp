@@ -1,0 +1,57 @@
+// The blocked support scan (see support_scan.h).
+#include "geometry/support_scan.h"
+
+#include <bit>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace collide::detail {
+
+std::vector<float> blockCoordinates(std::span<const Vec3> points) {
+  const std::size_t lanes = blockedLanes(points.size());
+  std::vector<float> blocked(points.empty() ? 0 : 3 * lanes);
+  for (std::size_t i = 0; i < lanes && !points.empty(); ++i) {
+    const Vec3& p = points[i < points.size() ? i : 0];
+    for (int axis = 0; axis < 3; ++axis) blocked[axis * lanes + i] = p[axis];
+  }
+  return blocked;
+}
+
+std::uint32_t farthestAlong(const float* blocked, std::uint32_t count, const Vec3& direction) {
+  if (count == 0) return 0;
+  const std::uint32_t lanes = blockedLanes(count);
+  const float* xs = blocked;
+  const float* ys = xs + lanes;
+  const float* zs = ys + lanes;
+#if defined(__SSE2__)
+  // Two passes, both four points per instruction: the largest dot product (a running maximum per
+  // lane), then the first block holding it, recomputed with the same rounding. Cheaper than carrying
+  // an index per lane through the first pass (the second stops at the winner, half-way on average).
+  const __m128 dx = _mm_set1_ps(direction.x), dy = _mm_set1_ps(direction.y), dz = _mm_set1_ps(direction.z);
+  auto dots = [&](std::uint32_t i) {
+    const __m128 xy = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(xs + i), dx), _mm_mul_ps(_mm_loadu_ps(ys + i), dy));
+    return _mm_add_ps(xy, _mm_mul_ps(_mm_loadu_ps(zs + i), dz));
+  };
+  __m128 best = dots(0);
+  for (std::uint32_t i = 4; i < lanes; i += 4) best = _mm_max_ps(best, dots(i));
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+  for (std::uint32_t i = 0; i < lanes; i += 4) {
+    const int equal = _mm_movemask_ps(_mm_cmpeq_ps(dots(i), best));
+    if (equal != 0) return i + static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(equal)));
+  }
+  return 0;  // a NaN direction: no dot product equals the maximum
+#else
+  std::uint32_t bestIndex = 0;
+  float best = xs[0] * direction.x + ys[0] * direction.y + zs[0] * direction.z;
+  for (std::uint32_t i = 1; i < count; ++i) {
+    const float value = xs[i] * direction.x + ys[i] * direction.y + zs[i] * direction.z;
+    if (value > best) best = value, bestIndex = i;
+  }
+  return bestIndex;
+#endif
+}
+
+}  // namespace collide::detail
