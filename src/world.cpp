@@ -37,6 +37,24 @@ using detail::DistanceJoint;
 
 namespace {
 
+// A separating axis is kept for pairs apart where the collider test is costly: polyhedra (k-DOP,
+// hull) against any convex shape. Two support points decide whether the pair is still apart.
+bool separatingAxisPays(const Shape& a, const Shape& b) {
+  const auto polyhedron = [](const Shape& s) {
+    return s.type() == ShapeType::ConvexHull || s.type() == ShapeType::Kdop;
+  };
+  return a.isConvex() && b.isConvex() && (polyhedron(a) || polyhedron(b));
+}
+
+// How far B lies beyond A along the unit world direction: B's farthest point against it minus A's
+// farthest point along it; > 0 is apart.
+float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const Transform& tb,
+                      const Vec3& axis) {
+  const Vec3 pa = ta.applyToPoint(support(a, ta.inverseApplyToDirection(axis)));
+  const Vec3 pb = tb.applyToPoint(support(b, tb.inverseApplyToDirection(-axis)));
+  return glm::dot(pb - pa, axis);
+}
+
 // A body's world box is recomputed once any of its points may have moved this far (m) since the box
 // was computed; until then the old box grown by the possible motion stands in (conservative).
 constexpr float kBoundsReuseDistance = 0.002f;
@@ -759,12 +777,36 @@ void World::Impl::narrowPhase(float dt) {
                               def.contact.manifoldCacheDistance, c.manifold)) {
       c.cache = previous->cache;
       ++reused;
+    } else if (glm::length(tb.position - ta.position) > ra.originRadius + rb.originRadius + margin) {
+      // The bounding spheres are apart by more than the margin: the lecture's early reject with the
+      // cheapest bounding volume, before the proxies' collider test.
+      c.manifold.count = 0;
+      if (!sensor && margin > 2.0f * def.contact.manifoldCacheDistance)
+        detail::storeManifold(c.manifold, ta, tb, c.cache);
+    } else if (previous && !sensor && previous->cache.hasAxis && previous->manifold.count == 0 &&
+               separationAlong(ra.shape, ta, rb.shape, tb,
+                               ta.applyToDirection(previous->cache.separatingAxis)) > margin) {
+      // Still apart along the axis that separated them last time: two support points instead of the
+      // separating-axis test (the broad phase's fat boxes keep many such pairs, e.g. neighbours in a
+      // heap of hulls).
+      c.manifold.count = 0;
+      if (margin > 2.0f * def.contact.manifoldCacheDistance)
+        detail::storeManifold(c.manifold, ta, tb, c.cache);
+      c.cache.separatingAxis = previous->cache.separatingAxis;
+      c.cache.hasAxis = true;
     } else {
       collide::collide(ra.shape, ta, rb.shape, tb, c.manifold, margin);
       // An empty manifold is cached only if the margin exceeds the cache's tolerance: a pair found
       // apart by more than the margin then cannot touch before it moves beyond the tolerance.
       if (!sensor && (c.manifold.count > 0 || margin > 2.0f * def.contact.manifoldCacheDistance))
         detail::storeManifold(c.manifold, ta, tb, c.cache);
+      if (!sensor && c.manifold.count == 0 && separatingAxisPays(ra.shape, rb.shape)) {
+        const DistanceResult apart = collide::distance(ra.shape, ta, rb.shape, tb);
+        if (!apart.overlapping && apart.distance > margin) {
+          c.cache.separatingAxis = ta.inverseApplyToDirection(apart.normal);
+          c.cache.hasAxis = true;
+        }
+      }
     }
     if (c.manifold.count == 0) {
       if (previous) endVanished(*previous);

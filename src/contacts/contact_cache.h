@@ -40,6 +40,11 @@ struct ManifoldCache {
   Vec3 relativePositionInB{0.0f};                      // conj(relativeRotation) relativePosition
   Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};       // conj(qA) qB
   bool valid = false;
+  // A pair found apart: a direction (A's frame, unit) along which they were apart by more than the
+  // margin, which the world tests first next time (Gregorius, GDC 2013: temporal coherence of the
+  // separating axis).
+  Vec3 separatingAxis{0.0f};
+  bool hasAxis = false;
 };
 
 // Fills the cache from a manifold just computed at these transforms (an empty one too: the pair is
