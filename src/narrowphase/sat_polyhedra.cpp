@@ -119,6 +119,15 @@ struct Scratch {
   std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
   std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
   std::vector<std::uint8_t> behind[2];  // per face: which of the other shape's points lie behind it
+  // The last placement of each slot: the world hands pairs sorted by their first body, so one body
+  // meets its partners one after another, and its polyhedron is placed once for all of them.
+  struct Placement {
+    const ConvexHull* hull = nullptr;
+    Vec3 firstVertex{0.0f};  // with the address: a hull freed and another made in its place differ here
+    Vec3 scale{0.0f};
+    Transform transform;
+    WorldPolyhedron poly;
+  } placed[2];
 };
 
 WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, Scratch& scratch) {
@@ -136,6 +145,12 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
     default:
       poly.hull = &shape.convexHull();
       break;
+  }
+  Scratch::Placement& placed = scratch.placed[slot];
+  if (placed.hull == poly.hull && placed.firstVertex == poly.hull->vertices()[0] &&
+      placed.scale == localScale && placed.transform.position == transform.position &&
+      placed.transform.rotation == transform.rotation && placed.transform.scale == transform.scale) {
+    return placed.poly;
   }
   const ConvexHull& hull = *poly.hull;
   const Mat3 rotation = glm::mat3_cast(transform.rotation);
@@ -164,6 +179,7 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
   const Aabb bounds = hull.bounds();
   poly.inside = transform.position + rotation * (localScale * hull.centroid());
   poly.size = glm::length(localScale * bounds.halfExtents());
+  placed = {poly.hull, hull.vertices()[0], localScale, transform, poly};
   return poly;
 }
 
