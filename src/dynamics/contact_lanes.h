@@ -71,19 +71,28 @@ class LaneContactSolver final : public ContactLanes {
   void build(const ContactBatchInput& in) override {
     pushOutSpeed_ = in.pushOutSpeed;
     restitutionThreshold_ = in.restitutionThreshold;
-    batches_.clear();
+    // Each colour's contacts fill its batches in order, kWidth a batch (the overflow one a batch).
+    std::array<std::uint32_t, kGraphColors + 2> batchStart{};
     for (int color = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      for (std::uint32_t first = in.colorStart[color]; first < in.colorStart[color + 1]; first += perBatch) {
-        Batch& batch = batches_.emplace_back();
-        std::memset(static_cast<void*>(&batch), 0, sizeof(Batch));
-        batch.bodyA.fill(kNoSolverBody);
-        batch.bodyB.fill(kNoSolverBody);
-        batch.contact.fill(-1);
-        const std::uint32_t last = std::min(first + perBatch, in.colorStart[color + 1]);
-        for (std::uint32_t i = first; i < last; ++i)
-          fillLane(in, batch, static_cast<int>(i - first), in.order[i]);
-      }
+      const std::uint32_t count = in.colorStart[color + 1] - in.colorStart[color];
+      batchStart[color + 1] = batchStart[color] + (count + perBatch - 1) / perBatch;
+    }
+    batches_.resize(batchStart[kGraphColors + 1]);
+    if (!batches_.empty())
+      std::memset(static_cast<void*>(batches_.data()), 0, batches_.size() * sizeof(Batch));
+    for (Batch& batch : batches_) {
+      batch.bodyA.fill(kNoSolverBody);
+      batch.bodyB.fill(kNoSolverBody);
+      batch.contact.fill(-1);
+    }
+    // Walked in contact-array order, so the contacts are read once, front to back.
+    for (std::size_t i = 0; i < in.byIndex.size(); ++i) {
+      const std::uint8_t color = in.colorOf[i];
+      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
+      const std::uint32_t offset = in.placeInOrder[i] - in.colorStart[color];
+      fillLane(in, batches_[batchStart[color] + offset / perBatch], static_cast<int>(offset % perBatch),
+               in.byIndex[i]);
     }
   }
 
