@@ -59,6 +59,13 @@ float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const
 // was computed; until then the old box grown by the possible motion stands in (conservative).
 constexpr float kBoundsReuseDistance = 0.002f;
 
+bool isFinite(const Mat3& m) {
+  for (int column = 0; column < 3; ++column) {
+    if (!collide::isFinite(m[column])) return false;
+  }
+  return true;
+}
+
 std::string formatVec(const Vec3& v) {
   std::ostringstream out;
   out << "(" << v.x << ", " << v.y << ", " << v.z << ")";
@@ -333,6 +340,16 @@ BodyId World::createBody(const BodyDef& def) {
 
   Impl& w = *impl_;
   const std::uint32_t index = w.bodies.allocate();
+  // Any Error from here on frees the slot again: a body left allocated without a proxy in the broad
+  // phase would make every later step fail.
+  struct FreeSlotUnlessKept {
+    detail::BodyStorage& bodies;
+    std::uint32_t index;
+    bool keep = false;
+    ~FreeSlotUnlessKept() {
+      if (!keep) bodies.free(index);
+    }
+  } slot{w.bodies, index};
   BodyRecord& r = w.bodies.records[index];
   BodyState& s = w.bodies.states[index];
   r.shape = def.shape;
@@ -361,6 +378,13 @@ BodyId World::createBody(const BodyDef& def) {
         r.isotropicInertia = detail::isIsotropic(r.inertiaLocal);
       }
       s.inverseMass = 1.0f / r.mass;
+      // Every number of the shape was valid, yet its mass may not be representable: a 1e30 m box
+      // weighs infinitely much, a 1e-20 m one nothing (an infinite inverse mass).
+      if (!(std::isfinite(r.mass) && r.mass > 0.0f && std::isfinite(s.inverseMass) &&
+            isFinite(r.localCenterOfMass) && isFinite(r.inverseInertiaLocal))) {
+        throw Error("mass properties not representable in float (mass " + formatFloat(r.mass) +
+                    "): the shape is too large or too small at this scale");
+      }
     }
     if (def.type != BodyType::Static) {
       const Vec3 half = localBounds(def.shape).halfExtents() * def.scale;
@@ -372,7 +396,6 @@ BodyId World::createBody(const BodyDef& def) {
     const BoundingSphere sphere = localBoundingSphere(def.shape);
     r.originRadius = (glm::length(sphere.center) + sphere.radius) * def.scale;
   } catch (const Error& e) {
-    w.bodies.free(index);
     fail(std::string("shape: ") + e.what());
   }
   s.rotation = glm::normalize(def.rotation);
@@ -385,12 +408,29 @@ BodyId World::createBody(const BodyDef& def) {
   }
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
 
+  // Refused before the broad phase sees it: a shape whose box at this place is not representable
+  // (or whose parts cannot be placed: a compound's child scales can multiply down to zero).
+  Aabb bounds;
+  try {
+    bounds = worldBounds(r.shape, detail::bodyTransform(r, s));
+  } catch (const Error& e) {
+    fail(std::string("shape: ") + e.what());
+  }
+  if (!isFinite(bounds.min) || !isFinite(bounds.max) || !std::isfinite(r.boundingRadius)) {
+    fail("shape: its bounds are not finite at this position and scale (min " + formatVec(bounds.min) +
+         ", max " + formatVec(bounds.max) + "): the shape is too large");
+  }
   ProxyDef proxy;
   proxy.bounds = w.proxyBounds(index, 0.0f);
   proxy.motion = def.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
   proxy.userValue = index;
   proxy.layer = def.layer;
-  r.proxy = w.broadPhase->add(proxy);
+  try {
+    r.proxy = w.broadPhase->add(proxy);
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  slot.keep = true;
   return w.idOf(index);
 }
 
