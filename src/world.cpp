@@ -705,6 +705,7 @@ void World::Impl::step(float dt) {
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, def.contact.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
   detail::guardFiniteStates(bodies, faultEvents);
+  if (!faultEvents.empty()) detail::dropFaultedContacts(faultEvents, contacts, joints);
   refreshEscapedProxies();
   emitEvents();
   if (def.sleeping) updateSleep(dt);

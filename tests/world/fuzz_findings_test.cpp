@@ -23,12 +23,53 @@ using ::testing::HasSubstr;
 constexpr float kDt = 1.0f / 60.0f;
 constexpr float kHuge = 3.0e38f;  // finite, near the largest float
 
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Every live body's state and every event of the last step is finite; says which is not.
+::testing::AssertionResult everythingFinite(const World& world, const std::vector<BodyId>& bodies) {
+  for (const BodyId id : bodies) {
+    if (!world.isValid(id)) continue;
+    const Transform t = world.transform(id);
+    const Quat& q = t.rotation;
+    if (!finite(t.position) || !std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
+        !std::isfinite(q.z) || !finite(world.linearVelocity(id)) || !finite(world.angularVelocity(id))) {
+      return ::testing::AssertionFailure() << "body index " << id.index << " has a non-finite state";
+    }
+  }
+  for (const ContactEvent& e : world.contactEvents()) {
+    if (!finite(e.point) || !finite(e.normal) || !std::isfinite(e.impulse) || !std::isfinite(e.speed)) {
+      return ::testing::AssertionFailure() << "a contact event between bodies " << e.a.index << " and "
+                                           << e.b.index << " has non-finite values";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 BodyDef sphere(BodyType type, float radius, const Vec3& position) {
   BodyDef def;
   def.type = type;
   def.shape = Shape(Sphere{radius});
   def.position = position;
   return def;
+}
+
+// A contact with a 3e38 m sphere overflows in the solve and gives NaN impulses. The guard froze
+// the moving body, but a NaN impulse still reaches a zero inverse mass (0 * NaN is NaN): the static
+// body's velocity and the frozen body's became NaN after their check, and the NaN impulse stayed in
+// the contact for the event and for the next step's warm start.
+TEST(WorldFuzzFindings, NanImpulseLeavesNoNanInStaticFrozenBodiesOrEvents) {
+  World world;
+  std::vector<BodyId> bodies;
+  bodies.push_back(world.createBody(sphere(BodyType::Kinematic, kHuge, Vec3(0.0f))));
+  bodies.push_back(world.createBody(sphere(BodyType::Static, 0.01f, Vec3(-6.0f))));
+  bodies.push_back(world.createBody(sphere(BodyType::Dynamic, 1.95f, Vec3(-6.0f))));
+  const Vec3 staticPosition = world.transform(bodies[1]).position;
+  for (int step = 0; step < 10; ++step) {
+    world.step(kDt);
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+  EXPECT_EQ(world.linearVelocity(bodies[1]), Vec3(0.0f));
+  EXPECT_EQ(world.transform(bodies[1]).position, staticPosition);
 }
 
 // createBody computed the mass (infinite for a 3e38 m ellipsoid), then the broad phase refused the
@@ -51,6 +92,41 @@ TEST(WorldFuzzFindings, ShapeTooLargeOrTooSmallIsRefusedAndTheWorldStillSteps) {
   EXPECT_EQ(ball.index, 0u) << "the refused bodies' slots are free again";
   ASSERT_NO_THROW(world.step(kDt));
   EXPECT_LT(world.transform(ball).position.y, 2.0f);
+}
+
+// The response stages after the solve validate what they are given (they are public functions
+// too), and threw from inside the step when the solve had made a velocity NaN. The damping friction
+// model on a prolonged contact, with a static sphere of 1e15 m in the pile (the fuzzer's story):
+TEST(WorldFuzzFindings, DampingFrictionDoesNotStopTheStepAfterAFault) {
+  WorldDef def;
+  def.substeps = 1;
+  def.frictionModel = FrictionModel::Damping;
+  def.bouncinessCombine = CombineRule::Multiply;
+  def.frictionCombine = CombineRule::Max;
+  World world(def);
+  std::vector<BodyId> bodies;
+  BodyDef ball = sphere(BodyType::Dynamic, 1.99f, Vec3(-6.0f, -6.0f, -5.97f));
+  ball.linearVelocity = Vec3(8.1f, 8.1f, -19.8f);
+  ball.angularVelocity = Vec3(-6.7f, -20.0f, -6.7f);
+  ball.bounciness = 0.33f;
+  ball.friction = 0.0013f;
+  bodies.push_back(world.createBody(ball));
+  BodyDef giant = sphere(BodyType::Static, 1e15f, Vec3(-3.66f, -5.72f, -5.97f));
+  giant.bounciness = 0.33f;
+  giant.friction = 0.33f;
+  bodies.push_back(world.createBody(giant));
+  BodyDef moving;
+  moving.type = BodyType::Kinematic;
+  moving.shape = Shape(Cylinder{1.34f, 0.67f});
+  moving.position = Vec3(-5.98f, -6.0f, -5.81f);
+  moving.rotation = glm::normalize(Quat(-0.577f, -0.577f, -0.009f, -0.577f));
+  moving.linearVelocity = Vec3(5.16f, -5.62f, 0.0f);
+  moving.friction = 0.0f;
+  bodies.push_back(world.createBody(moving));
+  for (int step = 0; step < 10; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
 }
 
 }  // namespace
