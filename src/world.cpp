@@ -233,13 +233,28 @@ struct World::Impl {
     const BodyRecord& r = bodies.records[index];
     const BodyState& s = bodies.states[index];
     Aabb box = currentBounds(index);
-    if (r.type == BodyType::Static) return box;
+    if (r.type == BodyType::Static) return withinFloatRange(box);
     // Speculative contacts need the pair before the bodies meet: grow by the step's motion.
     const Vec3 motion = dt * s.linearVelocity;
     box.min = glm::min(box.min, box.min + motion);
     box.max = glm::max(box.max, box.max + motion);
     const float turn = dt * glm::length(s.angularVelocity) * r.boundingRadius;
-    return box.expanded(def.contact.speculativeDistance + turn);
+    return withinFloatRange(box.expanded(def.contact.speculativeDistance + turn));
+  }
+  // A finite state can still give an infinite box (a large shape turning fast, a body at 1e38 m
+  // moving on), which the broad phase refuses: both sides are kept within the planes' "infinite"
+  // extent, +-1e30 (NaN goes to the far side). Nothing that far matters to a contact any more; the
+  // broad phase keeps working, and the fault guard contains the body.
+  static Aabb withinFloatRange(Aabb box) {
+    static constexpr float kFar = 1e30f;
+    const auto clampFar = [](float v, float ifNaN) {
+      return std::isnan(v) ? ifNaN : std::clamp(v, -kFar, kFar);
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+      box.min[axis] = clampFar(box.min[axis], -kFar);
+      box.max[axis] = clampFar(box.max[axis], kFar);
+    }
+    return box;
   }
 
   void step(float dt);
@@ -931,7 +946,12 @@ float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float d
   const float approach = glm::length(sb.linearVelocity - sa.linearVelocity) +
                          glm::length(sa.angularVelocity) * bodies.records[ia].boundingRadius +
                          glm::length(sb.angularVelocity) * bodies.records[ib].boundingRadius;
-  return def.contact.speculativeDistance + dt * approach;
+  const float margin = def.contact.speculativeDistance + dt * approach;
+  // A finite velocity can still have an infinite length (beyond 1.8e19 m/s the square overflows):
+  // capped at the largest float (NaN too), so that collide() takes the margin and the step goes
+  // on; the fault guard contains what such a body then does.
+  constexpr float kMaxMargin = std::numeric_limits<float>::max();
+  return margin < kMaxMargin ? margin : kMaxMargin;
 }
 
 // Before the narrow phase: an awake dynamic or moving kinematic body that may reach a sleeping

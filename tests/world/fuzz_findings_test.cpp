@@ -53,6 +53,13 @@ BodyDef sphere(BodyType type, float radius, const Vec3& position) {
   return def;
 }
 
+bool reported(const World& world, BodyId id) {
+  for (const FaultEvent& f : world.faultEvents()) {
+    if (f.body == id) return true;
+  }
+  return false;
+}
+
 // A contact with a 3e38 m sphere overflows in the solve and gives NaN impulses. The guard froze
 // the moving body, but a NaN impulse still reaches a zero inverse mass (0 * NaN is NaN): the static
 // body's velocity and the frozen body's became NaN after their check, and the NaN impulse stayed in
@@ -70,6 +77,25 @@ TEST(WorldFuzzFindings, NanImpulseLeavesNoNanInStaticFrozenBodiesOrEvents) {
   }
   EXPECT_EQ(world.linearVelocity(bodies[1]), Vec3(0.0f));
   EXPECT_EQ(world.transform(bodies[1]).position, staticPosition);
+}
+
+// |v| of a finite velocity overflows beyond 1.8e19 m/s, and the speculative margin with it: the
+// narrow phase refused the infinite margin, so step() threw collide::Error half-way through.
+TEST(WorldFuzzFindings, BodyAt1e20MetresPerSecondDoesNotStopTheStep) {
+  World world;
+  std::vector<BodyId> bodies;
+  bodies.push_back(world.createBody(test::groundBox()));
+  BodyDef resting = test::boxBody(Vec3(10.0f, 0.5f, 0.0f), Vec3(0.5f), 1.0f);
+  bodies.push_back(world.createBody(resting));
+  BodyDef fast = sphere(BodyType::Dynamic, 0.5f, Vec3(0.0f, 0.6f, 0.0f));
+  fast.linearVelocity = Vec3(0.0f, -1e20f, 0.0f);
+  bodies.push_back(world.createBody(fast));
+  for (int step = 0; step < 10; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+    EXPECT_FALSE(reported(world, bodies[1])) << "the resting box is not involved, step " << step;
+  }
+  EXPECT_NEAR(world.transform(bodies[1]).position.y, 0.5f, 0.01f);
 }
 
 // createBody computed the mass (infinite for a 3e38 m ellipsoid), then the broad phase refused the
@@ -92,6 +118,45 @@ TEST(WorldFuzzFindings, ShapeTooLargeOrTooSmallIsRefusedAndTheWorldStillSteps) {
   EXPECT_EQ(ball.index, 0u) << "the refused bodies' slots are free again";
   ASSERT_NO_THROW(world.step(kDt));
   EXPECT_LT(world.transform(ball).position.y, 2.0f);
+}
+
+// A body created with a spin whose length overflows: the proxy box grew by 0 * infinity (NaN) at
+// creation, and by infinity in the step, and the broad phase refused both.
+TEST(WorldFuzzFindings, HugeOrFastSpinningBodyKeepsTheBroadPhaseWorking) {
+  World world;
+  std::vector<BodyId> bodies;
+  BodyDef spinningGiant = sphere(BodyType::Kinematic, kHuge, Vec3(0.0f));
+  spinningGiant.angularVelocity = Vec3(28.0f, -30.0f, -30.0f);
+  bodies.push_back(world.createBody(spinningGiant));
+  BodyDef overflowingSpin;
+  overflowingSpin.type = BodyType::Kinematic;
+  overflowingSpin.shape = Shape(Box{Vec3(1.0f)});
+  overflowingSpin.position = Vec3(5.0f, 0.0f, 0.0f);
+  overflowingSpin.angularVelocity = Vec3(kHuge, 0.0f, 0.0f);
+  ASSERT_NO_THROW(bodies.push_back(world.createBody(overflowingSpin)));
+  bodies.push_back(world.createBody(sphere(BodyType::Dynamic, 0.1f, Vec3(0.0f, 1.2f, 0.0f))));
+  for (int step = 0; step < 5; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+}
+
+// A spin of 1e30 rad/s integrates into a quaternion that normalises to zero: finite, so the guard
+// let it through, and the next step's shape queries refused the body's transform.
+TEST(WorldFuzzFindings, OverflowingSpinIsReportedAsABadRotation) {
+  World world;
+  BodyDef spinning;
+  spinning.type = BodyType::Kinematic;
+  spinning.shape = Shape(Cylinder{0.84f, 0.01f});
+  spinning.angularVelocity = Vec3(-19.5f, -1e30f, -19.9f);
+  const BodyId id = world.createBody(spinning);
+  ASSERT_NO_THROW(world.step(kDt));
+  ASSERT_EQ(world.faultEvents().size(), 1u);
+  EXPECT_EQ(world.faultEvents()[0].body, id);
+  EXPECT_TRUE(world.faultEvents()[0].fields & FaultEvent::kRotation);
+  EXPECT_NEAR(glm::length(world.transform(id).rotation), 1.0f, 1e-5f);
+  EXPECT_EQ(world.angularVelocity(id), Vec3(0.0f)) << "stopped";
+  ASSERT_NO_THROW(world.step(kDt));
 }
 
 // The response stages after the solve validate what they are given (they are public functions
@@ -124,6 +189,24 @@ TEST(WorldFuzzFindings, DampingFrictionDoesNotStopTheStepAfterAFault) {
   moving.friction = 0.0f;
   bodies.push_back(world.createBody(moving));
   for (int step = 0; step < 10; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+}
+
+// ... and the interpolated impact model, reached once the broad phase took the overflowing spin.
+TEST(WorldFuzzFindings, InterpolatedImpactDoesNotStopTheStepAfterAFault) {
+  WorldDef def;
+  def.impactModel = ImpactModel::Interpolated;
+  World world(def);
+  std::vector<BodyId> bodies;
+  BodyDef spinning;
+  spinning.type = BodyType::Kinematic;
+  spinning.shape = Shape(Box{Vec3(1.0f)});
+  spinning.angularVelocity = Vec3(kHuge, 0.0f, 0.0f);
+  bodies.push_back(world.createBody(spinning));
+  bodies.push_back(world.createBody(sphere(BodyType::Dynamic, 0.1f, Vec3(0.0f, 1.05f, 0.0f))));
+  for (int step = 0; step < 5; ++step) {
     ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
     ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
   }
