@@ -144,12 +144,13 @@ struct World::Impl {
   }
 
   // Wakes the island the body fell asleep with (all of it: an island sleeps and wakes as one, so
-  // a stack never has half its boxes frozen), and restarts an awake body's rest timer.
-  void wake(std::uint32_t index) {
+  // a stack never has half its boxes frozen), and restarts an awake body's rest timer. Returns
+  // whether a sleeping body woke (a body frozen by the fault guard does not: it only looks asleep).
+  bool wake(std::uint32_t index) {
     BodyRecord& r = bodies.records[index];
-    if (!r.alive || r.type != BodyType::Dynamic || r.faulted) return;
+    if (!r.alive || r.type != BodyType::Dynamic || r.faulted) return false;
     r.sleepTime = 0.0f;
-    if (r.awake) return;
+    if (r.awake) return false;
     const std::uint32_t root = r.island;
     for (BodyRecord& other : bodies.records) {
       if (other.alive && other.type == BodyType::Dynamic && !other.awake && !other.faulted &&
@@ -158,6 +159,7 @@ struct World::Impl {
         other.sleepTime = 0.0f;
       }
     }
+    return true;
   }
 
   // The user gave the body a new state: a body frozen by the fault guard comes back.
@@ -978,8 +980,9 @@ void World::Impl::wakeTouchedIslands(float dt) {
       collide::collide(ra.shape, detail::bodyTransform(ra, bodies.states[ia]), rb.shape,
                        detail::bodyTransform(rb, bodies.states[ib]), manifold, speculativeMargin(ia, ib, dt));
       if (manifold.count == 0) continue;
-      wake(sleepA ? ia : ib);
-      woke = true;
+      // Only what actually woke repeats the pass: a frozen body touched by a mover never wakes, and
+      // counting it would repeat the pass forever.
+      if (wake(sleepA ? ia : ib)) woke = true;
     }
   }
 }

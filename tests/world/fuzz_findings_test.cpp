@@ -159,6 +159,26 @@ TEST(WorldFuzzFindings, OverflowingSpinIsReportedAsABadRotation) {
   ASSERT_NO_THROW(world.step(kDt));
 }
 
+// With sleeping on, a body frozen by the guard looks asleep; an awake body touching it "woke" it
+// (a no-op for a frozen body) and repeated the wake pass, forever: step() never returned.
+TEST(WorldFuzzFindings, FrozenBodyTouchedByAnAwakeOneDoesNotHangTheStep) {
+  WorldDef def;
+  def.sleeping = true;
+  World world(def);
+  world.createBody(test::groundBox());
+  const BodyId frozen = world.createBody(test::boxBody(Vec3(0.0f, 0.5f, 0.0f), Vec3(0.5f), 1.0f));
+  for (int step = 0; step < 10; ++step) world.step(kDt);
+  world.applyForce(frozen, Vec3(kHuge, 0.0f, 0.0f), world.centerOfMass(frozen));
+  world.applyForce(frozen, Vec3(kHuge, 0.0f, 0.0f), world.centerOfMass(frozen));
+  world.step(kDt);
+  ASSERT_TRUE(reported(world, frozen));
+  const BodyId falling = world.createBody(test::boxBody(Vec3(0.0f, 1.6f, 0.0f), Vec3(0.5f), 1.0f));
+  for (int step = 0; step < 60; ++step) world.step(kDt);
+  // It landed on the frozen box, which held it.
+  EXPECT_NEAR(world.transform(falling).position.y, 1.5f, 0.01f);
+  EXPECT_NEAR(world.transform(frozen).position.y, 0.5f, 0.01f);
+}
+
 // The response stages after the solve validate what they are given (they are public functions
 // too), and threw from inside the step when the solve had made a velocity NaN. The damping friction
 // model on a prolonged contact, with a static sphere of 1e15 m in the pile (the fuzzer's story):
