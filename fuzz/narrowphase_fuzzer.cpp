@@ -1,94 +1,96 @@
-// Narrow-phase fuzzer: two shapes (sphere, capsule, box, convex hull of 4-8 points, plane) with
-// bounded sizes and arbitrary placements, decoded from the bytes, through collide() and, for convex
-// pairs, distance(). Allowed: a result, or collide::Error for what the API documents (a degenerate
-// hull, plane-plane). Checked: at most 4 points, a unit normal, finite points and depths.
+// Narrow-phase fuzzer: two shapes of any of the ten types (fuzz_input.h: degenerate ones and
+// extreme or non-finite numbers included) at arbitrary placements, through every pair query of
+// include/collide/narrowphase.h: overlap(), collide(), distance() and timeOfImpact().
+//
+// Allowed: a result, or collide::Error (a shape or transform the API refuses, NaN anywhere, a pair
+// the table does not support). A finding (aborted on, so libFuzzer keeps the input): a crash, a
+// sanitizer report, another exception, or a result that breaks the documented contract:
+//   collide(): at most 4 points, returns count > 0;
+//   timeOfImpact(): t in [0, 1] unless it is NaN;
+// and, for input within the working range (no extreme value: FuzzInput::sawExtreme; beyond it
+// float precision and range run out, docs/reliability.md):
+//   collide(): a finite unit normal, finite points and depths;
+//   overlap(): never false for a pair collide() reports as penetrating;
+//   distance(): finite distance and points, a unit normal;
+//   timeOfImpact(): a finite t, a finite unit normal and point on a hit.
+#include "fuzz_input.h"
+
 #include <collide/narrowphase.h>
-#include <collide/shapes.h>
 
 #include <cmath>
-#include <cstddef>
-#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
-#include <vector>
 
 namespace {
 
 using namespace collide;
 
-struct Bytes {
-  const std::uint8_t* data;
-  std::size_t size;
-  std::size_t at = 0;
-  std::uint8_t byte() { return at < size ? data[at++] : 0; }
-  // A float in [lo, hi] from two bytes.
-  float range(float lo, float hi) {
-    const unsigned v = unsigned(byte()) << 8 | byte();
-    return lo + (hi - lo) * float(v) / 65535.0f;
-  }
-  Vec3 vec(float lo, float hi) {
-    const float x = range(lo, hi), y = range(lo, hi);
-    return Vec3(x, y, range(lo, hi));
-  }
-};
+bool isUnit(const Vec3& v) { return isFinite(v) && std::abs(glm::length(v) - 1.0f) < 1e-3f; }
 
-Shape decodeShape(Bytes& in, bool& isPlane) {
-  isPlane = false;
-  switch (in.byte() % 5) {
-    case 0: return Sphere{in.range(0.01f, 2.0f)};
-    case 1: {
-      const float r = in.range(0.01f, 2.0f);
-      return Capsule{r, in.range(0.0f, 2.0f)};
-    }
-    case 2: return Box{in.vec(0.01f, 2.0f)};
-    case 3: {
-      std::vector<Vec3> points(4 + in.byte() % 5);
-      for (Vec3& p : points) p = in.vec(-1.0f, 1.0f);
-      return ConvexHull::fromPoints(points);
-    }
-    default: {
-      isPlane = true;
-      Vec3 n = in.vec(-1.0f, 1.0f);
-      if (glm::length(n) < 0.1f) n = Vec3(0, 1, 0);
-      return Plane{glm::normalize(n), in.range(-2.0f, 2.0f)};
-    }
+void checkManifold(const Manifold& m, bool reported, bool inWorkingRange) {
+  if (m.count < 0 || m.count > Manifold::kMaxPoints) std::abort();
+  if (reported != (m.count > 0)) std::abort();
+  if (m.count == 0 || !inWorkingRange) return;
+  if (!isUnit(m.normal)) std::abort();
+  for (int i = 0; i < m.count; ++i) {
+    const ContactPoint& p = m.points[i];
+    if (!std::isfinite(p.depth) || !isFinite(p.pointOnA) || !isFinite(p.pointOnB)) std::abort();
   }
 }
-
-Transform decodeTransform(Bytes& in) {
-  Transform t;
-  t.position = in.vec(-3.0f, 3.0f);
-  Quat q(in.range(-1, 1), in.range(-1, 1), in.range(-1, 1), in.range(-1, 1));
-  t.rotation = glm::length(q) < 0.1f ? Quat(1, 0, 0, 0) : glm::normalize(q);
-  return t;
-}
-
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  Bytes in{data, size};
+  collide::fuzz::FuzzInput in(data, size);
   try {
-    bool planeA = false, planeB = false;
-    const Shape a = decodeShape(in, planeA);
-    const Transform ta = decodeTransform(in);
-    const Shape b = decodeShape(in, planeB);
-    const Transform tb = decodeTransform(in);
-    const float margin = in.range(0.0f, 0.5f);
-    Manifold m;
-    collide::collide(a, ta, b, tb, m, margin);
-    if (m.count < 0 || m.count > Manifold::kMaxPoints) std::abort();
-    if (m.count > 0) {
-      if (!finite(m.normal) || std::abs(glm::length(m.normal) - 1.0f) > 1e-3f) std::abort();
-      for (int i = 0; i < m.count; ++i) {
-        if (!std::isfinite(m.points[i].depth)) std::abort();
-      }
+    const Shape a = collide::fuzz::decodeShape(in, /*allowPlane=*/true);
+    const Transform ta = in.transform(3.0f);
+    const Shape b = collide::fuzz::decodeShape(in, /*allowPlane=*/true);
+    const Transform tb = in.transform(3.0f);
+    const float margin = in.value(0.0f, 0.5f);
+    const bool sane = !in.sawExtreme();
+    if (collide::fuzz::tracing()) {
+      using collide::fuzz::describe;
+      std::fprintf(stderr, "A: %s at %s\nB: %s at %s\nmargin %s%s\n", describe(a).c_str(),
+                   describe(ta).c_str(), describe(b).c_str(), describe(tb).c_str(), describe(margin).c_str(),
+                   sane ? "" : " (extreme values)");
     }
-    if (!(planeA && planeB)) {
+
+    // Each query on its own: one refusing the input (distance() on a mesh) must not hide the others.
+    Manifold m;
+    bool penetrating = false;
+    try {
+      const bool reported = collide::collide(a, ta, b, tb, m, margin);
+      checkManifold(m, reported, sane);
+      penetrating = reported && m.maxDepth() > 0.0f;
+    } catch (const Error&) {
+    }
+    try {
+      if (!overlap(a, ta, b, tb) && penetrating && sane) std::abort();
+    } catch (const Error&) {
+    }
+    try {
       const DistanceResult d = distance(a, ta, b, tb);
-      if (!std::isfinite(d.distance) || !finite(d.pointOnA) || !finite(d.pointOnB)) std::abort();
+      if (sane && (!std::isfinite(d.distance) || !isFinite(d.pointOnA) || !isFinite(d.pointOnB)))
+        std::abort();
+      if (sane && !isUnit(d.normal)) std::abort();
+    } catch (const Error&) {
+    }
+    try {
+      // B moves from tb to a second placement; A stays (the world's sweeps are relative anyway).
+      Transform tb1 = tb;
+      tb1.position += in.vec(-4.0f, 4.0f);
+      tb1.rotation = in.rotation();
+      const bool saneSweep = !in.sawExtreme();
+      const ToiResult toi = timeOfImpact(a, Sweep::fixed(ta), b, Sweep::between(tb, tb1));
+      if (std::isfinite(toi.t) && !(toi.t >= 0.0f && toi.t <= 1.0f)) std::abort();
+      if (saneSweep && !std::isfinite(toi.t)) std::abort();
+      const bool hit = toi.state != ToiResult::State::Separated;
+      if (saneSweep && hit && (!isUnit(toi.normal) || !isFinite(toi.point))) std::abort();
+    } catch (const Error&) {
     }
   } catch (const Error&) {
+    // A shape or transform the API refused: the contract holds.
   }
   return 0;
 }

@@ -59,6 +59,13 @@ float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const
 // was computed; until then the old box grown by the possible motion stands in (conservative).
 constexpr float kBoundsReuseDistance = 0.002f;
 
+bool isFinite(const Mat3& m) {
+  for (int column = 0; column < 3; ++column) {
+    if (!collide::isFinite(m[column])) return false;
+  }
+  return true;
+}
+
 std::string formatVec(const Vec3& v) {
   std::ostringstream out;
   out << "(" << v.x << ", " << v.y << ", " << v.z << ")";
@@ -137,12 +144,13 @@ struct World::Impl {
   }
 
   // Wakes the island the body fell asleep with (all of it: an island sleeps and wakes as one, so
-  // a stack never has half its boxes frozen), and restarts an awake body's rest timer.
-  void wake(std::uint32_t index) {
+  // a stack never has half its boxes frozen), and restarts an awake body's rest timer. Returns
+  // whether a sleeping body woke (a body frozen by the fault guard does not: it only looks asleep).
+  bool wake(std::uint32_t index) {
     BodyRecord& r = bodies.records[index];
-    if (!r.alive || r.type != BodyType::Dynamic || r.faulted) return;
+    if (!r.alive || r.type != BodyType::Dynamic || r.faulted) return false;
     r.sleepTime = 0.0f;
-    if (r.awake) return;
+    if (r.awake) return false;
     const std::uint32_t root = r.island;
     for (BodyRecord& other : bodies.records) {
       if (other.alive && other.type == BodyType::Dynamic && !other.awake && !other.faulted &&
@@ -151,6 +159,7 @@ struct World::Impl {
         other.sleepTime = 0.0f;
       }
     }
+    return true;
   }
 
   // The user gave the body a new state: a body frozen by the fault guard comes back.
@@ -226,13 +235,28 @@ struct World::Impl {
     const BodyRecord& r = bodies.records[index];
     const BodyState& s = bodies.states[index];
     Aabb box = currentBounds(index);
-    if (r.type == BodyType::Static) return box;
+    if (r.type == BodyType::Static) return withinFloatRange(box);
     // Speculative contacts need the pair before the bodies meet: grow by the step's motion.
     const Vec3 motion = dt * s.linearVelocity;
     box.min = glm::min(box.min, box.min + motion);
     box.max = glm::max(box.max, box.max + motion);
     const float turn = dt * glm::length(s.angularVelocity) * r.boundingRadius;
-    return box.expanded(def.contact.speculativeDistance + turn);
+    return withinFloatRange(box.expanded(def.contact.speculativeDistance + turn));
+  }
+  // A finite state can still give an infinite box (a large shape turning fast, a body at 1e38 m
+  // moving on), which the broad phase refuses: both sides are kept within the planes' "infinite"
+  // extent, +-1e30 (NaN goes to the far side). Nothing that far matters to a contact any more; the
+  // broad phase keeps working, and the fault guard contains the body.
+  static Aabb withinFloatRange(Aabb box) {
+    static constexpr float kFar = 1e30f;
+    const auto clampFar = [](float v, float ifNaN) {
+      return std::isnan(v) ? ifNaN : std::clamp(v, -kFar, kFar);
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+      box.min[axis] = clampFar(box.min[axis], -kFar);
+      box.max[axis] = clampFar(box.max[axis], kFar);
+    }
+    return box;
   }
 
   void step(float dt);
@@ -333,6 +357,16 @@ BodyId World::createBody(const BodyDef& def) {
 
   Impl& w = *impl_;
   const std::uint32_t index = w.bodies.allocate();
+  // Any Error from here on frees the slot again: a body left allocated without a proxy in the broad
+  // phase would make every later step fail.
+  struct FreeSlotUnlessKept {
+    detail::BodyStorage& bodies;
+    std::uint32_t index;
+    bool keep = false;
+    ~FreeSlotUnlessKept() {
+      if (!keep) bodies.free(index);
+    }
+  } slot{w.bodies, index};
   BodyRecord& r = w.bodies.records[index];
   BodyState& s = w.bodies.states[index];
   r.shape = def.shape;
@@ -361,6 +395,13 @@ BodyId World::createBody(const BodyDef& def) {
         r.isotropicInertia = detail::isIsotropic(r.inertiaLocal);
       }
       s.inverseMass = 1.0f / r.mass;
+      // Every number of the shape was valid, yet its mass may not be representable: a 1e30 m box
+      // weighs infinitely much, a 1e-20 m one nothing (an infinite inverse mass).
+      if (!(std::isfinite(r.mass) && r.mass > 0.0f && std::isfinite(s.inverseMass) &&
+            isFinite(r.localCenterOfMass) && isFinite(r.inverseInertiaLocal))) {
+        throw Error("mass properties not representable in float (mass " + formatFloat(r.mass) +
+                    "): the shape is too large or too small at this scale");
+      }
     }
     if (def.type != BodyType::Static) {
       const Vec3 half = localBounds(def.shape).halfExtents() * def.scale;
@@ -372,7 +413,6 @@ BodyId World::createBody(const BodyDef& def) {
     const BoundingSphere sphere = localBoundingSphere(def.shape);
     r.originRadius = (glm::length(sphere.center) + sphere.radius) * def.scale;
   } catch (const Error& e) {
-    w.bodies.free(index);
     fail(std::string("shape: ") + e.what());
   }
   s.rotation = glm::normalize(def.rotation);
@@ -385,12 +425,29 @@ BodyId World::createBody(const BodyDef& def) {
   }
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
 
+  // Refused before the broad phase sees it: a shape whose box at this place is not representable
+  // (or whose parts cannot be placed: a compound's child scales can multiply down to zero).
+  Aabb bounds;
+  try {
+    bounds = worldBounds(r.shape, detail::bodyTransform(r, s));
+  } catch (const Error& e) {
+    fail(std::string("shape: ") + e.what());
+  }
+  if (!isFinite(bounds.min) || !isFinite(bounds.max) || !std::isfinite(r.boundingRadius)) {
+    fail("shape: its bounds are not finite at this position and scale (min " + formatVec(bounds.min) +
+         ", max " + formatVec(bounds.max) + "): the shape is too large");
+  }
   ProxyDef proxy;
   proxy.bounds = w.proxyBounds(index, 0.0f);
   proxy.motion = def.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
   proxy.userValue = index;
   proxy.layer = def.layer;
-  r.proxy = w.broadPhase->add(proxy);
+  try {
+    r.proxy = w.broadPhase->add(proxy);
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  slot.keep = true;
   return w.idOf(index);
 }
 
@@ -665,6 +722,7 @@ void World::Impl::step(float dt) {
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, def.contact.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert) revertPenetrating();
   detail::guardFiniteStates(bodies, faultEvents);
+  if (!faultEvents.empty()) detail::dropFaultedContacts(faultEvents, contacts, joints);
   refreshEscapedProxies();
   emitEvents();
   if (def.sleeping) updateSleep(dt);
@@ -890,7 +948,12 @@ float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float d
   const float approach = glm::length(sb.linearVelocity - sa.linearVelocity) +
                          glm::length(sa.angularVelocity) * bodies.records[ia].boundingRadius +
                          glm::length(sb.angularVelocity) * bodies.records[ib].boundingRadius;
-  return def.contact.speculativeDistance + dt * approach;
+  const float margin = def.contact.speculativeDistance + dt * approach;
+  // A finite velocity can still have an infinite length (beyond 1.8e19 m/s the square overflows):
+  // capped at the largest float (NaN too), so that collide() takes the margin and the step goes
+  // on; the fault guard contains what such a body then does.
+  constexpr float kMaxMargin = std::numeric_limits<float>::max();
+  return margin < kMaxMargin ? margin : kMaxMargin;
 }
 
 // Before the narrow phase: an awake dynamic or moving kinematic body that may reach a sleeping
@@ -917,8 +980,9 @@ void World::Impl::wakeTouchedIslands(float dt) {
       collide::collide(ra.shape, detail::bodyTransform(ra, bodies.states[ia]), rb.shape,
                        detail::bodyTransform(rb, bodies.states[ib]), manifold, speculativeMargin(ia, ib, dt));
       if (manifold.count == 0) continue;
-      wake(sleepA ? ia : ib);
-      woke = true;
+      // Only what actually woke repeats the pass: a frozen body touched by a mover never wakes, and
+      // counting it would repeat the pass forever.
+      if (wake(sleepA ? ia : ib)) woke = true;
     }
   }
 }

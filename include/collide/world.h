@@ -200,7 +200,9 @@ struct SensorEvent {
 struct FaultEvent {
   static constexpr std::uint8_t kPosition = 1, kRotation = 2, kLinearVelocity = 4, kAngularVelocity = 8;
   BodyId body;
-  std::uint8_t fields = 0;  // the parts of the state that were non-finite (bits above)
+  // The parts of the state that were non-finite (bits above); kRotation also for a finite rotation
+  // that is no longer a unit quaternion (an overflowing angular velocity integrates to zero).
+  std::uint8_t fields = 0;
 };
 
 // The hit of World::castRay: the body and where its shape was hit.

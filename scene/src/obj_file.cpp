@@ -1,19 +1,30 @@
 #include <collide/scene/obj_file.h>
 
+#include <fstream>
+#include <iterator>
+#include <string>
+
 #include <tiny_obj_loader.h>
 
 namespace collide::scene {
 
 ObjMesh readObjFile(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error("OBJ file " + path.string() + ": cannot be read");
+  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  return parseObj(text, "OBJ file " + path.string());
+}
+
+ObjMesh parseObj(std::string_view text, std::string_view name) {
+  const std::string who(name);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
-  config.mtl_search_path = path.parent_path().string();
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config)) {
+  if (!reader.ParseFromString(std::string(text), /*mtl_text=*/"", config)) {
     std::string why = reader.Error();
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
-    throw Error("OBJ file " + path.string() + ": " + (why.empty() ? "cannot be read" : why));
+    throw Error(who + ": " + (why.empty() ? "cannot be parsed" : why));
   }
   ObjMesh mesh;
   const auto& coordinates = reader.GetAttrib().vertices;
@@ -27,14 +38,15 @@ ObjMesh readObjFile(const std::filesystem::path& path) {
       for (int k = 0; k < 3; ++k) {
         const int v = indices[i + k].vertex_index;
         if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size()) {
-          throw Error("OBJ file " + path.string() + ": vertex index " + std::to_string(v) + " out of range");
+          throw Error(who + ": vertex index " + std::to_string(v) + " out of range (" +
+                      std::to_string(mesh.vertices.size()) + " vertices)");
         }
         t.v[k] = static_cast<std::uint32_t>(v);
       }
       mesh.triangles.push_back(t);
     }
   }
-  if (mesh.triangles.empty()) throw Error("OBJ file " + path.string() + ": no triangles");
+  if (mesh.triangles.empty()) throw Error(who + ": no triangles");
   return mesh;
 }
 

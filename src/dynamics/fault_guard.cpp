@@ -3,6 +3,7 @@
 // per body per substep, small next to the contact solve).
 #include "dynamics/fault_guard.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace collide::detail {
@@ -19,7 +20,11 @@ bool finite(const Quat& q) {
 std::uint8_t nonFiniteFields(const BodyState& s) {
   std::uint8_t fields = 0;
   if (!finite(s.centerOfMass)) fields |= FaultEvent::kPosition;
-  if (!finite(s.rotation)) fields |= FaultEvent::kRotation;
+  // A finite rotation can still be no rotation: an overflowing angular velocity integrates into a
+  // quaternion that normalises to zero. The same tolerance as isValid(Transform), which every query
+  // on the body's shape would apply.
+  if (!finite(s.rotation) || !(std::abs(glm::dot(s.rotation, s.rotation) - 1.0f) < 1e-3f))
+    fields |= FaultEvent::kRotation;
   if (!finite(s.linearVelocity)) fields |= FaultEvent::kLinearVelocity;
   if (!finite(s.angularVelocity)) fields |= FaultEvent::kAngularVelocity;
   return fields;
@@ -29,11 +34,44 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults) {
   const std::size_t n = bodies.states.size();
   for (std::size_t i = 0; i < n; ++i) {
     BodyRecord& r = bodies.records[i];
-    if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
+    // Every body, not only the awake moving ones: frozen, sleeping and static bodies have zero
+    // inverse mass, but a NaN impulse from a contact still reaches their velocity (0 * NaN is NaN),
+    // and a static body's NaN velocity would reach everything that touches it in the next step.
+    if (!r.alive) continue;
     const std::uint8_t fields = nonFiniteFields(bodies.states[i]);
     if (fields == 0) continue;
     freezeBody(r, bodies.states[i]);
-    faults.push_back({BodyId{static_cast<std::uint32_t>(i), r.generation}, fields});
+    const BodyId id{static_cast<std::uint32_t>(i), r.generation};
+    const auto same = [&](const FaultEvent& f) { return f.body == id; };
+    const auto reported = std::find_if(faults.begin(), faults.end(), same);
+    if (reported == faults.end()) {
+      faults.push_back({id, fields});
+    } else {
+      reported->fields |= fields;  // one event per body per step, with every part that failed
+    }
+  }
+}
+
+void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
+                         std::vector<DistanceJoint>& joints) {
+  const auto faulted = [&](std::uint32_t body) {
+    return std::any_of(faults.begin(), faults.end(),
+                       [&](const FaultEvent& f) { return f.body.index == body; });
+  };
+  for (Contact& c : contacts) {
+    if (c.sensor || (!faulted(c.bodyA) && !faulted(c.bodyB))) continue;  // sensor events carry no numbers
+    c.manifold = Manifold{};
+    c.cache.valid = false;  // computed anew by the next narrow phase, at the frozen pose
+    c.points = {};
+    c.frictionImpulse = Vec3(0.0f);
+    c.twistImpulse = 0.0f;
+    c.stuck = false;
+    c.touching = false;
+  }
+  for (DistanceJoint& joint : joints) {
+    if (!joint.alive || (!faulted(joint.bodyA) && !faulted(joint.bodyB))) continue;
+    joint.impulse = 0.0f;
+    if (!finite(joint.axis)) joint.axis = Vec3(1.0f, 0.0f, 0.0f);
   }
 }
 
@@ -46,7 +84,7 @@ void freezeBody(BodyRecord& r, BodyState& s) {
   s.angularVelocity = Vec3(0.0f);
   r.force = Vec3(0.0f);
   r.torque = Vec3(0.0f);
-  if (r.type != BodyType::Dynamic) return;  // kinematic: already immovable, stays awake
+  if (r.type != BodyType::Dynamic) return;  // static, kinematic: already immovable, stay as they are
   s.inverseMass = 0.0f;
   s.inverseInertiaWorld = Mat3(0.0f);
   r.awake = false;

@@ -5,21 +5,35 @@
 // substep's solve, and once more at the end of the step (impacts, friction, CCD, revert).
 #pragma once
 
+#include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
+#include "dynamics/joint_solver.h"
 
 #include <collide/world.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace collide::detail {
 
-// FaultEvent bits of the state's non-finite parts (0: all finite).
+// FaultEvent bits of the state's non-finite parts (0: all finite), the rotation's also when it is
+// no longer a unit quaternion.
 std::uint8_t nonFiniteFields(const BodyState& state);
 
-// Every moving body (awake dynamic, kinematic) with a non-finite part is frozen (freezeBody) and
-// reported once in `faults`.
+// Every body with a non-finite part (awake, asleep, already frozen, even static: a NaN impulse
+// reaches a zero inverse mass's velocity too) is frozen (freezeBody) and reported in `faults`, once
+// per step: a body already there gets the new fields added to its event.
 void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults);
+
+// The bodies in `faults` took part in a solve that produced a non-finite value; so may their
+// contacts' manifolds (a degenerate pair is a source of NaN) and accumulated impulses, and their
+// joints' impulses (NaN, or what NaN made of them). Their contacts are dropped for this step (not
+// touching: no begin event, an end event if they touched before) and the joints' impulses zeroed,
+// so that no event reports those numbers and the next step's warm start does not hand them to the
+// bodies' neighbours. The next narrow phase finds the contacts again, at the frozen pose.
+void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
+                         std::vector<DistanceJoint>& joints);
 
 // Back to the pose at the start of the step, stopped, forces cleared. A dynamic body also loses its
 // inverse mass and inertia and sleeps: the solver then treats it as an immovable obstacle, and

@@ -4,6 +4,7 @@
 // the margin) is a contact, so each pair lists the shape's candidate points: its deepest ones.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "narrowphase/convex_support.h"
@@ -151,12 +152,20 @@ bool collidePlaneConvex(const Shape& shapeA, const Transform& transformA, const 
 
 bool collidePlaneMesh(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                       const Transform& transformB, float margin, Manifold& out) {
-  // Every mesh vertex below the surface, reduced to four; ids are vertex indices.
+  // Every vertex of the mesh's triangles below the surface, reduced to four; ids are vertex indices.
+  // Only the triangles' vertices: a mesh may hold vertices no triangle uses (OBJ files often do),
+  // and those are not on its surface (the narrow-phase fuzzer's mesh had one below a plane that
+  // its only triangle was far above: a phantom contact). Visited in index order, as before.
   const Plane plane = worldPlane(shapeA.plane(), transformA);
   const TriangleMesh& mesh = shapeB.mesh();
+  std::vector<std::uint8_t> onSurface(mesh.vertices().size(), 0);
+  for (const MeshTriangle& triangle : mesh.triangles()) {
+    for (const std::uint32_t v : triangle.v) onSurface[v] = 1;
+  }
   std::vector<ContactPoint> candidates(mesh.vertices().size());
   int count = 0;
   for (std::size_t i = 0; i < mesh.vertices().size(); ++i) {
+    if (!onSurface[i]) continue;
     addIfBelow(plane, transformB.applyToPoint(mesh.vertices()[i]), margin, static_cast<std::uint32_t>(i),
                candidates.data(), count);
   }

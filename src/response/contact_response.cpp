@@ -75,7 +75,14 @@ void applyInterpolatedImpacts(BodyStorage& bodies, std::vector<Contact>& contact
     ImpactBody b = impactBodyOf(sb);
     // The points that touch first carry the impact: those within the slop of the deepest.
     const Vec3 point = averagePoint(c.manifold, c.manifold.maxDepth() - slop);
-    resolveImpactInterpolated(a, b, point, normal, c.impactBounciness);
+    try {
+      resolveImpactInterpolated(a, b, point, normal, c.impactBounciness);
+    } catch (const Error&) {
+      // Refused: a non-finite velocity or contact from a fault earlier in this step (an
+      // overflowing solve). The world's fault guard freezes those bodies at the end of the step;
+      // the step itself must go on.
+      continue;
+    }
     writeBack(bodies.records[c.bodyA], sa, a);
     writeBack(bodies.records[c.bodyB], sb, b);
   }
@@ -93,10 +100,14 @@ void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
     ImpactBody a = impactBodyOf(sa);
     ImpactBody b = impactBodyOf(sb);
     const Vec3 point = averagePoint(c.manifold, -std::numeric_limits<float>::infinity());
-    if (model == FrictionModel::Viscous) {
-      applyViscousFriction(a, b, point, c.manifold.normal, c.friction, dt);
-    } else {
-      applyDampingFriction(a, b, point, c.manifold.normal, std::clamp(c.friction, 0.0f, 1.0f));
+    try {
+      if (model == FrictionModel::Viscous) {
+        applyViscousFriction(a, b, point, c.manifold.normal, c.friction, dt);
+      } else {
+        applyDampingFriction(a, b, point, c.manifold.normal, std::clamp(c.friction, 0.0f, 1.0f));
+      }
+    } catch (const Error&) {
+      continue;  // a fault earlier in this step, as in applyInterpolatedImpacts
     }
     writeBack(bodies.records[c.bodyA], sa, a);
     writeBack(bodies.records[c.bodyB], sb, b);

@@ -5,6 +5,7 @@
 #include <collide/shapes.h>
 
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 namespace collide::scene {
@@ -16,5 +17,9 @@ struct ObjMesh {
 
 // Throws collide::Error when the file cannot be read or parsed, or holds no triangles.
 ObjMesh readObjFile(const std::filesystem::path& path);
+
+// The same for the text of an OBJ file; `name` names it in error messages. Only geometry is read:
+// materials (mtllib, usemtl) do not matter to a collision mesh and are ignored.
+ObjMesh parseObj(std::string_view text, std::string_view name);
 
 }  // namespace collide::scene

@@ -1,0 +1,44 @@
+// OBJ loader fuzzer: the text of an OBJ file, as the scene loader and `collide fit` read it,
+// through collide::scene::parseObj (tinyobjloader underneath), then into a TriangleMesh, its mass
+// properties when it is closed, and every fitted proxy of `collide fit`.
+//
+// Allowed: a mesh, or collide::Error with a message (unparsable text, an index out of range, no
+// triangles, a non-finite coordinate, a zero-area triangle, a flat point set). A finding: a crash,
+// a sanitizer report, another exception, an error without a message, or a mesh whose triangles
+// name vertices that do not exist.
+#include <collide/bounding.h>
+#include <collide/scene/obj_file.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace collide;
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    scene::ObjMesh obj = scene::parseObj(text, "fuzz.obj");
+    if (obj.triangles.empty()) std::abort();  // documented: "no triangles" is an Error
+    for (const MeshTriangle& t : obj.triangles) {
+      for (const std::uint32_t v : t.v) {
+        if (v >= obj.vertices.size()) std::abort();
+      }
+    }
+    // Keep each input cheap: the fitters are O(n log n) and up, the hull goes through Qhull.
+    if (obj.vertices.size() > 256) return 0;
+    const std::vector<Vec3> vertices = obj.vertices;
+    const TriangleMesh mesh = TriangleMesh::fromTriangles(std::move(obj.vertices), std::move(obj.triangles));
+    if (mesh.isClosed()) {
+      try {
+        (void)massProperties(Shape(mesh), 1000.0f);
+      } catch (const Error& e) {
+        if (std::string_view(e.what()).empty()) std::abort();
+      }
+    }
+    (void)fitAllProxies(vertices);
+  } catch (const Error& e) {
+    if (std::string_view(e.what()).empty()) std::abort();  // an error must say what is wrong
+  }
+  return 0;
+}

@@ -1,0 +1,243 @@
+// What fuzz/world_fuzzer found, each as the smallest story that showed it. The inputs are finite
+// but extreme (a 3e38 m sphere, a body at 1e20 m/s, a spin of 1e30 rad/s): a game reaches them by
+// a unit error or an uninitialised value, and the world must then go on stepping, refuse the input
+// with collide::Error, or freeze the body and report it (docs/reliability.md, "The world guards
+// itself"). Before the fixes, each story below crashed the step (an Error thrown half-way through
+// it), hung it, bricked the world, or left a NaN in a state or an event.
+#include "world/world_helpers.h"
+
+#include <collide/world.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace collide {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr float kDt = 1.0f / 60.0f;
+constexpr float kHuge = 3.0e38f;  // finite, near the largest float
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Every live body's state and every event of the last step is finite; says which is not.
+::testing::AssertionResult everythingFinite(const World& world, const std::vector<BodyId>& bodies) {
+  for (const BodyId id : bodies) {
+    if (!world.isValid(id)) continue;
+    const Transform t = world.transform(id);
+    const Quat& q = t.rotation;
+    if (!finite(t.position) || !std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
+        !std::isfinite(q.z) || !finite(world.linearVelocity(id)) || !finite(world.angularVelocity(id))) {
+      return ::testing::AssertionFailure() << "body index " << id.index << " has a non-finite state";
+    }
+  }
+  for (const ContactEvent& e : world.contactEvents()) {
+    if (!finite(e.point) || !finite(e.normal) || !std::isfinite(e.impulse) || !std::isfinite(e.speed)) {
+      return ::testing::AssertionFailure() << "a contact event between bodies " << e.a.index << " and "
+                                           << e.b.index << " has non-finite values";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+BodyDef sphere(BodyType type, float radius, const Vec3& position) {
+  BodyDef def;
+  def.type = type;
+  def.shape = Shape(Sphere{radius});
+  def.position = position;
+  return def;
+}
+
+bool reported(const World& world, BodyId id) {
+  for (const FaultEvent& f : world.faultEvents()) {
+    if (f.body == id) return true;
+  }
+  return false;
+}
+
+// A contact with a 3e38 m sphere overflows in the solve and gives NaN impulses. The guard froze
+// the moving body, but a NaN impulse still reaches a zero inverse mass (0 * NaN is NaN): the static
+// body's velocity and the frozen body's became NaN after their check, and the NaN impulse stayed in
+// the contact for the event and for the next step's warm start.
+TEST(WorldFuzzFindings, NanImpulseLeavesNoNanInStaticFrozenBodiesOrEvents) {
+  World world;
+  std::vector<BodyId> bodies;
+  bodies.push_back(world.createBody(sphere(BodyType::Kinematic, kHuge, Vec3(0.0f))));
+  bodies.push_back(world.createBody(sphere(BodyType::Static, 0.01f, Vec3(-6.0f))));
+  bodies.push_back(world.createBody(sphere(BodyType::Dynamic, 1.95f, Vec3(-6.0f))));
+  const Vec3 staticPosition = world.transform(bodies[1]).position;
+  for (int step = 0; step < 10; ++step) {
+    world.step(kDt);
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+  EXPECT_EQ(world.linearVelocity(bodies[1]), Vec3(0.0f));
+  EXPECT_EQ(world.transform(bodies[1]).position, staticPosition);
+}
+
+// |v| of a finite velocity overflows beyond 1.8e19 m/s, and the speculative margin with it: the
+// narrow phase refused the infinite margin, so step() threw collide::Error half-way through.
+TEST(WorldFuzzFindings, BodyAt1e20MetresPerSecondDoesNotStopTheStep) {
+  World world;
+  std::vector<BodyId> bodies;
+  bodies.push_back(world.createBody(test::groundBox()));
+  BodyDef resting = test::boxBody(Vec3(10.0f, 0.5f, 0.0f), Vec3(0.5f), 1.0f);
+  bodies.push_back(world.createBody(resting));
+  BodyDef fast = sphere(BodyType::Dynamic, 0.5f, Vec3(0.0f, 0.6f, 0.0f));
+  fast.linearVelocity = Vec3(0.0f, -1e20f, 0.0f);
+  bodies.push_back(world.createBody(fast));
+  for (int step = 0; step < 10; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+    EXPECT_FALSE(reported(world, bodies[1])) << "the resting box is not involved, step " << step;
+  }
+  EXPECT_NEAR(world.transform(bodies[1]).position.y, 0.5f, 0.01f);
+}
+
+// createBody computed the mass (infinite for a 3e38 m ellipsoid), then the broad phase refused the
+// body's infinite box: the Error left the body allocated without a proxy, and every later step
+// threw "null proxy id". Now the mass and the box are checked, and any refusal frees the slot.
+TEST(WorldFuzzFindings, ShapeTooLargeOrTooSmallIsRefusedAndTheWorldStillSteps) {
+  World world;
+  BodyDef huge;
+  huge.shape = Shape(Ellipsoid{Vec3(kHuge, 2.0f, 0.01f)});
+  EXPECT_THAT([&] { world.createBody(huge); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("mass properties not representable")));
+  // A 1e-20 m sphere's mass underflows to 0 (an infinite inverse mass).
+  EXPECT_THAT([&] { world.createBody(sphere(BodyType::Dynamic, 1e-20f, Vec3(0.0f))); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("mass properties not representable")));
+  // A static shape whose box overflows where it is placed.
+  EXPECT_THAT([&] { world.createBody(sphere(BodyType::Static, kHuge, Vec3(kHuge, 0.0f, 0.0f))); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("bounds are not finite")));
+  EXPECT_EQ(world.bodyCount(), 0u);
+  const BodyId ball = world.createBody(sphere(BodyType::Dynamic, 0.5f, Vec3(0.0f, 2.0f, 0.0f)));
+  EXPECT_EQ(ball.index, 0u) << "the refused bodies' slots are free again";
+  ASSERT_NO_THROW(world.step(kDt));
+  EXPECT_LT(world.transform(ball).position.y, 2.0f);
+}
+
+// A body created with a spin whose length overflows: the proxy box grew by 0 * infinity (NaN) at
+// creation, and by infinity in the step, and the broad phase refused both.
+TEST(WorldFuzzFindings, HugeOrFastSpinningBodyKeepsTheBroadPhaseWorking) {
+  World world;
+  std::vector<BodyId> bodies;
+  BodyDef spinningGiant = sphere(BodyType::Kinematic, kHuge, Vec3(0.0f));
+  spinningGiant.angularVelocity = Vec3(28.0f, -30.0f, -30.0f);
+  bodies.push_back(world.createBody(spinningGiant));
+  BodyDef overflowingSpin;
+  overflowingSpin.type = BodyType::Kinematic;
+  overflowingSpin.shape = Shape(Box{Vec3(1.0f)});
+  overflowingSpin.position = Vec3(5.0f, 0.0f, 0.0f);
+  overflowingSpin.angularVelocity = Vec3(kHuge, 0.0f, 0.0f);
+  ASSERT_NO_THROW(bodies.push_back(world.createBody(overflowingSpin)));
+  bodies.push_back(world.createBody(sphere(BodyType::Dynamic, 0.1f, Vec3(0.0f, 1.2f, 0.0f))));
+  for (int step = 0; step < 5; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+}
+
+// A spin of 1e30 rad/s: its length overflows, and with the solver before the SIMD one it
+// integrated into a quaternion that normalises to zero, finite, so the guard let it through and
+// the next step's shape queries refused the body's transform. Whatever the solver makes of such a
+// spin, the step goes on, the rotation stays a unit quaternion, and a body reported for it is
+// reported for its rotation or its spin.
+TEST(WorldFuzzFindings, OverflowingSpinLeavesAUnitRotation) {
+  for (const BodyType type : {BodyType::Kinematic, BodyType::Dynamic}) {
+    World world;
+    BodyDef spinning;
+    spinning.type = type;
+    spinning.shape = Shape(Cylinder{0.84f, 0.01f});
+    spinning.angularVelocity = Vec3(-19.5f, -1e30f, -19.9f);
+    const BodyId id = world.createBody(spinning);
+    for (int step = 0; step < 3; ++step) {
+      ASSERT_NO_THROW(world.step(kDt)) << toString(type) << ", step " << step;
+      ASSERT_TRUE(everythingFinite(world, {id})) << toString(type) << ", step " << step;
+      EXPECT_NEAR(glm::length(world.transform(id).rotation), 1.0f, 1e-5f)
+          << toString(type) << ", step " << step;
+      for (const FaultEvent& f : world.faultEvents()) {
+        EXPECT_TRUE(f.fields & (FaultEvent::kRotation | FaultEvent::kAngularVelocity)) << toString(type);
+      }
+    }
+  }
+}
+
+// With sleeping on, a body frozen by the guard looks asleep; an awake body touching it "woke" it
+// (a no-op for a frozen body) and repeated the wake pass, forever: step() never returned.
+TEST(WorldFuzzFindings, FrozenBodyTouchedByAnAwakeOneDoesNotHangTheStep) {
+  WorldDef def;
+  def.sleeping = true;
+  World world(def);
+  world.createBody(test::groundBox());
+  const BodyId frozen = world.createBody(test::boxBody(Vec3(0.0f, 0.5f, 0.0f), Vec3(0.5f), 1.0f));
+  for (int step = 0; step < 10; ++step) world.step(kDt);
+  world.applyForce(frozen, Vec3(kHuge, 0.0f, 0.0f), world.centerOfMass(frozen));
+  world.applyForce(frozen, Vec3(kHuge, 0.0f, 0.0f), world.centerOfMass(frozen));
+  world.step(kDt);
+  ASSERT_TRUE(reported(world, frozen));
+  const BodyId falling = world.createBody(test::boxBody(Vec3(0.0f, 1.6f, 0.0f), Vec3(0.5f), 1.0f));
+  for (int step = 0; step < 60; ++step) world.step(kDt);
+  // It landed on the frozen box, which held it.
+  EXPECT_NEAR(world.transform(falling).position.y, 1.5f, 0.01f);
+  EXPECT_NEAR(world.transform(frozen).position.y, 0.5f, 0.01f);
+}
+
+// The response stages after the solve validate what they are given (they are public functions
+// too), and threw from inside the step when the solve had made a velocity NaN. The damping friction
+// model on a prolonged contact, with a static sphere of 1e15 m in the pile (the fuzzer's story):
+TEST(WorldFuzzFindings, DampingFrictionDoesNotStopTheStepAfterAFault) {
+  WorldDef def;
+  def.substeps = 1;
+  def.frictionModel = FrictionModel::Damping;
+  def.bouncinessCombine = CombineRule::Multiply;
+  def.frictionCombine = CombineRule::Max;
+  World world(def);
+  std::vector<BodyId> bodies;
+  BodyDef ball = sphere(BodyType::Dynamic, 1.99f, Vec3(-6.0f, -6.0f, -5.97f));
+  ball.linearVelocity = Vec3(8.1f, 8.1f, -19.8f);
+  ball.angularVelocity = Vec3(-6.7f, -20.0f, -6.7f);
+  ball.bounciness = 0.33f;
+  ball.friction = 0.0013f;
+  bodies.push_back(world.createBody(ball));
+  BodyDef giant = sphere(BodyType::Static, 1e15f, Vec3(-3.66f, -5.72f, -5.97f));
+  giant.bounciness = 0.33f;
+  giant.friction = 0.33f;
+  bodies.push_back(world.createBody(giant));
+  BodyDef moving;
+  moving.type = BodyType::Kinematic;
+  moving.shape = Shape(Cylinder{1.34f, 0.67f});
+  moving.position = Vec3(-5.98f, -6.0f, -5.81f);
+  moving.rotation = glm::normalize(Quat(-0.577f, -0.577f, -0.009f, -0.577f));
+  moving.linearVelocity = Vec3(5.16f, -5.62f, 0.0f);
+  moving.friction = 0.0f;
+  bodies.push_back(world.createBody(moving));
+  for (int step = 0; step < 10; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+}
+
+// ... and the interpolated impact model, reached once the broad phase took the overflowing spin.
+TEST(WorldFuzzFindings, InterpolatedImpactDoesNotStopTheStepAfterAFault) {
+  WorldDef def;
+  def.impactModel = ImpactModel::Interpolated;
+  World world(def);
+  std::vector<BodyId> bodies;
+  BodyDef spinning;
+  spinning.type = BodyType::Kinematic;
+  spinning.shape = Shape(Box{Vec3(1.0f)});
+  spinning.angularVelocity = Vec3(kHuge, 0.0f, 0.0f);
+  bodies.push_back(world.createBody(spinning));
+  bodies.push_back(world.createBody(sphere(BodyType::Dynamic, 0.1f, Vec3(0.0f, 1.05f, 0.0f))));
+  for (int step = 0; step < 5; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, bodies)) << "step " << step;
+  }
+}
+
+}  // namespace
+}  // namespace collide
