@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace collide::detail {
 
@@ -14,7 +15,7 @@ constexpr int kMaxVertices = 512;
 constexpr int kMaxFaces = 2 * kMaxVertices + 64;
 // Converged when the support along the nearest face's normal is within this of the face: the depth
 // is then bracketed to kRelativeTolerance of itself, or kAbsoluteTolerance of the shapes' size.
-constexpr float kRelativeTolerance = 3e-5f;
+constexpr float kRelativeTolerance = 1e-5f;
 constexpr float kAbsoluteTolerance = 2e-6f;
 
 struct Face {
@@ -254,6 +255,12 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
 
   const float absoluteTolerance = kAbsoluteTolerance * std::sqrt(scaleSquared);
   Face best = polytope.faces[0];
+  // Each nearest face's normal with its support distance, an upper bound of the depth: the best of
+  // them answers when the polytope can grow no further before converging (rounding on a cylinder's
+  // rim, the vertex budget), so the depth returned is always one that separates along the normal.
+  Face tightest = best;
+  float tightestUpper = std::numeric_limits<float>::infinity();
+  bool converged = false;
   int iteration = 0;
   for (; iteration < kMaxVertices; ++iteration) {
     int bestIndex = -1;
@@ -265,8 +272,16 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
     if (bestIndex < 0) break;
     best = polytope.faces[bestIndex];
     const SimplexVertex w = minkowskiSupport(a, b, best.normal);
-    const float gap = glm::dot(w.w, best.normal) - best.distance;
-    if (gap <= std::max(absoluteTolerance, kRelativeTolerance * std::abs(best.distance))) break;
+    const float upper = glm::dot(w.w, best.normal);
+    if (upper < tightestUpper) {
+      tightestUpper = upper;
+      tightest = best;
+    }
+    const float gap = upper - best.distance;
+    if (gap <= std::max(absoluteTolerance, kRelativeTolerance * std::abs(best.distance))) {
+      converged = true;
+      break;
+    }
     if (polytope.vertexCount == kMaxVertices) break;
     // A support point already in the polytope cannot lie beyond one of its faces unless rounding
     // folded the polytope there: that face is not on the hull of the polytope's vertices, so it
@@ -286,7 +301,12 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
     polytope.vertices[polytope.vertexCount] = w;
     if (!polytope.expand(polytope.vertexCount++, bestIndex)) break;
   }
-  return resultFromFace(polytope, best, iteration + 1);
+  if (converged || !(tightestUpper < std::numeric_limits<float>::infinity())) {
+    return resultFromFace(polytope, best, iteration + 1);
+  }
+  EpaResult result = resultFromFace(polytope, tightest, iteration + 1);
+  result.depth = tightestUpper;
+  return result;
 }
 
 }  // namespace collide::detail
