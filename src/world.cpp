@@ -271,7 +271,10 @@ struct World::Impl {
   ContactEvent makeEvent(const Contact& c, ContactEvent::Type type) const;
 };
 
-World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
+namespace {
+
+void validateWorldDef(const WorldDef& def) {
+  using collide::isFinite;  // not the Mat3 overload above, which would hide it
   if (!isFinite(def.gravity)) throw Error("world: gravity must be finite, got " + formatVec(def.gravity));
   if (def.substeps < 1) throw Error("world: substeps must be >= 1, got " + std::to_string(def.substeps));
   const ContactTuning& t = def.contact;
@@ -298,6 +301,17 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   checkSleep(sleep.linearSpeed, sleep.linearSpeed >= 0.0f, "linearSpeed (must be >= 0)");
   checkSleep(sleep.angularSpeed, sleep.angularSpeed >= 0.0f, "angularSpeed (must be >= 0)");
   checkSleep(sleep.timeToSleep, sleep.timeToSleep > 0.0f, "timeToSleep (must be > 0)");
+}
+
+bool sameBroadPhaseSettings(const BroadPhaseSettings& a, const BroadPhaseSettings& b) {
+  return a.type == b.type && a.treeMargin == b.treeMargin && a.gridCellSize == b.gridCellSize &&
+         a.gridMaxCellsPerAxis == b.gridMaxCellsPerAxis;
+}
+
+}  // namespace
+
+World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
+  validateWorldDef(def);
   impl_->def = def;
   impl_->broadPhase = createBroadPhase(def.broadPhase);
 }
@@ -307,6 +321,20 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
 const WorldDef& World::def() const { return impl_->def; }
+
+void World::setDef(const WorldDef& def) {
+  validateWorldDef(def);
+  Impl& w = *impl_;
+  if (!sameBroadPhaseSettings(def.broadPhase, w.def.broadPhase)) {
+    std::unique_ptr<BroadPhase> next = createBroadPhase(def.broadPhase);  // may throw: nothing changed yet
+    next->adoptProxies(*w.broadPhase);
+    w.broadPhase = std::move(next);
+  }
+  if (w.def.sleeping && !def.sleeping) {
+    for (std::uint32_t i = 0; i < w.bodies.records.size(); ++i) w.wake(i);
+  }
+  w.def = def;
+}
 
 BodyId World::createBody(const BodyDef& def) {
   const std::string who = def.name.empty() ? std::string("body") : "body \"" + def.name + "\"";

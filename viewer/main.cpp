@@ -71,10 +71,10 @@ struct App {
   double lastStepMs = 0.0;
   std::string error;  // the last scene or settings the World refused, shown in the panel
 
-  // The settings the next restart builds the World with: the scene's until edited.
+  // The settings edited in the panel, applied to the running World as they change.
   WorldDef settings;
   float dt = 1.0f / 60.0f;
-  bool settingsEdited = false;  // differ from the running World's
+  bool settingsEdited = false;  // differ from the running World's (the World refused them)
 
   MouseSpring spring;
   SphereShot shot;
@@ -246,10 +246,19 @@ struct App {
   void worldSettings() {
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
     ImGui::TextDisabled(
-        "The World fixes its settings when it is created: Restart rebuilds it from the "
-        "scene with these.");
+        "Each change applies from the next step (World::setDef). Restart rebuilds the scene with "
+        "these settings.");
     ImGui::PopTextWrapPos();
-    settingsEdited |= editWorldSettings(settings, dt);
+    if (editWorldSettings(settings, dt)) {
+      try {
+        scene->applySettings(settings, dt);
+        settingsEdited = false;
+        error.clear();
+      } catch (const Error& e) {
+        settingsEdited = true;  // the World runs on with its last settings
+        error = e.what();
+      }
+    }
     if (ImGui::Button(settingsEdited ? "Restart with these *" : "Restart with these"))
       tryLoad(sceneName, false, true);
     ImGui::SameLine();

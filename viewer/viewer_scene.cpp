@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace collide::viewer {
@@ -172,6 +173,13 @@ double ViewerScene::step() {
   const auto stop = std::chrono::steady_clock::now();
   ++steps_;
   return std::chrono::duration<double, std::milli>(stop - start).count();
+}
+
+void ViewerScene::applySettings(const WorldDef& def, float dt) {
+  if (!(dt > 0.0f) || !std::isfinite(dt)) throw Error("viewer: the time step must be finite and > 0");
+  built_->world.setDef(def);
+  scene_.world = def;
+  scene_.dt = dt;
 }
 
 Aabb ViewerScene::bounds() const {

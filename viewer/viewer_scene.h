@@ -38,6 +38,9 @@ class ViewerScene {
 
   // One step of the scene's dt; returns the wall time it took in milliseconds.
   double step();
+  // New world settings and time step, from the next step on (World::setDef). Throws Error for
+  // settings the World refuses, and then changes nothing.
+  void applySettings(const WorldDef& def, float dt);
   int stepCount() const { return steps_; }
 
   // Shoots a sphere along the ray and draws it from now on. The oldest shot is removed once there

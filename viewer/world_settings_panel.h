@@ -1,6 +1,5 @@
-// The panel's editor for every WorldDef field (and the scene's time step). The World fixes its
-// WorldDef when it is created, so the edits take effect when the viewer rebuilds the World from the
-// scene with them (Restart); the panel says so.
+// The panel's editor for every WorldDef field (and the scene's time step). The viewer applies each
+// edit to the running World (World::setDef), from its next step.
 #pragma once
 
 #include <collide/world.h>

@@ -135,6 +135,10 @@ class BroadPhase {
   ProxyId add(const ProxyDef& def);
   void remove(ProxyId id);
   void update(ProxyId id, const Aabb& bounds);
+  // Makes this broad phase, which must hold no proxy yet, hold the same proxies as `source`: the
+  // same ids (index and generation, so handles to them stay valid), boxes, layers and free slots.
+  // Switches a running world to another broad-phase type or setting. Throws Error when not empty.
+  void adoptProxies(const BroadPhase& source);
 
   bool contains(ProxyId id) const;
   std::size_t proxyCount() const { return aliveCount_; }

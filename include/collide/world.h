@@ -254,6 +254,12 @@ class World {
   World& operator=(World&&) noexcept;
 
   const WorldDef& def() const;
+  // Changes the world's settings between steps; each takes effect from the next step (the
+  // viewer's live settings, a game's slow motion or low-gravity zone). Bodies, contacts and their
+  // warm start are kept; a new broad-phase type or setting moves every proxy to a new broad phase
+  // with the same boxes; turning sleeping off wakes every sleeping body. Throws Error as the
+  // constructor does, and then changes nothing.
+  void setDef(const WorldDef& def);
 
   // Throws Error naming the field for a bad definition.
   BodyId createBody(const BodyDef& def);

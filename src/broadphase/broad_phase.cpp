@@ -105,6 +105,16 @@ void BroadPhase::remove(ProxyId id) {
   freeSlots_.push_back(index);
 }
 
+void BroadPhase::adoptProxies(const BroadPhase& source) {
+  if (!proxies_.empty()) throw Error("broad phase: adoptProxies: this broad phase already has proxies");
+  proxies_ = source.proxies_;
+  freeSlots_ = source.freeSlots_;
+  aliveCount_ = source.aliveCount_;
+  for (std::uint32_t index = 0; index < proxies_.size(); ++index) {
+    if (proxies_[index].alive) onAdd(index);
+  }
+}
+
 void BroadPhase::update(ProxyId id, const Aabb& bounds) {
   const std::uint32_t index = resolve(id, "update");
   validateBox(bounds, "update");
