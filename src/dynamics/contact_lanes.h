@@ -18,7 +18,6 @@ namespace collide::detail {
 template <typename F>
 struct BatchPoint {
   Vec3T<F> anchorA, anchorB;  // from each centre of mass to the contact point, world, at the step start
-  Vec3T<F> crossA, crossB;    // anchor x normal
   Vec3T<F> turnA, turnB;      // I^-1 (anchor x normal): the spin one unit of normal impulse gives
   F baseSeparation;           // separation at the step start minus normal . (anchorB - anchorA)
   F normalMass;
@@ -44,9 +43,9 @@ struct ContactBatch {
   F biasRate, massScale, impulseScale;
   std::array<BatchPoint<F>, Manifold::kMaxPoints> points;
   // Friction patch.
-  Vec3T<F> tangent1CrossA, tangent2CrossA, tangent1CrossB, tangent2CrossB;  // centroid anchor x tangent
-  Vec3T<F> tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;      // I^-1 of those
-  F tangentMass11, tangentMass12, tangentMass22;                            // inverse of the 2x2 block
+  Vec3T<F> patchA, patchB;  // from each centre of mass to the centroid, world, at the step start
+  Vec3T<F> tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;  // I^-1 of those
+  F tangentMass11, tangentMass12, tangentMass22;                        // inverse of the 2x2 block
   F tangentImpulse1, tangentImpulse2;
   F surfaceSpeed1, surfaceSpeed2;   // the sliding friction drives towards (a conveyor belt)
   Vec3T<F> twistTurnA, twistTurnB;  // I^-1 normal
@@ -79,20 +78,33 @@ class LaneContactSolver final : public ContactLanes {
       batchStart[color + 1] = batchStart[color] + (count + perBatch - 1) / perBatch;
     }
     batches_.resize(batchStart[kGraphColors + 1]);
-    if (!batches_.empty())
-      std::memset(static_cast<void*>(batches_.data()), 0, batches_.size() * sizeof(Batch));
-    for (Batch& batch : batches_) {
-      batch.bodyA.fill(kNoSolverBody);
-      batch.bodyB.fill(kNoSolverBody);
-      batch.contact.fill(-1);
-    }
-    // Walked in contact-array order, so the contacts are read once, front to back.
-    for (std::size_t i = 0; i < in.byIndex.size(); ++i) {
-      const std::uint8_t color = in.colorOf[i];
+    // Filled batch by batch, each cleared just before its first lane (its lines stay in cache while
+    // its lanes are written), with the contacts a few places ahead prefetched: they lie anywhere in
+    // the contact array.
+    constexpr std::size_t kAhead = 4;
+    const std::size_t total = in.order.size();
+    const auto prefetch = [&](std::size_t i) {
+      const Contact& ahead = in.contacts[in.order[i]];
+      const char* bytes = reinterpret_cast<const char*>(&ahead);
+      for (std::size_t line = 0; line < sizeof(Contact); line += 64) __builtin_prefetch(bytes + line);
+      __builtin_prefetch(&in.storage.states[ahead.bodyA]);
+      __builtin_prefetch(&in.storage.states[ahead.bodyB]);
+    };
+    for (std::size_t i = 0; i < std::min(kAhead, total); ++i) prefetch(i);
+    for (int color = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      const std::uint32_t offset = in.placeInOrder[i] - in.colorStart[color];
-      fillLane(in, batches_[batchStart[color] + offset / perBatch], static_cast<int>(offset % perBatch),
-               in.byIndex[i]);
+      for (std::uint32_t i = in.colorStart[color]; i < in.colorStart[color + 1]; ++i) {
+        if (i + kAhead < total) prefetch(i + kAhead);
+        const std::uint32_t offset = i - in.colorStart[color];
+        Batch& batch = batches_[batchStart[color] + offset / perBatch];
+        if (offset % perBatch == 0) {
+          std::memset(static_cast<void*>(&batch), 0, sizeof(Batch));
+          batch.bodyA.fill(kNoSolverBody);
+          batch.bodyB.fill(kNoSolverBody);
+          batch.contact.fill(-1);
+        }
+        fillLane(in, batch, static_cast<int>(offset % perBatch), in.order[i]);
+      }
     }
   }
 
@@ -144,7 +156,10 @@ class LaneContactSolver final : public ContactLanes {
             andW(andW(greaterW(threshold, p.approachVelocity), greaterW(p.maxNormalImpulse, zero)),
                  greaterW(c.restitution, zero));
         if (!anyW(bounce)) continue;
-        const F vn = dot(b.v - a.v, c.normal) + dot(b.w, p.crossB) - dot(a.w, p.crossA);
+        // w . (r x n) = r . (n x w): the anchors' crosses are not stored, to keep the batch small
+        // (the solver streams every batch several times a substep).
+        const F vn = dot(b.v - a.v, c.normal) + dot(p.anchorB, cross(c.normal, b.w)) -
+                     dot(p.anchorA, cross(c.normal, a.w));
         F impulse = -(p.normalMass * (vn + c.restitution * p.approachVelocity));
         const F total = maxW(p.normalImpulse + impulse, zero);
         impulse = selectW(bounce, total - p.normalImpulse, zero);
@@ -306,7 +321,10 @@ class LaneContactSolver final : public ContactLanes {
         } else {
           bias = selectW(apart, bias, zero);
         }
-        const F vn = dot(b.v - a.v, c.normal) + dot(b.w, p.crossB) - dot(a.w, p.crossA);
+        // w . (r x n) = r . (n x w): the anchors' crosses are not stored, to keep the batch small
+        // (the solver streams every batch several times a substep).
+        const F vn = dot(b.v - a.v, c.normal) + dot(p.anchorB, cross(c.normal, b.w)) -
+                     dot(p.anchorA, cross(c.normal, a.w));
         F impulse = -(p.normalMass * massScale * (vn + bias)) - impulseScale * p.normalImpulse;
         // Contacts only push: the accumulated impulse stays >= 0.
         const F total = maxW(p.normalImpulse + impulse, zero);
@@ -323,8 +341,9 @@ class LaneContactSolver final : public ContactLanes {
       // Friction patch: the tangential velocity at the centroid (relative to the surface velocity),
       // plus in the biased pass the gap of the static anchors, driven to zero inside the Coulomb disc.
       const Vec dv = b.v - a.v;
-      F v1 = dot(dv, c.tangent1) + dot(b.w, c.tangent1CrossB) - dot(a.w, c.tangent1CrossA) - c.surfaceSpeed1;
-      F v2 = dot(dv, c.tangent2) + dot(b.w, c.tangent2CrossB) - dot(a.w, c.tangent2CrossA) - c.surfaceSpeed2;
+      const Vec atCentroid = dv + cross(b.w, c.patchB) - cross(a.w, c.patchA);
+      F v1 = dot(atCentroid, c.tangent1) - c.surfaceSpeed1;
+      F v2 = dot(atCentroid, c.tangent2) - c.surfaceSpeed2;
       F massScale = one;
       F impulseScale = zero;
       if constexpr (useBias) {
@@ -422,8 +441,6 @@ class LaneContactSolver final : public ContactLanes {
       const Vec3 crossB = glm::cross(rB, n);
       setLane(p.anchorA, lane, rA);
       setLane(p.anchorB, lane, rB);
-      setLane(p.crossA, lane, crossA);
-      setLane(p.crossB, lane, crossB);
       // A side the solver does not move (static, kinematic) keeps the zeros of the cleared batch.
       const Vec3 turnA = c.writeA[lane] ? iA * crossA : Vec3(0.0f);
       const Vec3 turnB = c.writeB[lane] ? iB * crossB : Vec3(0.0f);
@@ -443,10 +460,8 @@ class LaneContactSolver final : public ContactLanes {
     const Vec3 rB = centroid - stateB.centerOfMass;
     const Vec3 t1A = glm::cross(rA, t1), t2A = glm::cross(rA, t2);
     const Vec3 t1B = glm::cross(rB, t1), t2B = glm::cross(rB, t2);
-    setLane(c.tangent1CrossA, lane, t1A);
-    setLane(c.tangent2CrossA, lane, t2A);
-    setLane(c.tangent1CrossB, lane, t1B);
-    setLane(c.tangent2CrossB, lane, t2B);
+    setLane(c.patchA, lane, rA);
+    setLane(c.patchB, lane, rB);
     const Vec3 u1A = c.writeA[lane] ? iA * t1A : Vec3(0.0f), u2A = c.writeA[lane] ? iA * t2A : Vec3(0.0f);
     const Vec3 u1B = c.writeB[lane] ? iB * t1B : Vec3(0.0f), u2B = c.writeB[lane] ? iB * t2B : Vec3(0.0f);
     setLane(c.tangent1TurnA, lane, u1A);

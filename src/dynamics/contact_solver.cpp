@@ -75,19 +75,27 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   }
   colorConstraints(writtenBodies_, bodies.size(), colorOf_, colorBits_);
 
-  // By colour, then the overflow; a counting sort keeps the contact order within each colour
-  // (determinism).
+  // By colour, then the overflow. Within a colour the contacts share no body that moves, so their
+  // order changes no result: they go by point count, most first, so that a batch's lanes have as
+  // many points as each other and the solver loops over (and loads) no point slot that all its
+  // lanes leave empty. The overflow colour is solved one contact after another and keeps the
+  // contact order. A counting sort, stable (determinism).
+  constexpr int kCounts = Manifold::kMaxPoints;
+  const auto bucketOf = [&](std::size_t i) {
+    const int color = colorOf_[i];
+    const int count = contacts[solvedContacts_[i]].manifold.count;
+    return color * kCounts + (color == kOverflowColor ? 0 : kCounts - count);
+  };
+  std::array<std::uint32_t, (kGraphColors + 1) * kCounts + 1> bucketStart{};
+  for (std::size_t i = 0; i < solvedContacts_.size(); ++i) ++bucketStart[bucketOf(i) + 1];
+  for (std::size_t k = 1; k < bucketStart.size(); ++k) bucketStart[k] += bucketStart[k - 1];
   std::array<std::uint32_t, kGraphColors + 2> start{};
-  for (const std::uint8_t color : colorOf_) ++start[color + 1];
-  for (int color = 0; color <= kGraphColors; ++color) start[color + 1] += start[color];
+  for (int color = 0; color <= kGraphColors + 1; ++color) start[color] = bucketStart[color * kCounts];
   order_.resize(solvedContacts_.size());
-  {
-    std::array<std::uint32_t, kGraphColors + 2> next = start;
-    placeInOrder_.resize(solvedContacts_.size());
-    for (std::size_t i = 0; i < solvedContacts_.size(); ++i) {
-      placeInOrder_[i] = next[colorOf_[i]]++;
-      order_[placeInOrder_[i]] = solvedContacts_[i];
-    }
+  placeInOrder_.resize(solvedContacts_.size());
+  for (std::size_t i = 0; i < solvedContacts_.size(); ++i) {
+    placeInOrder_[i] = bucketStart[bucketOf(i)]++;
+    order_[placeInOrder_[i]] = solvedContacts_[i];
   }
   solvedContacts_.swap(order_);  // order_ keeps the contact-array order
 
