@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "geometry/clipping.h"
@@ -119,16 +120,63 @@ struct Scratch {
   std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
   std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
   std::vector<std::uint8_t> behind[2];  // per face: which of the other shape's points lie behind it
-  // The last placement of each slot: the world hands pairs sorted by their first body, so one body
-  // meets its partners one after another, and its polyhedron is placed once for all of them.
-  struct Placement {
+};
+
+// The placed polyhedra of this thread, by hull and pose: within a step each body keeps its pose, so
+// one placed for a pair serves every other pair of that body (R4's hulls meet the terrain and up to
+// a dozen neighbours). Direct-mapped; an entry is the same computation's result, so a hit changes
+// nothing. Slot 0 of a query is placed first; slot 1 never takes slot 0's entry from under it.
+struct PlacementCache {
+  static constexpr std::size_t kEntries = 256;
+  struct Entry {
     const ConvexHull* hull = nullptr;
     Vec3 firstVertex{0.0f};  // with the address: a hull freed and another made in its place differ here
     Vec3 scale{0.0f};
     Transform transform;
+    std::vector<Vec3> vertices;
+    std::vector<Plane> planes;
+    std::vector<float> normalBlocks;
     WorldPolyhedron poly;
-  } placed[2];
+  };
+  std::array<Entry, kEntries> entries;
+  std::size_t slotEntry[2] = {kEntries, kEntries};
 };
+
+std::size_t placementHash(const ConvexHull* hull, const Transform& transform) {
+  std::uint32_t bits[3];
+  std::memcpy(bits, &transform.position, sizeof bits);
+  std::uint64_t h = reinterpret_cast<std::uintptr_t>(hull) * 0x9E3779B97F4A7C15ull;
+  for (const std::uint32_t b : bits) h = (h ^ b) * 0x100000001B3ull;
+  return static_cast<std::size_t>(h ^ (h >> 29));
+}
+
+void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& localScale,
+               std::vector<Vec3>& vertices, std::vector<Plane>& planes, std::vector<float>& blocks,
+               WorldPolyhedron& poly) {
+  const Mat3 rotation = glm::mat3_cast(transform.rotation);
+  vertices.resize(hull.vertices().size());
+  planes.resize(hull.faces().size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    vertices[i] = transform.position + rotation * (localScale * hull.vertices()[i]);
+  }
+  for (std::size_t f = 0; f < planes.size(); ++f) {
+    const ConvexHull::Face& face = hull.faces()[f];
+    // A box's faces are axis-aligned, so its non-uniform scale leaves their normals alone.
+    const Vec3 normal = rotation * face.plane.normal;
+    planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
+  }
+  blocks.resize(4 * planes.size());
+  for (std::size_t f = 0; f < planes.size(); ++f) {
+    for (int axis = 0; axis < 3; ++axis) blocks[axis * planes.size() + f] = planes[f].normal[axis];
+    blocks[3 * planes.size() + f] = planes[f].distance;
+  }
+  poly.vertices = vertices;
+  poly.planes = planes;
+  poly.normalBlocks = blocks;
+  const Aabb bounds = hull.bounds();
+  poly.inside = transform.position + rotation * (localScale * hull.centroid());
+  poly.size = glm::length(localScale * bounds.halfExtents());
+}
 
 WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, Scratch& scratch) {
   WorldPolyhedron poly;
@@ -146,40 +194,29 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
       poly.hull = &shape.convexHull();
       break;
   }
-  Scratch::Placement& placed = scratch.placed[slot];
-  if (placed.hull == poly.hull && placed.firstVertex == poly.hull->vertices()[0] &&
-      placed.scale == localScale && placed.transform.position == transform.position &&
-      placed.transform.rotation == transform.rotation && placed.transform.scale == transform.scale) {
-    return placed.poly;
-  }
   const ConvexHull& hull = *poly.hull;
-  const Mat3 rotation = glm::mat3_cast(transform.rotation);
-  std::vector<Vec3>& vertices = scratch.vertices[slot];
-  std::vector<Plane>& planes = scratch.planes[slot];
-  vertices.resize(hull.vertices().size());
-  planes.resize(hull.faces().size());
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    vertices[i] = transform.position + rotation * (localScale * hull.vertices()[i]);
+  thread_local PlacementCache cache;
+  const std::size_t index = placementHash(poly.hull, transform) % PlacementCache::kEntries;
+  if (slot == 0) cache.slotEntry[1] = PlacementCache::kEntries;  // a new query: slot 1 is free again
+  if (slot == 1 && index == cache.slotEntry[0]) {
+    // Slot 0 of this query holds the entry: placed apart, uncached.
+    placeInto(hull, transform, localScale, scratch.vertices[slot], scratch.planes[slot],
+              scratch.normalBlocks[slot], poly);
+    return poly;
   }
-  for (std::size_t f = 0; f < planes.size(); ++f) {
-    const ConvexHull::Face& face = hull.faces()[f];
-    // A box's faces are axis-aligned, so its non-uniform scale leaves their normals alone.
-    const Vec3 normal = rotation * face.plane.normal;
-    planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
+  PlacementCache::Entry& entry = cache.entries[index];
+  cache.slotEntry[slot] = index;
+  if (entry.hull == poly.hull && entry.firstVertex == hull.vertices()[0] && entry.scale == localScale &&
+      entry.transform.position == transform.position && entry.transform.rotation == transform.rotation &&
+      entry.transform.scale == transform.scale) {
+    return entry.poly;
   }
-  std::vector<float>& blocks = scratch.normalBlocks[slot];
-  blocks.resize(4 * planes.size());
-  for (std::size_t f = 0; f < planes.size(); ++f) {
-    for (int axis = 0; axis < 3; ++axis) blocks[axis * planes.size() + f] = planes[f].normal[axis];
-    blocks[3 * planes.size() + f] = planes[f].distance;
-  }
-  poly.vertices = vertices;
-  poly.planes = planes;
-  poly.normalBlocks = blocks;
-  const Aabb bounds = hull.bounds();
-  poly.inside = transform.position + rotation * (localScale * hull.centroid());
-  poly.size = glm::length(localScale * bounds.halfExtents());
-  placed = {poly.hull, hull.vertices()[0], localScale, transform, poly};
+  placeInto(hull, transform, localScale, entry.vertices, entry.planes, entry.normalBlocks, poly);
+  entry.hull = poly.hull;
+  entry.firstVertex = hull.vertices()[0];
+  entry.scale = localScale;
+  entry.transform = transform;
+  entry.poly = poly;
   return poly;
 }
 
