@@ -99,6 +99,10 @@ struct World::Impl {
   detail::BodyStorage bodies;
   std::unique_ptr<BroadPhase> broadPhase;
   std::vector<ProxyPair> pairs;
+  // Each body's pose and spin reach, taken once per narrow phase rather than once per pair.
+  std::vector<Transform> poses;
+  std::vector<Mat3> scaledRotations;  // mat3_cast(rotation) * scale
+  std::vector<float> spinReaches;
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
   detail::StepSolver stepSolver;
@@ -265,6 +269,9 @@ struct World::Impl {
   void wakeTouchedIslands(float dt);
   void updateSleep(float dt);
   float speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const;
+  // The same with the bodies' spin reach (|angular velocity| x bounding radius) given.
+  float speculativeMargin(std::uint32_t ia, std::uint32_t ib, float spinA, float spinB, float dt) const;
+  float spinReach(std::uint32_t index) const;
   void revertPenetrating();
   void refreshEscapedProxies();
   void emitEvents();
@@ -794,6 +801,15 @@ ContactEvent World::Impl::makeEvent(const Contact& c, ContactEvent::Type type) c
 }
 
 void World::Impl::narrowPhase(float dt) {
+  poses.resize(bodies.records.size());
+  scaledRotations.resize(bodies.records.size());
+  spinReaches.resize(bodies.records.size());
+  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
+    if (!bodies.records[i].alive) continue;
+    poses[i] = detail::bodyTransform(bodies.records[i], bodies.states[i]);
+    scaledRotations[i] = glm::mat3_cast(poses[i].rotation) * poses[i].scale;
+    spinReaches[i] = spinReach(i);
+  }
   std::swap(contacts, previousContacts);
   contacts.clear();
   lastStats = broadPhase->lastStats();
@@ -849,17 +865,16 @@ void World::Impl::narrowPhase(float dt) {
       }
       continue;
     }
-    const BodyState& sa = bodies.states[ia];
-    const BodyState& sb = bodies.states[ib];
-    const Transform ta = detail::bodyTransform(ra, sa);
-    const Transform tb = detail::bodyTransform(rb, sb);
+    const Transform& ta = poses[ia];
+    const Transform& tb = poses[ib];
     Contact& c = contacts.emplace_back();
     ++tests;
     // A pair that has not moved relative to itself since its manifold was computed (a resting
     // stack, a crate on the terrain) gets that manifold placed again (Jolt's body pair cache).
-    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, dt);
+    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, spinReaches[ia], spinReaches[ib], dt);
     if (previous && !sensor &&
-        detail::reuseManifold(previous->cache, previous->manifold, ta, tb, ra.originRadius, rb.originRadius,
+        detail::reuseManifold(previous->cache, previous->manifold, ta, tb, scaledRotations[ia],
+                              scaledRotations[ib], ra.originRadius, rb.originRadius,
                               def.contact.manifoldCacheDistance, c.manifold)) {
       c.cache = previous->cache;
       ++reused;
@@ -971,11 +986,17 @@ void World::Impl::narrowPhase(float dt) {
 
 // Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).
 float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const {
-  const BodyState& sa = bodies.states[ia];
-  const BodyState& sb = bodies.states[ib];
-  const float approach = glm::length(sb.linearVelocity - sa.linearVelocity) +
-                         glm::length(sa.angularVelocity) * bodies.records[ia].boundingRadius +
-                         glm::length(sb.angularVelocity) * bodies.records[ib].boundingRadius;
+  return speculativeMargin(ia, ib, spinReach(ia), spinReach(ib), dt);
+}
+
+float World::Impl::spinReach(std::uint32_t index) const {
+  return glm::length(bodies.states[index].angularVelocity) * bodies.records[index].boundingRadius;
+}
+
+float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float spinA, float spinB,
+                                     float dt) const {
+  const float approach =
+      glm::length(bodies.states[ib].linearVelocity - bodies.states[ia].linearVelocity) + spinA + spinB;
   const float margin = def.contact.speculativeDistance + dt * approach;
   // A finite velocity can still have an infinite length (beyond 1.8e19 m/s the square overflows):
   // capped at the largest float (NaN too), so that collide() takes the margin and the step goes

@@ -236,7 +236,8 @@ struct ContactSettings {
 // this step (one-way platforms), or change its settings (gameplay surfaces: ice, bumpers, belts).
 // Settings out of range (negative or non-finite friction, bounciness outside [0, 1], a non-finite
 // surface velocity) are not applied: the step completes with the contact's own values and then
-// World::step throws Error naming the bodies.
+// World::step throws Error naming the bodies. The narrow phase takes every body's pose once, before
+// the first pair: a pose set from inside the callback counts from the next step.
 using PreSolveCallback =
     std::function<bool(BodyId a, BodyId b, const Manifold& manifold, ContactSettings& settings)>;
 // The same without settings, for callbacks that only look or disable.

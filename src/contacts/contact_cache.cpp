@@ -76,7 +76,8 @@ void storeManifold(const Manifold& manifold, const Transform& a, const Transform
 }
 
 bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
-                   float radiusA, float radiusB, float distance, Manifold& out) {
+                   const Mat3& scaledRotationA, const Mat3& scaledRotationB, float radiusA, float radiusB,
+                   float distance, Manifold& out) {
   if (!cache.valid) return false;
   const Quat inverseA = glm::conjugate(a.rotation);
   const Quat rotation = inverseA * b.rotation;  // B's rotation in A's frame
@@ -92,10 +93,9 @@ bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Tra
     const float movedA = glm::length(positionA - cache.relativePositionInB) + angle * radiusA;
     if (movedA > distance) return false;
   }
-  // Placed with the two rotations as matrices: two conversions instead of a quaternion rotation per
-  // point.
-  const Mat3 rotationA = glm::mat3_cast(a.rotation) * a.scale;
-  const Mat3 rotationB = glm::mat3_cast(b.rotation) * b.scale;
+  // Placed with the two rotations as matrices, not a quaternion rotation per point.
+  const Mat3& rotationA = scaledRotationA;
+  const Mat3& rotationB = scaledRotationB;
   out.count = cached.count;
   out.normal = rotationA * cache.normal / a.scale;
   for (int i = 0; i < cached.count; ++i) {

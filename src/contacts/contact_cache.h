@@ -54,8 +54,11 @@ void storeManifold(const Manifold& manifold, const Transform& a, const Transform
 // was filled, writes the cached manifold placed at these transforms (same points and ids, depths
 // measured anew) and returns true. radiusA, radiusB bound the bodies about their origins: a body's
 // points move by at most |its origin's move| + (turn angle) x radius relative to the other body.
+// scaledRotationA, scaledRotationB: each transform's rotation as a matrix times its scale (taken once
+// per body and step by the world, not once per pair).
 bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Transform& a, const Transform& b,
-                   float radiusA, float radiusB, float distance, Manifold& out);
+                   const Mat3& scaledRotationA, const Mat3& scaledRotationB, float radiusA, float radiusB,
+                   float distance, Manifold& out);
 
 struct Contact {
   std::uint64_t key = 0;  // proxy a index << 32 | proxy b index
