@@ -67,7 +67,6 @@ struct Contact {
   std::uint32_t generationA = 0;
   std::uint32_t generationB = 0;
   Manifold manifold;
-  ManifoldCache cache;
   std::array<ContactPointState, Manifold::kMaxPoints> points{};
   float friction = 0.0f;
   float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model
@@ -88,6 +87,8 @@ struct Contact {
   Vec3 stickLocalB{0.0f};
   bool stuck = false;    // the anchor is set
   bool sliding = false;  // the patch reached the friction bound last step: re-anchor
+  // Last: the solver reads everything above and nothing of this (dynamics/contact_lanes.h).
+  ManifoldCache cache;
 };
 
 // Copies the accumulated impulses of `previous`'s points onto `current`'s matching points and marks

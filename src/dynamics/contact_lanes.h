@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <vector>
 
@@ -86,7 +87,7 @@ class LaneContactSolver final : public ContactLanes {
     const auto prefetch = [&](std::size_t i) {
       const Contact& ahead = in.contacts[in.order[i]];
       const char* bytes = reinterpret_cast<const char*>(&ahead);
-      for (std::size_t line = 0; line < sizeof(Contact); line += 64) __builtin_prefetch(bytes + line);
+      for (std::size_t line = 0; line < offsetof(Contact, cache); line += 64) __builtin_prefetch(bytes + line);
       __builtin_prefetch(&in.storage.states[ahead.bodyA]);
       __builtin_prefetch(&in.storage.states[ahead.bodyB]);
     };
