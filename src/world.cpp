@@ -916,10 +916,9 @@ void World::Impl::narrowPhase(float dt) {
         continue;
       }
       // Kept empty, so that next step can take the same "apart" while the pair does not move. It
-      // has no points: the solver, the events and the islands pass it by.
-      const detail::ManifoldCache cache = c.cache;
-      c = Contact{};
-      c.cache = cache;
+      // has no points: the solver, the events and the islands pass it by. Only its manifold and
+      // cache were written since it was made, and the cache is what it is kept for.
+      c.manifold = Manifold{};
       c.key = key;
       c.bodyA = ia;
       c.bodyB = ib;
