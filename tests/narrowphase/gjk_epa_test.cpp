@@ -280,3 +280,26 @@ TEST(Distance, PlaneAndConvexAndRejectedShapes) {
   EXPECT_TRUE(mirrored.overlapping);
   EXPECT_NEAR(mirrored.normal.y, -1.0f, 1e-6f);
 }
+
+// Found by the narrow-phase fuzzer: a rotation 3.6e-4 off unit length (the queries accept 1e-3)
+// turned GJK's normal into the world 1.0015 long. The normal is a direction: unit whatever the
+// rotation's rounding. The rest is what such a rotation means: it turns and also stretches by
+// |q|^2, which moves B in A's frame, and A's far side, by at most (|q|^2 - 1) times their reach.
+TEST(Gjk, NormalStaysUnitUnderANearlyUnitRotation) {
+  const Shape cylinder(Cylinder{0.400013894f, 0.600000739f});
+  const Shape ball(Sphere{0.00999999978f});
+  Transform ta, tb;
+  ta.position = Vec3(4.57763672e-05f, 0.000137329102f, -0.744106293f);
+  ta.rotation = Quat(1.52587891e-05f, 0.0269931555f, -1.0f, 1.52587891e-05f);  // |q| = 1.00036
+  tb.position = Vec3(-2.92968655f, -0.741176367f, -0.741176367f);
+  const DistanceResult d = distance(cylinder, ta, ball, tb);
+  ASSERT_FALSE(d.overlapping);
+  EXPECT_NEAR(glm::length(d.normal), 1.0f, 1e-5f);
+  Transform unit = ta;
+  unit.rotation = glm::normalize(ta.rotation);
+  const DistanceResult reference = distance(cylinder, unit, ball, tb);
+  const float stretch = glm::dot(ta.rotation, ta.rotation) - 1.0f;
+  const float reach = glm::length(tb.position - ta.position) + glm::length(Vec3(0.4f, 0.6f, 0.0f));
+  EXPECT_NEAR(d.distance, reference.distance, 2.0f * stretch * reach);
+  EXPECT_GT(glm::dot(d.normal, reference.normal), std::cos(0.01f));
+}
