@@ -92,19 +92,16 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   std::array<std::uint32_t, kGraphColors + 2> start{};
   for (int color = 0; color <= kGraphColors + 1; ++color) start[color] = bucketStart[color * kCounts];
   order_.resize(solvedContacts_.size());
-  placeInOrder_.resize(solvedContacts_.size());
-  for (std::size_t i = 0; i < solvedContacts_.size(); ++i) {
-    placeInOrder_[i] = bucketStart[bucketOf(i)]++;
-    order_[placeInOrder_[i]] = solvedContacts_[i];
-  }
-  solvedContacts_.swap(order_);  // order_ keeps the contact-array order
+  for (std::size_t i = 0; i < solvedContacts_.size(); ++i)
+    order_[bucketStart[bucketOf(i)]++] = solvedContacts_[i];
+  solvedContacts_.swap(order_);
 
   // Every spring is capped at a quarter of the substep rate (h omega <= pi / 2), where Gauss-Seidel
   // still resolves it; stiffer, coupled points overshoot and stacks shiver (docs/architecture.md).
   const float maxHertz = kMaxHertzPerSubstepRate / h;
   const ContactTuning& tuning = settings.tuning;
   const ContactBatchInput input{
-      contacts, solvedContacts_, start, order_, colorOf_, placeInOrder_, storage, bodies, infos, solverOf,
+      contacts, solvedContacts_, start, storage, bodies, infos, solverOf,
       makeSoftness(std::min(tuning.hertz, maxHertz), tuning.dampingRatio, h),
       // A one-way pair has half the effective mass to move: Box2D v3 doubles its stiffness, within the cap.
       makeSoftness(std::min(2.0f * tuning.hertz, maxHertz), tuning.dampingRatio, h), settings.friction,

@@ -66,11 +66,6 @@ struct ContactBatchInput {
   std::vector<Contact>& contacts;
   const std::vector<std::uint32_t>& order;
   const std::array<std::uint32_t, kGraphColors + 2>& colorStart;
-  // The same contacts in contact-array order, each with its colour and its place in `order`: the
-  // batches are filled walking the contacts in memory order.
-  const std::vector<std::uint32_t>& byIndex;
-  const std::vector<std::uint8_t>& colorOf;
-  const std::vector<std::uint32_t>& placeInOrder;
   const BodyStorage& storage;
   const std::vector<SolverBody>& bodies;
   const std::vector<SolverBodyInfo>& infos;
@@ -137,7 +132,6 @@ class ContactSolver {
   std::vector<std::uint64_t> colorBits_;
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> colorOf_;
-  std::vector<std::uint32_t> placeInOrder_;
 };
 
 }  // namespace collide::detail
