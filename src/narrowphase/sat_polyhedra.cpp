@@ -622,20 +622,8 @@ void triangleFaceContact(const TriangleFrame& t, const SatTriangle& triangle, fl
                         });
     std::swap(in, next);
   }
-  for (std::size_t i = 0; i < count; ++i) {
-    const Vec3 p = in[i].position;
-    const float separation = glm::dot(normal, p) - offset;
-    if (separation > margin) continue;
-    const std::uint32_t bits = in[i].featureId & kSideBits;
-    if (insideFlatPatch(triangle, bits)) continue;
-    NormalContact contact;
-    contact.normal = normal;
-    contact.point.pointOnA = p - separation * normal;
-    contact.point.pointOnB = p;
-    contact.point.depth = -separation;
-    contact.point.featureId = featurePair(meshFeature(triangle, bits), in[i].featureId >> 16);
-    contacts.push_back(contact);
-  }
+  appendClippedFaceContacts(std::span<const ClipVertex>(in, count), triangle, normal, offset, margin,
+                            contacts);
 }
 
 // Face contact on a face of the polyhedron: the triangle clipped against its side planes.

@@ -9,7 +9,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
+#include <vector>
 
+#include "geometry/clipping.h"
 #include "narrowphase/pair_functions.h"
 
 namespace collide::detail {
@@ -74,6 +77,29 @@ inline bool insideFlatPatch(const SatTriangle& triangle, std::uint32_t bits) {
   }
   const int corner = cornerBetween(bits);
   return corner >= 0 && ((triangle.flatVertices >> corner) & 1u);
+}
+
+// The points of the other shape clipped to the triangle (their ids: side bits low, the shape's
+// feature high) as contacts of a triangle face contact along `normal` (from the triangle, whose
+// plane is normal . x = offset): each within the margin, on the triangle's plane in A, and not
+// inside a flat patch (its neighbours' points span the region without it).
+inline void appendClippedFaceContacts(std::span<const ClipVertex> points, const SatTriangle& triangle,
+                                      const Vec3& normal, float offset, float margin,
+                                      std::vector<NormalContact>& contacts) {
+  for (const ClipVertex& clipped : points) {
+    const Vec3 p = clipped.position;
+    const float separation = glm::dot(normal, p) - offset;
+    if (separation > margin) continue;
+    const std::uint32_t bits = clipped.featureId & kSideBits;
+    if (insideFlatPatch(triangle, bits)) continue;
+    NormalContact contact;
+    contact.normal = normal;
+    contact.point.pointOnA = p - separation * normal;
+    contact.point.pointOnB = p;
+    contact.point.depth = -separation;
+    contact.point.featureId = featurePair(meshFeature(triangle, bits), clipped.featureId >> 16);
+    contacts.push_back(contact);
+  }
 }
 
 // Whether a contact normal (from the triangle) is one the surface can give: the triangle's face

@@ -116,20 +116,8 @@ void faceContact(const TriangleFrame& t, const SatTriangle& triangle, float side
   for (std::uint32_t k = 0; k < 3 && count > 0; ++k) {
     clip(Plane{t.outward[k], glm::dot(t.outward[k], t.v[k])}, 1u << k);
   }
-  for (std::size_t i = 0; i < count; ++i) {
-    const Vec3 p = in[i].position;
-    const float separation = glm::dot(normal, p) - offset;
-    if (separation > margin) continue;
-    const std::uint32_t bits = in[i].featureId & kSideBits;
-    if (insideFlatPatch(triangle, bits)) continue;
-    NormalContact contact;
-    contact.normal = normal;
-    contact.point.pointOnB = p;
-    contact.point.pointOnA = p - separation * normal;
-    contact.point.depth = -separation;
-    contact.point.featureId = featurePair(meshFeature(triangle, bits), in[i].featureId >> 16);
-    contacts.push_back(contact);
-  }
+  appendClippedFaceContacts(std::span<const ClipVertex>(in, count), triangle, normal, offset, margin,
+                            contacts);
 }
 
 // The triangle's feature touching along a contact normal (from the triangle), as side bits: its
