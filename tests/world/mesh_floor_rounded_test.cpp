@@ -1,7 +1,7 @@
 // A sphere and a capsule on a static triangle-mesh floor in the World: the mesh–sphere and
 // mesh–capsule cells' closest-point contacts with internal-edge handling
 // (src/narrowphase/triangle_rounded.cpp).
-#include "shapes/flat_grid.h"
+#include "world/mesh_floor_helpers.h"
 #include "world/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -11,24 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <set>
 
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
-
-// The flat tessellated floor (test::flatGrid), static.
-BodyDef meshFloor(int n) {
-  BodyDef def;
-  def.type = BodyType::Static;
-  def.shape = Shape(test::flatGrid(n));
-  return def;
-}
-
-float degreesFromVertical(const Vec3& normal) {
-  return glm::degrees(std::acos(std::clamp(std::abs(normal.y) / glm::length(normal), 0.0f, 1.0f)));
-}
+constexpr float kDt = test::kMeshFloorDt;
 
 TEST(WorldMeshFloorRounded, SphereRollingAcrossInternalEdgesStaysOnTheFloor) {
   // A sphere (radius 0.3) rolls at 3 m/s across the floor's quad edges, diagonals and vertices, at
@@ -38,7 +25,7 @@ TEST(WorldMeshFloorRounded, SphereRollingAcrossInternalEdgesStaysOnTheFloor) {
   // solver's velocity of a resting ball is not exactly zero (it reads -g·dt/2 after the step), so
   // the mesh's vertical velocity is compared with the plane's, within 0.01 m/s.
   World world, reference;
-  const BodyId floor = world.createBody(meshFloor(10));
+  const BodyId floor = world.createBody(test::meshFloor(10, 0.5f));
   reference.createBody(test::groundPlane());
   BodyDef def = test::sphereBody(Vec3(-3.5f, 0.3f, -0.7f), 0.3f, 1.0f, Vec3(3.0f, 0.0f, 0.7f));
   def.angularVelocity = Vec3(0.7f, 0.0f, -3.0f) / 0.3f;  // rolling: v + ω × (0, -r, 0) = 0
@@ -49,7 +36,7 @@ TEST(WorldMeshFloorRounded, SphereRollingAcrossInternalEdgesStaysOnTheFloor) {
   world.setPreSolveCallback([&](BodyId a, BodyId b, const Manifold& m) {
     if ((a == floor && b == ball) || (a == ball && b == floor)) {
       ++manifolds;
-      worstNormal = std::max(worstNormal, degreesFromVertical(m.normal));
+      worstNormal = std::max(worstNormal, test::degreesFromVertical(m.normal));
     }
     return true;
   });
@@ -81,38 +68,18 @@ TEST(WorldMeshFloorRounded, SphereRollingAcrossInternalEdgesStaysOnTheFloor) {
 
 TEST(WorldMeshFloorRounded, CapsuleLyingOnTheFloorRestsOnTwoPoints) {
   // A capsule dropped lying flat settles on both ends: two points, the same two ids every step.
-  World world;
-  const BodyId floor = world.createBody(meshFloor(10));
   BodyDef def;
   def.shape = Capsule{0.2f, 0.6f};
   def.position = Vec3(0.3f, 0.25f, -0.2f);
   // Lying along a horizontal line turned 25° from the grid's x axis.
   def.rotation = glm::angleAxis(glm::radians(25.0f), Vec3(0.0f, 1.0f, 0.0f)) *
                  glm::angleAxis(glm::radians(90.0f), Vec3(0.0f, 0.0f, 1.0f));
-  const BodyId capsule = world.createBody(def);
-  std::set<std::uint32_t> ids, first;
-  int count = 0;
-  world.setPreSolveCallback([&](BodyId a, BodyId b, const Manifold& m) {
-    if (!((a == floor && b == capsule) || (a == capsule && b == floor))) return true;
-    ids.clear();
-    for (int i = 0; i < m.count; ++i) ids.insert(m.points[i].featureId);
-    count = m.count;
-    return true;
-  });
-  int steps = 0, twoPoints = 0, changed = 0;
-  for (int i = 0; i < 90; ++i) {
-    world.step(kDt);
-    if (i < 30) continue;  // settling
-    ++steps;
-    if (first.empty()) first = ids;
-    twoPoints += count == 2;
-    changed += ids != first;
-  }
-  EXPECT_EQ(first.size(), 2u);
-  EXPECT_EQ(twoPoints, steps);
-  EXPECT_EQ(changed, 0);
-  EXPECT_NEAR(world.transform(capsule).position.y, 0.2f, 0.01f);
-  EXPECT_LT(glm::length(world.angularVelocity(capsule)), 0.05f);
+  const test::FloorRest rest = test::restOnMeshFloor(def, 0.5f, 2, 90);
+  EXPECT_EQ(rest.firstIds, 2u);
+  EXPECT_EQ(rest.withPoints, rest.steps);
+  EXPECT_EQ(rest.changed, 0);
+  EXPECT_NEAR(rest.end.y, 0.2f, 0.01f);
+  EXPECT_LT(glm::length(rest.spin), 0.05f);
 }
 
 }  // namespace
