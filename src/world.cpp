@@ -310,11 +310,6 @@ void validateWorldDef(const WorldDef& def) {
   checkSleep(sleep.timeToSleep, sleep.timeToSleep > 0.0f, "timeToSleep (must be > 0)");
 }
 
-bool sameBroadPhaseSettings(const BroadPhaseSettings& a, const BroadPhaseSettings& b) {
-  return a.type == b.type && a.treeMargin == b.treeMargin && a.gridCellSize == b.gridCellSize &&
-         a.gridMaxCellsPerAxis == b.gridMaxCellsPerAxis;
-}
-
 }  // namespace
 
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
@@ -332,7 +327,7 @@ const WorldDef& World::def() const { return impl_->def; }
 void World::setDef(const WorldDef& def) {
   validateWorldDef(def);
   Impl& w = *impl_;
-  if (!sameBroadPhaseSettings(def.broadPhase, w.def.broadPhase)) {
+  if (def.broadPhase != w.def.broadPhase) {
     std::unique_ptr<BroadPhase> next = createBroadPhase(def.broadPhase);  // may throw: nothing changed yet
     next->adoptProxies(*w.broadPhase);
     w.broadPhase = std::move(next);

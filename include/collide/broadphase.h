@@ -98,6 +98,8 @@ struct BroadPhaseSettings {
   // Grid: proxies spanning more cells than this along any axis (the ground) are kept in a separate
   // list tested against all, so that they do not fill thousands of cells.
   std::uint32_t gridMaxCellsPerAxis = 4;
+
+  bool operator==(const BroadPhaseSettings&) const = default;
 };
 
 struct ProxyRayHit {
