@@ -830,6 +830,7 @@ void World::Impl::narrowPhase(float dt) {
     const std::uint64_t key = detail::pairKey(pair.a.index, pair.b.index);
     while (j < previousContacts.size() && previousContacts[j].key < key) endVanished(previousContacts[j++]);
     const Contact* previous = nullptr;
+    bool reusedManifold = false;
 
     const auto ia = static_cast<std::uint32_t>(broadPhase->records()[pair.a.index].userValue);
     const auto ib = static_cast<std::uint32_t>(broadPhase->records()[pair.b.index].userValue);
@@ -872,6 +873,7 @@ void World::Impl::narrowPhase(float dt) {
                               scaledRotations[ib], ra.originRadius, rb.originRadius,
                               def.contact.manifoldCacheDistance, c.manifold)) {
       c.cache = previous->cache;
+      reusedManifold = true;
       ++reused;
     } else if (glm::length(tb.position - ta.position) > ra.originRadius + rb.originRadius + margin) {
       // The bounding spheres are apart by more than the margin: the lecture's early reject with the
@@ -941,7 +943,7 @@ void World::Impl::narrowPhase(float dt) {
       if (!c.wasTouching) c.friction = 0.0f;
     }
     if (previous) {
-      detail::inheritContact(*previous, c, def.contact.linearSlop);
+      detail::inheritContact(*previous, c, def.contact.linearSlop, reusedManifold);
     } else {
       c.points = {};
     }

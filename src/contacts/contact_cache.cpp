@@ -108,8 +108,16 @@ bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Tra
   return true;
 }
 
-void inheritContact(const Contact& previous, Contact& current, float matchDistance) {
-  matchContactPoints(previous, current, matchDistance);
+void inheritContact(const Contact& previous, Contact& current, float matchDistance, bool reused) {
+  if (reused) {
+    for (int i = 0; i < current.manifold.count; ++i) {
+      current.points[i] = ContactPointState{};
+      current.points[i].normalImpulse = previous.points[i].normalImpulse;
+      current.points[i].prolonged = true;
+    }
+  } else {
+    matchContactPoints(previous, current, matchDistance);
+  }
   current.frictionImpulse = previous.frictionImpulse;
   current.twistImpulse = previous.twistImpulse;
   current.stickLocalA = previous.stickLocalA;

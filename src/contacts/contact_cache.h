@@ -97,8 +97,10 @@ struct Contact {
 void matchContactPoints(const Contact& previous, Contact& current, float matchDistance = 0.0f);
 
 // The whole contact carried over from last step: the points matched as above, and the friction
-// patch's impulses and static anchor.
-void inheritContact(const Contact& previous, Contact& current, float matchDistance);
+// patch's impulses and static anchor. A manifold placed again from the cache (reuseManifold) is
+// the previous one point for point: `reused` says so, and point i then takes point i's state
+// without a search.
+void inheritContact(const Contact& previous, Contact& current, float matchDistance, bool reused = false);
 
 inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
   return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;

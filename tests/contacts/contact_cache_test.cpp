@@ -114,5 +114,31 @@ TEST(ContactCache, InheritedContactKeepsItsFrictionPatch) {
   EXPECT_TRUE(current.stuck);
 }
 
+// A manifold placed again from the cache is last step's point for point, whatever the points'
+// names and however far the pair carried them: point i keeps point i's impulse. A search would
+// pair these wrongly (shared ids, each new point nearer the other old one).
+TEST(ContactCache, ReusedManifoldKeepsEachPointsOwnImpulse) {
+  Contact previous;
+  previous.manifold.count = 2;
+  previous.manifold.points[0] = pointAt(0.0f, 0);
+  previous.manifold.points[1] = pointAt(1.0f, 0);
+  previous.points[0].normalImpulse = 1.0f;
+  previous.points[1].normalImpulse = 2.0f;
+  previous.points[1].totalNormalImpulse = 5.0f;
+  Contact current;
+  current.manifold.count = 2;
+  current.manifold.points[0] = pointAt(0.9f, 0);
+  current.manifold.points[1] = pointAt(1.9f, 0);
+  Contact searched = current;
+  inheritContact(previous, current, 0.005f, true);
+  EXPECT_EQ(current.points[0].normalImpulse, 1.0f);
+  EXPECT_EQ(current.points[1].normalImpulse, 2.0f);
+  EXPECT_TRUE(current.points[0].prolonged);
+  EXPECT_TRUE(current.points[1].prolonged);
+  EXPECT_EQ(current.points[1].totalNormalImpulse, 0.0f);  // per step, not carried
+  inheritContact(previous, searched, 0.005f, false);
+  EXPECT_EQ(searched.points[0].normalImpulse, 2.0f);  // the nearest old point with the same id
+}
+
 }  // namespace
 }  // namespace collide::detail
