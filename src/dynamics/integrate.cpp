@@ -66,18 +66,18 @@ bool isIsotropic(const Mat3& inertia) {
 constexpr float kGyroscopicMinTurn = 1e-4f;
 
 void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
-                         const BodyStorage& storage, const Vec3& gravity, float h) {
+                         const BodyStorage& storage, float h) {
   const float maxAngularSpeed = kMaxRotationPerSubstep / h;
   for (std::size_t j = 0; j < bodies.size(); ++j) {
     const SolverBodyInfo& info = infos[j];
     if (!info.dynamic || info.faulted) continue;
-    const BodyRecord& record = storage.records[info.body];
     SolverBody& b = bodies[j];
-    b.linearVelocity += h * (gravity + info.inverseMass * record.force);
+    b.linearVelocity += h * info.linearAcceleration;
     if (info.particle) continue;
-    b.angularVelocity += h * (info.inverseInertiaWorld * record.torque);
+    b.angularVelocity += h * info.angularAcceleration;
     const float turn2 = h * h * glm::dot(b.angularVelocity, b.angularVelocity);
-    if (!record.isotropicInertia && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {
+    if (info.gyroscopic && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {
+      const BodyRecord& record = storage.records[info.body];
       const Quat rotation = b.deltaRotation * storage.states[info.body].rotation0;
       const Vec3 bodyOmega = glm::conjugate(rotation) * b.angularVelocity;
       b.angularVelocity =

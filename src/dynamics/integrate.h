@@ -19,9 +19,10 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3&
 bool isIsotropic(const Mat3& inertia);
 
 // Velocity step of one substep for the dynamic solver bodies: gravity, the body's accumulated force
-// and torque, and the gyroscopic term; the angular speed is bounded (see integrate.cpp).
+// and torque (SolverBodyInfo's accelerations), and the gyroscopic term; the angular speed is bounded
+// (see integrate.cpp).
 void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
-                         const BodyStorage& storage, const Vec3& gravity, float h);
+                         const BodyStorage& storage, float h);
 
 // Position step of one substep for dynamic and kinematic solver bodies: the change of position by
 // v h, the change of rotation by dq' = 1/2 (0, w) dq, renormalised; particles never turn.

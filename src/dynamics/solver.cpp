@@ -18,7 +18,7 @@ bool finite(const Quat& q) {
 
 }  // namespace
 
-void StepSolver::gatherBodies(BodyStorage& storage) {
+void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity) {
   const std::size_t n = storage.states.size();
   solverOf_.assign(n, kNoSolverBody);
   bodies_.clear();
@@ -40,6 +40,9 @@ void StepSolver::gatherBodies(BodyStorage& storage) {
     if (info.dynamic) {
       info.inverseMass = s.inverseMass;
       info.inverseInertiaWorld = s.inverseInertiaWorld;
+      info.linearAcceleration = gravity + info.inverseMass * r.force;
+      info.angularAcceleration = info.inverseInertiaWorld * r.torque;
+      info.gyroscopic = !r.particle && !r.isotropicInertia;
     }
   }
 }
@@ -93,7 +96,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
                        std::vector<DistanceJoint>& joints, const StepSettings& settings, float dt,
                        std::vector<FaultEvent>& faults) {
   const float h = dt / static_cast<float>(settings.substeps);
-  gatherBodies(storage);
+  gatherBodies(storage, settings.gravity);
   faultFields_.assign(bodies_.size(), 0);
   ContactSolverSettings contactSettings;
   contactSettings.tuning = settings.tuning;
@@ -105,7 +108,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
   // joint past it made a net draped over a ball shiver instead of sleeping).
   const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
   for (int i = 0; i < settings.substeps; ++i) {
-    integrateVelocities(bodies_, infos_, storage, settings.gravity, h);
+    integrateVelocities(bodies_, infos_, storage, h);
     guard();  // before a bad velocity reaches a contact
     warmStartJoints(view, joints);
     contacts_.warmStart(bodies_);

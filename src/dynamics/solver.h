@@ -40,7 +40,7 @@ class StepSolver {
   const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
 
  private:
-  void gatherBodies(BodyStorage& storage);
+  void gatherBodies(BodyStorage& storage, const Vec3& gravity);
   void writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults);
   void guard();
 

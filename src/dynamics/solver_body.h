@@ -31,7 +31,13 @@ struct SolverBodyInfo {
   std::uint32_t body = 0;  // index in the body storage
   float inverseMass = 0.0f;
   Mat3 inverseInertiaWorld{0.0f};  // at the step start: the solver holds inertia fixed over a step
-  bool dynamic = false;            // false: kinematic (moves by its velocity, infinite mass)
+  // The velocity change per second from gravity and the body's force and torque, constant over the
+  // step: integration then reads no body record until a body spins fast enough for the gyroscopic
+  // term.
+  Vec3 linearAcceleration{0.0f};
+  Vec3 angularAcceleration{0.0f};
+  bool gyroscopic = false;  // a rigid body whose inertia is not isotropic
+  bool dynamic = false;     // false: kinematic (moves by its velocity, infinite mass)
   bool particle = false;
   bool faulted = false;  // the fault guard stopped it during this step
 };
