@@ -87,24 +87,29 @@ class LaneContactSolver final : public ContactLanes {
     const auto prefetch = [&](std::size_t i) {
       const Contact& ahead = in.contacts[in.order[i]];
       const char* bytes = reinterpret_cast<const char*>(&ahead);
-      for (std::size_t line = 0; line < offsetof(Contact, cache); line += 64) __builtin_prefetch(bytes + line);
+      for (std::size_t line = 0; line < offsetof(Contact, cache); line += 64)
+        __builtin_prefetch(bytes + line);
       __builtin_prefetch(&in.storage.states[ahead.bodyA]);
       __builtin_prefetch(&in.storage.states[ahead.bodyB]);
     };
     for (std::size_t i = 0; i < std::min(kAhead, total); ++i) prefetch(i);
     for (int color = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      for (std::uint32_t i = in.colorStart[color]; i < in.colorStart[color + 1]; ++i) {
-        if (i + kAhead < total) prefetch(i + kAhead);
-        const std::uint32_t offset = i - in.colorStart[color];
-        Batch& batch = batches_[batchStart[color] + offset / perBatch];
-        if (offset % perBatch == 0) {
-          std::memset(static_cast<void*>(&batch), 0, sizeof(Batch));
-          batch.bodyA.fill(kNoSolverBody);
-          batch.bodyB.fill(kNoSolverBody);
-          batch.contact.fill(-1);
+      const std::uint32_t end = in.colorStart[color + 1];
+      Batch* batch = &batches_[batchStart[color]];
+      for (std::uint32_t first = in.colorStart[color]; first < end; first += perBatch, ++batch) {
+        std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
+        batch->bodyA.fill(kNoSolverBody);
+        batch->bodyB.fill(kNoSolverBody);
+        batch->contact.fill(-1);
+        LaneInputs inputs;
+        std::memset(static_cast<void*>(&inputs), 0, sizeof(LaneInputs));
+        const std::uint32_t last = std::min(first + perBatch, end);
+        for (std::uint32_t i = first; i < last; ++i) {
+          if (i + kAhead < total) prefetch(i + kAhead);
+          fillLane(in, *batch, inputs, static_cast<int>(i - first), in.order[i]);
         }
-        fillLane(in, batch, static_cast<int>(offset % perBatch), in.order[i]);
+        finishBatch(*batch, inputs);
       }
     }
   }
@@ -389,9 +394,36 @@ class LaneContactSolver final : public ContactLanes {
     }
   }
 
-  // One contact into one lane: anchors, effective masses, the approach velocity before the solve, the
-  // friction patch and its static anchor.
-  static void fillLane(const ContactBatchInput& in, Batch& c, int lane, std::uint32_t contactIndex) {
+  // What a batch's vectorised part (finishBatch) reads, gathered lane by lane by fillLane. Lanes
+  // and points without a contact stay zero.
+  struct LaneInputs {
+    std::array<Vec, Manifold::kMaxPoints> points;  // the manifold's midpoints
+    std::array<F, Manifold::kMaxPoints> depths;
+    F count;  // the manifold's points, as a float
+    Vec centroid;
+    Vec centerA, centerB;
+    Vec linearA, angularA, linearB, angularB;  // velocities before the solve
+    // The columns of each side's world inverse inertia; zero for a side the solver does not move.
+    std::array<Vec, 3> inertiaA, inertiaB;
+  };
+
+  static COLLIDE_INLINE Vec times(const std::array<Vec, 3>& m, const Vec& v) {
+    // glm's order (column 0 by x, plus column 1 by y, plus column 2 by z), so a lane computes what
+    // glm computes for it.
+    return {m[0].x * v.x + m[1].x * v.y + m[2].x * v.z, m[0].y * v.x + m[1].y * v.y + m[2].y * v.z,
+            m[0].z * v.x + m[1].z * v.y + m[2].z * v.z};
+  }
+
+  static COLLIDE_INLINE Vec select(F mask, const Vec& a) {
+    const F zero = zeroT<F>();
+    return {selectW(mask, a.x, zero), selectW(mask, a.y, zero), selectW(mask, a.z, zero)};
+  }
+
+  // One contact into one lane, the scalar part: bodies, masses, basis, settings and the friction
+  // patch's warm start and static anchor; the rest (anchors, effective masses, approach velocity)
+  // is finishBatch's, for all lanes at once.
+  static void fillLane(const ContactBatchInput& in, Batch& c, LaneInputs& inputs, int lane,
+                       std::uint32_t contactIndex) {
     Contact& contact = in.contacts[contactIndex];
     const BodyState& stateA = in.storage.states[contact.bodyA];
     const BodyState& stateB = in.storage.states[contact.bodyB];
@@ -404,12 +436,21 @@ class LaneContactSolver final : public ContactLanes {
     c.writeB[lane] = ib >= 0 && in.infos[ib].dynamic;
     const float mA = c.writeA[lane] ? in.infos[ia].inverseMass : 0.0f;
     const float mB = c.writeB[lane] ? in.infos[ib].inverseMass : 0.0f;
-    const Mat3 iA = c.writeA[lane] ? in.infos[ia].inverseInertiaWorld : Mat3(0.0f);
-    const Mat3 iB = c.writeB[lane] ? in.infos[ib].inverseInertiaWorld : Mat3(0.0f);
-    const Vec3 vA = ia >= 0 ? in.bodies[ia].linearVelocity : Vec3(0.0f);
-    const Vec3 wA = ia >= 0 ? in.bodies[ia].angularVelocity : Vec3(0.0f);
-    const Vec3 vB = ib >= 0 ? in.bodies[ib].linearVelocity : Vec3(0.0f);
-    const Vec3 wB = ib >= 0 ? in.bodies[ib].angularVelocity : Vec3(0.0f);
+    // A side the solver does not move (static, kinematic) keeps the zeros of the cleared inputs.
+    for (int column = 0; column < 3; ++column) {
+      if (c.writeA[lane]) setLane(inputs.inertiaA[column], lane, in.infos[ia].inverseInertiaWorld[column]);
+      if (c.writeB[lane]) setLane(inputs.inertiaB[column], lane, in.infos[ib].inverseInertiaWorld[column]);
+    }
+    if (ia >= 0) {
+      setLane(inputs.linearA, lane, in.bodies[ia].linearVelocity);
+      setLane(inputs.angularA, lane, in.bodies[ia].angularVelocity);
+    }
+    if (ib >= 0) {
+      setLane(inputs.linearB, lane, in.bodies[ib].linearVelocity);
+      setLane(inputs.angularB, lane, in.bodies[ib].angularVelocity);
+    }
+    setLane(inputs.centerA, lane, stateA.centerOfMass);
+    setLane(inputs.centerB, lane, stateB.centerOfMass);
     laneOf(c.inverseMassA, lane) = mA;
     laneOf(c.inverseMassB, lane) = mB;
 
@@ -429,64 +470,23 @@ class LaneContactSolver final : public ContactLanes {
 
     const int count = contact.manifold.count;
     c.pointCount = std::max(c.pointCount, count);
+    laneOf(inputs.count, lane) = static_cast<float>(count);
     Vec3 centroid(0.0f);
     for (int k = 0; k < count; ++k) {
-      const ContactPoint& mp = contact.manifold.points[k];
-      const ContactPointState& state = contact.points[k];
-      BatchPoint<F>& p = c.points[k];
-      const Vec3 point = mp.midpoint();
+      const Vec3 point = contact.manifold.points[k].midpoint();
       centroid += point;
-      const Vec3 rA = point - stateA.centerOfMass;
-      const Vec3 rB = point - stateB.centerOfMass;
-      const Vec3 crossA = glm::cross(rA, n);
-      const Vec3 crossB = glm::cross(rB, n);
-      setLane(p.anchorA, lane, rA);
-      setLane(p.anchorB, lane, rB);
-      // A side the solver does not move (static, kinematic) keeps the zeros of the cleared batch.
-      const Vec3 turnA = c.writeA[lane] ? iA * crossA : Vec3(0.0f);
-      const Vec3 turnB = c.writeB[lane] ? iB * crossB : Vec3(0.0f);
-      setLane(p.turnA, lane, turnA);
-      setLane(p.turnB, lane, turnB);
-      laneOf(p.baseSeparation, lane) = -mp.depth - glm::dot(rB - rA, n);
-      const float kn = mA + mB + glm::dot(crossA, turnA) + glm::dot(crossB, turnB);
-      laneOf(p.normalMass, lane) = kn > 0.0f ? 1.0f / kn : 0.0f;
-      laneOf(p.normalImpulse, lane) = state.normalImpulse;
-      const Vec3 dv = vB + glm::cross(wB, rB) - vA - glm::cross(wA, rA);
-      laneOf(p.approachVelocity, lane) = glm::dot(dv, n);
+      setLane(inputs.points[k], lane, point);
+      laneOf(inputs.depths[k], lane) = contact.manifold.points[k].depth;
+      laneOf(c.points[k].normalImpulse, lane) = contact.points[k].normalImpulse;
     }
     centroid /= static_cast<float>(count);
+    setLane(inputs.centroid, lane, centroid);
 
     // The friction patch at the centroid.
     const Vec3 rA = centroid - stateA.centerOfMass;
     const Vec3 rB = centroid - stateB.centerOfMass;
-    const Vec3 t1A = glm::cross(rA, t1), t2A = glm::cross(rA, t2);
-    const Vec3 t1B = glm::cross(rB, t1), t2B = glm::cross(rB, t2);
     setLane(c.patchA, lane, rA);
     setLane(c.patchB, lane, rB);
-    const Vec3 u1A = c.writeA[lane] ? iA * t1A : Vec3(0.0f), u2A = c.writeA[lane] ? iA * t2A : Vec3(0.0f);
-    const Vec3 u1B = c.writeB[lane] ? iB * t1B : Vec3(0.0f), u2B = c.writeB[lane] ? iB * t2B : Vec3(0.0f);
-    setLane(c.tangent1TurnA, lane, u1A);
-    setLane(c.tangent2TurnA, lane, u2A);
-    setLane(c.tangent1TurnB, lane, u1B);
-    setLane(c.tangent2TurnB, lane, u2B);
-    // The tangents are orthonormal, so the linear part of the off-diagonal term vanishes.
-    const float k11 = mA + mB + glm::dot(t1A, u1A) + glm::dot(t1B, u1B);
-    const float k12 = glm::dot(t1A, u2A) + glm::dot(t1B, u2B);
-    const float k22 = mA + mB + glm::dot(t2A, u2A) + glm::dot(t2B, u2B);
-    const float det = k11 * k22 - k12 * k12;
-    if (det > 0.0f) {
-      laneOf(c.tangentMass11, lane) = k22 / det;
-      laneOf(c.tangentMass12, lane) = -k12 / det;
-      laneOf(c.tangentMass22, lane) = k11 / det;
-    }
-    const Vec3 twistA = c.writeA[lane] ? iA * n : Vec3(0.0f), twistB = c.writeB[lane] ? iB * n : Vec3(0.0f);
-    setLane(c.twistTurnA, lane, twistA);
-    setLane(c.twistTurnB, lane, twistB);
-    const float kt = glm::dot(n, twistA) + glm::dot(n, twistB);
-    laneOf(c.twistMass, lane) = kt > 0.0f ? 1.0f / kt : 0.0f;
-    float radius = 0.0f;
-    for (int k = 0; k < count; ++k) radius += glm::length(contact.manifold.points[k].midpoint() - centroid);
-    laneOf(c.twistRadius, lane) = kTwistRadiusScale * radius / static_cast<float>(count);
     if (friction == 0.0f) {
       contact.frictionImpulse = Vec3(0.0f);
       contact.twistImpulse = 0.0f;
@@ -524,6 +524,66 @@ class LaneContactSolver final : public ContactLanes {
     setLane(c.stickB, lane, stickB);
     laneOf(c.stickGap1, lane) = glm::dot(gap, t1);
     laneOf(c.stickGap2, lane) = glm::dot(gap, t2);
+  }
+
+  // The batch's vectorised part, all lanes at once: each point's anchors, turns, effective mass,
+  // base separation and approach velocity; the patch's tangent turns and 2x2 mass; the twist. Each
+  // lane computes what the scalar formulas give for its contact, operation for operation.
+  static void finishBatch(Batch& c, const LaneInputs& in) {
+    const F zero = zeroT<F>();
+    const F one = splatT<F>(1.0f);
+    const Vec& n = c.normal;
+    const F masses = c.inverseMassA + c.inverseMassB;
+    F radius = zero;
+    for (int k = 0; k < c.pointCount; ++k) {
+      const F present = greaterW(in.count, splatT<F>(static_cast<float>(k)));
+      BatchPoint<F>& p = c.points[k];
+      const Vec rA = in.points[k] - in.centerA;
+      const Vec rB = in.points[k] - in.centerB;
+      const Vec crossA = cross(rA, n);
+      const Vec crossB = cross(rB, n);
+      const Vec turnA = times(in.inertiaA, crossA);
+      const Vec turnB = times(in.inertiaB, crossB);
+      p.anchorA = select(present, rA);
+      p.anchorB = select(present, rB);
+      p.turnA = select(present, turnA);
+      p.turnB = select(present, turnB);
+      p.baseSeparation = selectW(present, -in.depths[k] - dot(rB - rA, n), zero);
+      const F kn = masses + dot(crossA, turnA) + dot(crossB, turnB);
+      const F positive = andW(present, greaterW(kn, zero));
+      p.normalMass = selectW(positive, one / selectW(positive, kn, one), zero);
+      const Vec dv = in.linearB + cross(in.angularB, rB) - in.linearA - cross(in.angularA, rA);
+      p.approachVelocity = selectW(present, dot(dv, n), zero);
+      const Vec offset = in.points[k] - in.centroid;
+      radius = radius + selectW(present, sqrtW(dot(offset, offset)), zero);
+    }
+
+    const Vec& rA = c.patchA;
+    const Vec& rB = c.patchB;
+    const Vec t1A = cross(rA, c.tangent1), t2A = cross(rA, c.tangent2);
+    const Vec t1B = cross(rB, c.tangent1), t2B = cross(rB, c.tangent2);
+    c.tangent1TurnA = times(in.inertiaA, t1A);
+    c.tangent2TurnA = times(in.inertiaA, t2A);
+    c.tangent1TurnB = times(in.inertiaB, t1B);
+    c.tangent2TurnB = times(in.inertiaB, t2B);
+    // The tangents are orthonormal, so the linear part of the off-diagonal term vanishes.
+    const F k11 = masses + dot(t1A, c.tangent1TurnA) + dot(t1B, c.tangent1TurnB);
+    const F k12 = dot(t1A, c.tangent2TurnA) + dot(t1B, c.tangent2TurnB);
+    const F k22 = masses + dot(t2A, c.tangent2TurnA) + dot(t2B, c.tangent2TurnB);
+    const F det = k11 * k22 - k12 * k12;
+    const F invertible = greaterW(det, zero);
+    const F safeDet = selectW(invertible, det, one);
+    c.tangentMass11 = selectW(invertible, k22 / safeDet, zero);
+    c.tangentMass12 = selectW(invertible, -k12 / safeDet, zero);
+    c.tangentMass22 = selectW(invertible, k11 / safeDet, zero);
+    c.twistTurnA = times(in.inertiaA, n);
+    c.twistTurnB = times(in.inertiaB, n);
+    const F kt = dot(n, c.twistTurnA) + dot(n, c.twistTurnB);
+    const F twistable = greaterW(kt, zero);
+    c.twistMass = selectW(twistable, one / selectW(twistable, kt, one), zero);
+    const F filled = greaterW(in.count, zero);
+    c.twistRadius =
+        selectW(filled, splatT<F>(kTwistRadiusScale) * radius / selectW(filled, in.count, one), zero);
   }
 
   std::vector<Batch> batches_;
