@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "geometry/clipping.h"
@@ -92,10 +93,15 @@ struct WorldPolyhedron {
   const UnitCube* cube = nullptr;  // set for a box: its features are named by box codes
   std::span<const Vec3> vertices;  // world
   std::span<const Plane> planes;   // world, outward unit normals
-  // The face normals and distances again as blocks of x, y, z and d (planes.size() each), for
-  // loops over the faces that the compiler vectorises.
+  // The face normals and distances again as blocks of x, y, z and d (blockStride each: the face
+  // count rounded up to kFaceBlock, the padding faces with a zero normal and a distance of 1e30, so
+  // that they never separate anything), for loops over the faces that the compiler vectorises
+  // without a remainder loop.
   std::span<const float> normalBlocks;
+  std::size_t blockStride = 0;
   Vec3 inside{0.0f};  // a point inside the solid (its centroid): edge axes point away from it
+  // The radius of the ball about `inside` that the solid holds: its least distance to a face plane.
+  float inradius = 0.0f;
   float size = 0.0f;  // a length of the shape's scale, for tolerances
 
   std::uint32_t vertexFeature(std::uint32_t v) const { return cube ? cube->vertexCode[v] : (v & kIndexMask); }
@@ -111,6 +117,29 @@ struct WorldPolyhedron {
   }
 };
 
+// The face loops run over whole blocks of this many faces.
+constexpr std::size_t kFaceBlock = 4;
+constexpr float kPaddingDistance = 1e30f;
+
+std::size_t paddedFaceCount(std::size_t faces) { return (faces + kFaceBlock - 1) / kFaceBlock * kFaceBlock; }
+
+// The first index of the largest of values[0, count) (NaNs never win; 0 if all are NaN); `padded`
+// of them (a multiple of kFaceBlock) may be read, those past `count` being no larger than the real
+// ones.
+std::uint32_t firstLargest(const float* __restrict values, std::size_t count, std::size_t padded) {
+  float best[kFaceBlock];
+  for (std::size_t j = 0; j < kFaceBlock; ++j) best[j] = -std::numeric_limits<float>::infinity();
+  for (std::size_t f = 0; f < padded; f += kFaceBlock) {
+    for (std::size_t j = 0; j < kFaceBlock; ++j) best[j] = values[f + j] > best[j] ? values[f + j] : best[j];
+  }
+  float largest = best[0];
+  for (std::size_t j = 1; j < kFaceBlock; ++j) largest = best[j] > largest ? best[j] : largest;
+  for (std::uint32_t index = 0; index < count; ++index) {
+    if (values[index] == largest) return index;
+  }
+  return 0;
+}
+
 // Per-thread scratch for the world vertices and planes of both shapes: no allocation once warm.
 struct Scratch {
   std::vector<Vec3> vertices[2];
@@ -119,7 +148,7 @@ struct Scratch {
   std::vector<float> lowest;      // the face query's lowest vertex per face
   std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
   std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
-  std::vector<std::uint8_t> behind[2];  // per face: which of the other shape's points lie behind it
+  std::vector<std::uint32_t> behind[2];  // per face: which of the other shape's points lie behind it
 };
 
 // The placed polyhedra of this thread, by hull and pose: within a step each body keeps its pose, so
@@ -165,16 +194,23 @@ void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& l
     const Vec3 normal = rotation * face.plane.normal;
     planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
   }
-  blocks.resize(4 * planes.size());
+  const std::size_t stride = paddedFaceCount(planes.size());
+  blocks.assign(4 * stride, 0.0f);
   for (std::size_t f = 0; f < planes.size(); ++f) {
-    for (int axis = 0; axis < 3; ++axis) blocks[axis * planes.size() + f] = planes[f].normal[axis];
-    blocks[3 * planes.size() + f] = planes[f].distance;
+    for (int axis = 0; axis < 3; ++axis) blocks[axis * stride + f] = planes[f].normal[axis];
+    blocks[3 * stride + f] = planes[f].distance;
   }
+  for (std::size_t f = planes.size(); f < stride; ++f) blocks[3 * stride + f] = kPaddingDistance;
   poly.vertices = vertices;
   poly.planes = planes;
   poly.normalBlocks = blocks;
+  poly.blockStride = stride;
   const Aabb bounds = hull.bounds();
   poly.inside = transform.position + rotation * (localScale * hull.centroid());
+  poly.inradius = 1e30f;
+  for (const Plane& plane : planes) {
+    poly.inradius = std::min(poly.inradius, plane.distance - glm::dot(plane.normal, poly.inside));
+  }
   poly.size = glm::length(localScale * bounds.halfExtents());
 }
 
@@ -227,27 +263,47 @@ struct FaceQuery {
 
 // The largest separation of B from a face plane of A: the plane's distance to B's support against
 // its normal.
-FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b, Scratch& scratch) {
-  // Vertex by vertex of B, all faces of A at once: an element-wise minimum over blocked normals that
-  // the compiler vectorises (the same dot products as face by face, so the same answer).
-  const std::size_t faces = a.planes.size();
-  std::vector<float>& lowest = scratch.lowest;
-  lowest.assign(faces, 1e30f);
-  const float* xs = a.normalBlocks.data();
-  const float* ys = xs + faces;
-  const float* zs = ys + faces;
-  const float* ds = zs + faces;
-  float* low = lowest.data();
+// The separation of B from face f of A: the plane's distance to B's lowest vertex against it.
+float faceSeparation(const WorldPolyhedron& a, std::uint32_t f, const WorldPolyhedron& b) {
+  const std::size_t stride = a.blockStride;
+  const float* blocks = a.normalBlocks.data();
+  const float x = blocks[f], y = blocks[stride + f], z = blocks[2 * stride + f];
+  float low = 1e30f;
   for (const Vec3& v : b.vertices) {
-    for (std::size_t f = 0; f < faces; ++f) {
-      const float d = xs[f] * v.x + ys[f] * v.y + zs[f] * v.z;
-      low[f] = d < low[f] ? d : low[f];
-    }
+    const float d = x * v.x + y * v.y + z * v.z;
+    low = d < low ? d : low;
   }
+  return low - blocks[3 * stride + f];
+}
+
+// The largest separation of B from a face plane of A (the first such face on a tie). B holds the
+// ball of radius r about its centroid c (WorldPolyhedron::inradius), so B's lowest point along a
+// face normal n is at most n . c - r, and its separation from that face (n, d) at most
+// n . c - r - d. Those bounds, all faces at once over the blocked normals, leave the exact test
+// (every vertex of B) to the faces that can still beat the best found: for a touching pair, the
+// few that face B.
+FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b, Scratch& scratch) {
+  const std::size_t stride = a.blockStride;
+  const std::size_t faces = a.planes.size();
+  std::vector<float>& bounds = scratch.lowest;
+  bounds.resize(stride);
+  const float* __restrict xs = a.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const float* __restrict ds = zs + stride;
+  float* __restrict bound = bounds.data();
+  const Vec3 c = b.inside;
+  // Rounding of the bound and of the exact separation, both within 1e-6 of the shapes' size.
+  const float reach = b.inradius - 1e-4f * (a.size + b.size);
+  for (std::size_t j = 0; j < stride; ++j) bound[j] = xs[j] * c.x + ys[j] * c.y + zs[j] * c.z - ds[j] - reach;
   FaceQuery best;
+  const std::uint32_t first = firstLargest(bound, faces, stride);
+  best.face = first;
+  best.separation = faceSeparation(a, first, b);
   for (std::uint32_t f = 0; f < faces; ++f) {
-    const float separation = low[f] - ds[f];
-    if (separation > best.separation) {
+    if (f == first || !(bound[f] >= best.separation)) continue;
+    const float separation = faceSeparation(a, f, b);
+    if (separation > best.separation || (separation == best.separation && f < best.face)) {
       best.separation = separation;
       best.face = f;
     }
@@ -273,20 +329,20 @@ struct EdgeQuery {
 // tolerance, 1e-6 of its size, well inside the callers' rounding allowance); an edge whose two
 // faces share a bit cannot matter.
 void facesBehind(const WorldPolyhedron& poly, std::span<const Vec3> others, float threshold,
-                 std::vector<std::uint8_t>& mask) {
-  const std::size_t faces = poly.planes.size();
-  mask.assign(faces, 0);
-  const float* xs = poly.normalBlocks.data();
-  const float* ys = xs + faces;
-  const float* zs = ys + faces;
-  const float* ds = zs + faces;
-  std::uint8_t* out = mask.data();
+                 std::vector<std::uint32_t>& mask) {
+  const std::size_t stride = poly.blockStride;
+  mask.assign(stride, 0);
+  const float* __restrict xs = poly.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const float* __restrict ds = zs + stride;
+  std::uint32_t* __restrict out = mask.data();
   for (std::size_t k = 0; k < others.size(); ++k) {
     const Vec3 q = others[k];
-    const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
-    for (std::size_t f = 0; f < faces; ++f) {
-      const float distance = xs[f] * q.x + ys[f] * q.y + zs[f] * q.z - ds[f];
-      out[f] |= distance <= threshold ? bit : std::uint8_t(0);
+    const std::uint32_t bit = 1u << k;
+    for (std::size_t j = 0; j < stride; ++j) {
+      const float distance = xs[j] * q.x + ys[j] * q.y + zs[j] * q.z - ds[j];
+      out[j] |= distance <= threshold ? bit : 0u;
     }
   }
 }
@@ -326,8 +382,8 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   // towards the other along the reference normal (near the contact, where the relevant edges are).
   const Vec3 pointsOfA[2] = {a.inside, farthestVertex(a, towardB)};
   const Vec3 pointsOfB[2] = {b.inside, farthestVertex(b, -towardB)};
-  std::vector<std::uint8_t>& behindA = scratch.behind[0];
-  std::vector<std::uint8_t>& behindB = scratch.behind[1];
+  std::vector<std::uint32_t>& behindA = scratch.behind[0];
+  std::vector<std::uint32_t>& behindB = scratch.behind[1];
   facesBehind(a, pointsOfB, threshold, behindA);
   facesBehind(b, pointsOfA, threshold, behindB);
   std::vector<WorldEdge>& kept = scratch.edgesB;
@@ -344,12 +400,12 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
         {origin, b.vertices[halfEdgesB[edge.next].origin] - origin, glm::cross(n2, n1), h, edge.face, face2});
   }
   if (kept.empty()) return best;
-  const std::size_t facesB = b.planes.size();
+  const std::size_t strideB = b.blockStride;
   std::vector<float>& sides = scratch.arcSides;
-  sides.resize(facesB);
-  const float* xs = b.normalBlocks.data();
-  const float* ys = xs + facesB;
-  const float* zs = ys + facesB;
+  sides.resize(strideB);
+  const float* __restrict xs = b.normalBlocks.data();
+  const float* __restrict ys = xs + strideB;
+  const float* __restrict zs = ys + strideB;
   const auto halfEdgesA = a.hull->halfEdges();
   for (std::uint32_t h = 0; h < halfEdgesA.size(); ++h) {
     const ConvexHull::HalfEdge& edge = halfEdgesA[h];
@@ -361,8 +417,8 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
     const Vec3 normalA2 = a.planes[faceA2].normal;
     const Vec3 u = glm::cross(normalA2, normalA1);
     const Vec3 directionA = a.vertices[halfEdgesA[edge.next].origin] - originA;
-    float* side = sides.data();
-    for (std::size_t f = 0; f < facesB; ++f) side[f] = xs[f] * u.x + ys[f] * u.y + zs[f] * u.z;
+    float* __restrict side = sides.data();
+    for (std::size_t j = 0; j < strideB; ++j) side[j] = xs[j] * u.x + ys[j] * u.y + zs[j] * u.z;
     for (const WorldEdge& edgeB : kept) {
       // c = -nB1 and d = -nB2 against A's arc: (c · u)(d · u) < 0.
       const float cba = -side[edgeB.face1], dba = -side[edgeB.face2];
@@ -688,10 +744,11 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
   const WorldPolyhedron poly = place(shape, transform, 0, scratch);
   const auto edges = poly.hull->halfEdges();
   const std::size_t faceCount = poly.planes.size();
-  const float* xs = poly.normalBlocks.data();
-  const float* ys = xs + faceCount;
-  const float* zs = ys + faceCount;
-  const float* ds = zs + faceCount;
+  const std::size_t stride = poly.blockStride;
+  const float* __restrict xs = poly.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const float* __restrict ds = zs + stride;
   for (const SatTriangle& triangle : triangles) {
     TriangleFrame t = planeFrameOf(triangle.vertices);
     // 1. The triangle's face, from the side the polyhedron is on.
@@ -708,23 +765,18 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     if (triangleSeparation > margin) continue;
     // 2. The polyhedron's faces against the triangle's vertices (all faces at once, vectorised).
     std::vector<float>& lowestOnFace = scratch.lowest;
-    lowestOnFace.resize(faceCount);
-    float* low = lowestOnFace.data();
-    for (std::size_t f = 0; f < faceCount; ++f) {
-      const float d0 = xs[f] * t.v[0].x + ys[f] * t.v[0].y + zs[f] * t.v[0].z;
-      const float d1 = xs[f] * t.v[1].x + ys[f] * t.v[1].y + zs[f] * t.v[1].z;
-      const float d2 = xs[f] * t.v[2].x + ys[f] * t.v[2].y + zs[f] * t.v[2].z;
+    lowestOnFace.resize(stride);
+    float* __restrict low = lowestOnFace.data();
+    const Vec3 v0 = t.v[0], v1 = t.v[1], v2 = t.v[2];
+    for (std::size_t j = 0; j < stride; ++j) {
+      const float d0 = xs[j] * v0.x + ys[j] * v0.y + zs[j] * v0.z;
+      const float d1 = xs[j] * v1.x + ys[j] * v1.y + zs[j] * v1.z;
+      const float d2 = xs[j] * v2.x + ys[j] * v2.y + zs[j] * v2.z;
       const float d01 = d1 < d0 ? d1 : d0;
-      low[f] = (d2 < d01 ? d2 : d01) - ds[f];
+      low[j] = (d2 < d01 ? d2 : d01) - ds[j];
     }
-    float faceSeparation = -1e30f;
-    std::uint32_t face = 0;
-    for (std::uint32_t f = 0; f < faceCount; ++f) {
-      if (low[f] > faceSeparation) {
-        faceSeparation = low[f];
-        face = f;
-      }
-    }
+    const std::uint32_t face = firstLargest(low, faceCount, stride);
+    const float faceSeparation = low[face];
     if (faceSeparation > margin) continue;
     completeFrame(t);
     // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
@@ -743,14 +795,14 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float edgeMatters =
         std::min(std::min(margin, kRelative * bestFace + absolute), 0.0f) - 1e-5f * (t.size + poly.size);
     const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
-    std::vector<std::uint8_t>& behind = scratch.behind[0];
+    std::vector<std::uint32_t>& behind = scratch.behind[0];
     facesBehind(poly, trianglePoints, edgeMatters, behind);
     std::vector<float>& along = scratch.arcSides;
-    along.resize(3 * faceCount);
+    along.resize(3 * stride);
     for (int k = 0; k < 3; ++k) {
       const Vec3 e = t.edge[k];
-      float* out = along.data() + k * faceCount;
-      for (std::size_t f = 0; f < faceCount; ++f) out[f] = xs[f] * e.x + ys[f] * e.y + zs[f] * e.z;
+      float* __restrict out = along.data() + k * stride;
+      for (std::size_t j = 0; j < stride; ++j) out[j] = xs[j] * e.x + ys[j] * e.y + zs[j] * e.z;
     }
     float edgeSeparation = -1e30f;
     int edgeT = 0;
@@ -765,7 +817,7 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
       const Vec3 direction = poly.vertices[edges[halfEdge.next].origin] - origin;
       for (int k = 0; k < 3; ++k) {
         // da = (-n1) · e_k, db = (-n2) · e_k.
-        const float da = -along[k * faceCount + face1], db = -along[k * faceCount + face2];
+        const float da = -along[k * stride + face1], db = -along[k * stride + face2];
         if (!(da * db < 0.0f)) continue;
         const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
         const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
