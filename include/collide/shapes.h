@@ -70,7 +70,7 @@ struct Cylinder {
 // pair of twin half-edges, so that a face's neighbours and an edge's two faces are one step away
 // (Gregorius, "The Separating Axis Test between Convex Polyhedra", GDC 2013).
 class ConvexHull {
-public:
+ public:
   struct HalfEdge {
     std::uint32_t origin;  // vertex index
     std::uint32_t twin;    // the same edge walked by the neighbouring face
@@ -78,9 +78,16 @@ public:
     std::uint32_t face;
   };
   struct Face {
-    Plane plane;             // outward unit normal
+    Plane plane;              // outward unit normal
     std::uint32_t firstEdge;  // any half-edge of the face
     std::uint32_t edgeCount;
+  };
+  // An edge once (its smaller half-edge), with its end points and its two faces: what the
+  // separating-axis test walks, without skipping twins or following links.
+  struct Edge {
+    std::uint32_t halfEdge;
+    std::uint32_t origin, end;   // vertex indices, along the half-edge
+    std::uint32_t face1, face2;  // the half-edge's face, its twin's
   };
 
   // The convex hull of `points` (through Qhull). Throws Error for fewer than 4 points, non-finite
@@ -91,6 +98,8 @@ public:
   std::span<const HalfEdge> halfEdges() const { return halfEdges_; }
   std::span<const Face> faces() const { return faces_; }
   std::size_t edgeCount() const { return halfEdges_.size() / 2; }
+  // Every edge once, in the order of their half-edges.
+  std::span<const Edge> edges() const { return edges_; }
   // The vertices of a face, counter-clockwise seen from outside.
   std::vector<Vec3> faceVertices(std::uint32_t face) const;
 
@@ -101,12 +110,13 @@ public:
   const Mat3& unitInertia() const { return unitInertia_; }
   Aabb bounds() const { return bounds_; }
 
-private:
+ private:
   friend class HullBuilder;
   std::vector<Vec3> vertices_;
   // The vertices again as blocks of x, y and z coordinates, for support() (geometry/support_scan.h).
   std::vector<float> blockedVertices_;
   std::vector<HalfEdge> halfEdges_;
+  std::vector<Edge> edges_;
   std::vector<Face> faces_;
   float volume_ = 0.0f;
   Vec3 centroid_{0.0f};
@@ -119,7 +129,7 @@ private:
 // has all 13. Kept both as slabs (exact ray and point tests) and as the polyhedron they enclose
 // (support, mass properties).
 class Kdop {
-public:
+ public:
   // The tightest k-DOP around the points. Throws Error for an unsupported k, fewer than 4 points,
   // non-finite coordinates, or a flat point set.
   static Kdop fromPoints(int k, std::span<const Vec3> points);
@@ -135,7 +145,7 @@ public:
   float slabMax(int axis) const { return max_[axis]; }
   const ConvexHull& polytope() const { return *polytope_; }
 
-private:
+ private:
   int k_ = 6;
   std::array<float, 13> min_{};
   std::array<float, 13> max_{};
@@ -150,7 +160,7 @@ struct MeshTriangle {
 // Meshes are surfaces: they collide on both sides unless the user says otherwise later. A closed,
 // consistently oriented mesh also has an inside (point containment, volume, mass).
 class TriangleMesh {
-public:
+ public:
   struct BvhNode {
     Aabb bounds;
     // Leaf: count > 0 triangles from firstTriangle in triangleOrder(). Inner: count == 0,
@@ -178,7 +188,8 @@ public:
   const Mat3& unitInertia() const { return unitInertia_; }
 
   // Calls visit(triangleIndex) for every triangle whose box overlaps `box` (local frame).
-  template <class Visitor> void forEachTriangleOverlapping(const Aabb& box, Visitor&& visit) const;
+  template <class Visitor>
+  void forEachTriangleOverlapping(const Aabb& box, Visitor&& visit) const;
 
   // Adjacency, for the narrow phase's internal-edge handling. How the surface continues across
   // edge k (from v[k] to v[k+1]) of a triangle, seen from the triangle's front: no single
@@ -194,7 +205,7 @@ public:
   // Triangles joined by flat edges share a patch number.
   std::uint32_t flatPatch(std::uint32_t triangle) const { return patches_[triangle]; }
 
-private:
+ private:
   std::vector<Vec3> vertices_;
   std::vector<MeshTriangle> triangles_;
   std::vector<BvhNode> nodes_;
@@ -213,7 +224,7 @@ class Shape;
 
 // Child shapes with local transforms. A child is any shape but a plane.
 class Compound {
-public:
+ public:
   struct Child;
   // Throws Error for no children, a plane child, or an invalid child transform.
   static Compound fromChildren(std::vector<Child> children);
@@ -221,7 +232,7 @@ public:
   std::span<const Child> children() const;
   Aabb bounds() const { return bounds_; }
 
-private:
+ private:
   std::vector<Child> children_;
   Aabb bounds_;
 };
@@ -229,7 +240,7 @@ private:
 // ---- Shape: one proxy of any type. A small value; polyhedra are shared, immutable. ----
 
 class Shape {
-public:
+ public:
   // Each constructor validates and throws Error naming the bad field.
   Shape(const Sphere& sphere);
   Shape(const Capsule& capsule);
@@ -260,9 +271,10 @@ public:
   const Compound& compound() const { return *std::get<std::shared_ptr<const Compound>>(data_); }
 
   // Calls f with the concrete shape (const Sphere&, …, const ConvexHull&, …).
-  template <class F> decltype(auto) visit(F&& f) const;
+  template <class F>
+  decltype(auto) visit(F&& f) const;
 
-private:
+ private:
   // The alternatives' order is ShapeType's order.
   std::variant<Sphere, Capsule, Plane, Box, std::shared_ptr<const Kdop>, Ellipsoid, Cylinder,
                std::shared_ptr<const ConvexHull>, std::shared_ptr<const TriangleMesh>,
@@ -303,8 +315,8 @@ MassProperties massProperties(const Shape& shape, float density, float scale = 1
 bool containsPoint(const Shape& shape, const Transform& transform, const Vec3& point);
 
 struct SurfacePoint {
-  Vec3 point{0.0f};        // the nearest point on the shape's surface
-  Vec3 normal{0.0f};       // outward unit surface normal there
+  Vec3 point{0.0f};             // the nearest point on the shape's surface
+  Vec3 normal{0.0f};            // outward unit surface normal there
   float signedDistance = 0.0f;  // negative when the query point is inside
 };
 // The nearest surface point to `point`, world frame.

@@ -63,6 +63,8 @@ inline FloatW orW(FloatW a, FloatW b) { return {_mm_or_ps(a.v, b.v)}; }
 inline FloatW andW(FloatW a, FloatW b) { return {_mm_and_ps(a.v, b.v)}; }
 inline bool anyW(FloatW mask) { return _mm_movemask_ps(mask.v) != 0; }
 inline bool laneSet(FloatW mask, int lane) { return (_mm_movemask_ps(mask.v) >> lane) & 1; }
+// Bit i set where lane i of the mask is.
+inline unsigned maskBits(FloatW mask) { return static_cast<unsigned>(_mm_movemask_ps(mask.v)); }
 
 // Four rows of four floats to four columns (rows are the lanes' structs, columns the fields).
 inline void transpose(FloatW& r0, FloatW& r1, FloatW& r2, FloatW& r3) {
@@ -138,6 +140,11 @@ inline bool anyW(FloatW mask) {
   return false;
 }
 inline bool laneSet(FloatW mask, int lane) { return mask.v[lane] != 0.0f; }
+inline unsigned maskBits(FloatW mask) {
+  unsigned bits = 0;
+  for (int i = 0; i < kLanes; ++i) bits |= mask.v[i] != 0.0f ? 1u << i : 0u;
+  return bits;
+}
 inline void transpose(FloatW& r0, FloatW& r1, FloatW& r2, FloatW& r3) {
   FloatW* rows[4] = {&r0, &r1, &r2, &r3};
   for (int i = 0; i < 4; ++i)

@@ -262,6 +262,12 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
     if (twin == edgeByEndpoints.end()) throw Error("convex_hull: Qhull returned an edge with only one face");
     edge.twin = twin->second;
   }
+  for (std::uint32_t h = 0; h < hull.halfEdges_.size(); ++h) {
+    const ConvexHull::HalfEdge& edge = hull.halfEdges_[h];
+    if (edge.twin < h) continue;
+    hull.edges_.push_back(
+        {h, edge.origin, hull.halfEdges_[edge.next].origin, edge.face, hull.halfEdges_[edge.twin].face});
+  }
 
   hull.blockedVertices_ = detail::blockCoordinates(hull.vertices_);
   for (const Vec3& v : hull.vertices_) hull.bounds_.grow(v);

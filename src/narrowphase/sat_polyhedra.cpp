@@ -15,11 +15,13 @@
 // same in every cell.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <vector>
 
+#include "dynamics/simd.h"
 #include "geometry/clipping.h"
 #include "geometry/closest_points.h"
 #include "narrowphase/pair_functions.h"
@@ -99,6 +101,10 @@ struct WorldPolyhedron {
   // without a remainder loop.
   std::span<const float> normalBlocks;
   std::size_t blockStride = 0;
+  // The world vertices again as blocks of x, y and z (vertexStride each, padded with copies of
+  // vertex 0), for the face query's exact test.
+  std::span<const float> vertexBlocks;
+  std::size_t vertexStride = 0;
   Vec3 inside{0.0f};  // a point inside the solid (its centroid): edge axes point away from it
   // The radius of the ball about `inside` that the solid holds: its least distance to a face plane.
   float inradius = 0.0f;
@@ -117,8 +123,8 @@ struct WorldPolyhedron {
   }
 };
 
-// The face loops run over whole blocks of this many faces.
-constexpr std::size_t kFaceBlock = 4;
+// The face loops run over whole blocks of this many faces (and vertices): one FloatW.
+constexpr std::size_t kFaceBlock = kLanes;
 constexpr float kPaddingDistance = 1e30f;
 
 std::size_t paddedFaceCount(std::size_t faces) { return (faces + kFaceBlock - 1) / kFaceBlock * kFaceBlock; }
@@ -127,13 +133,10 @@ std::size_t paddedFaceCount(std::size_t faces) { return (faces + kFaceBlock - 1)
 // of them (a multiple of kFaceBlock) may be read, those past `count` being no larger than the real
 // ones.
 std::uint32_t firstLargest(const float* __restrict values, std::size_t count, std::size_t padded) {
-  float best[kFaceBlock];
-  for (std::size_t j = 0; j < kFaceBlock; ++j) best[j] = -std::numeric_limits<float>::infinity();
-  for (std::size_t f = 0; f < padded; f += kFaceBlock) {
-    for (std::size_t j = 0; j < kFaceBlock; ++j) best[j] = values[f + j] > best[j] ? values[f + j] : best[j];
-  }
-  float largest = best[0];
-  for (std::size_t j = 1; j < kFaceBlock; ++j) largest = best[j] > largest ? best[j] : largest;
+  FloatW best = splat(-std::numeric_limits<float>::infinity());
+  for (std::size_t f = 0; f < padded; f += kFaceBlock) best = maxW(loadW(values + f), best);
+  float largest = laneOf(best, 0);
+  for (int j = 1; j < kLanes; ++j) largest = laneOf(best, j) > largest ? laneOf(best, j) : largest;
   for (std::uint32_t index = 0; index < count; ++index) {
     if (values[index] == largest) return index;
   }
@@ -195,16 +198,24 @@ void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& l
     planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
   }
   const std::size_t stride = paddedFaceCount(planes.size());
-  blocks.assign(4 * stride, 0.0f);
+  const std::size_t vertexStride = paddedFaceCount(vertices.size());
+  blocks.assign(4 * stride + 3 * vertexStride, 0.0f);
   for (std::size_t f = 0; f < planes.size(); ++f) {
     for (int axis = 0; axis < 3; ++axis) blocks[axis * stride + f] = planes[f].normal[axis];
     blocks[3 * stride + f] = planes[f].distance;
   }
   for (std::size_t f = planes.size(); f < stride; ++f) blocks[3 * stride + f] = kPaddingDistance;
+  float* vertexBlocks = blocks.data() + 4 * stride;
+  for (std::size_t i = 0; i < vertexStride; ++i) {
+    const Vec3& v = vertices[i < vertices.size() ? i : 0];
+    for (int axis = 0; axis < 3; ++axis) vertexBlocks[axis * vertexStride + i] = v[axis];
+  }
   poly.vertices = vertices;
   poly.planes = planes;
-  poly.normalBlocks = blocks;
+  poly.normalBlocks = std::span<const float>(blocks.data(), 4 * stride);
   poly.blockStride = stride;
+  poly.vertexBlocks = std::span<const float>(vertexBlocks, 3 * vertexStride);
+  poly.vertexStride = vertexStride;
   const Aabb bounds = hull.bounds();
   poly.inside = transform.position + rotation * (localScale * hull.centroid());
   poly.inradius = 1e30f;
@@ -261,19 +272,23 @@ struct FaceQuery {
   std::uint32_t face = 0;
 };
 
-// The largest separation of B from a face plane of A: the plane's distance to B's support against
-// its normal.
-// The separation of B from face f of A: the plane's distance to B's lowest vertex against it.
+// The separation of B from face f of A: the plane's distance to B's lowest vertex against it,
+// B's vertices a block at a time.
 float faceSeparation(const WorldPolyhedron& a, std::uint32_t f, const WorldPolyhedron& b) {
   const std::size_t stride = a.blockStride;
   const float* blocks = a.normalBlocks.data();
-  const float x = blocks[f], y = blocks[stride + f], z = blocks[2 * stride + f];
-  float low = 1e30f;
-  for (const Vec3& v : b.vertices) {
-    const float d = x * v.x + y * v.y + z * v.z;
-    low = d < low ? d : low;
+  const FloatW x = splat(blocks[f]), y = splat(blocks[stride + f]), z = splat(blocks[2 * stride + f]);
+  const std::size_t vertexStride = b.vertexStride;
+  const float* xs = b.vertexBlocks.data();
+  const float* ys = xs + vertexStride;
+  const float* zs = ys + vertexStride;
+  FloatW low = splat(1e30f);
+  for (std::size_t i = 0; i < vertexStride; i += kFaceBlock) {
+    low = minW(loadW(xs + i) * x + loadW(ys + i) * y + loadW(zs + i) * z, low);
   }
-  return low - blocks[3 * stride + f];
+  float lowest = laneOf(low, 0);
+  for (int j = 1; j < kLanes; ++j) lowest = laneOf(low, j) < lowest ? laneOf(low, j) : lowest;
+  return lowest - blocks[3 * stride + f];
 }
 
 // The largest separation of B from a face plane of A (the first such face on a tie). B holds the
@@ -300,12 +315,21 @@ FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b, Scratch
   const std::uint32_t first = firstLargest(bound, faces, stride);
   best.face = first;
   best.separation = faceSeparation(a, first, b);
-  for (std::uint32_t f = 0; f < faces; ++f) {
-    if (f == first || !(bound[f] >= best.separation)) continue;
-    const float separation = faceSeparation(a, f, b);
-    if (separation > best.separation || (separation == best.separation && f < best.face)) {
-      best.separation = separation;
-      best.face = f;
+  // The candidates a block at a time against the first face's separation, then each against the
+  // best so far.
+  const FloatW firstSeparation = splat(best.separation);
+  for (std::size_t block = 0; block < stride; block += kFaceBlock) {
+    unsigned candidates = ~maskBits(greaterW(firstSeparation, loadW(bound + block))) & ((1u << kLanes) - 1u);
+    while (candidates != 0) {
+      const auto f = static_cast<std::uint32_t>(block + static_cast<unsigned>(std::countr_zero(candidates)));
+      candidates &= candidates - 1;
+      if (f >= faces) break;
+      if (f == first || !(bound[f] >= best.separation)) continue;
+      const float separation = faceSeparation(a, f, b);
+      if (separation > best.separation || (separation == best.separation && f < best.face)) {
+        best.separation = separation;
+        best.face = f;
+      }
     }
   }
   return best;
@@ -388,16 +412,12 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   facesBehind(b, pointsOfA, threshold, behindB);
   std::vector<WorldEdge>& kept = scratch.edgesB;
   kept.clear();
-  const auto halfEdgesB = b.hull->halfEdges();
-  for (std::uint32_t h = 0; h < halfEdgesB.size(); ++h) {
-    const ConvexHull::HalfEdge& edge = halfEdgesB[h];
-    if (edge.twin < h) continue;  // each edge once
-    const std::uint32_t face2 = halfEdgesB[edge.twin].face;
-    if (behindB[edge.face] & behindB[face2]) continue;
+  for (const ConvexHull::Edge& edge : b.hull->edges()) {
+    if (behindB[edge.face1] & behindB[edge.face2]) continue;
     const Vec3 origin = b.vertices[edge.origin];
-    const Vec3 n1 = b.planes[edge.face].normal, n2 = b.planes[face2].normal;
+    const Vec3 n1 = b.planes[edge.face1].normal, n2 = b.planes[edge.face2].normal;
     kept.push_back(
-        {origin, b.vertices[halfEdgesB[edge.next].origin] - origin, glm::cross(n2, n1), h, edge.face, face2});
+        {origin, b.vertices[edge.end] - origin, glm::cross(n2, n1), edge.halfEdge, edge.face1, edge.face2});
   }
   if (kept.empty()) return best;
   const std::size_t strideB = b.blockStride;
@@ -406,17 +426,14 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   const float* __restrict xs = b.normalBlocks.data();
   const float* __restrict ys = xs + strideB;
   const float* __restrict zs = ys + strideB;
-  const auto halfEdgesA = a.hull->halfEdges();
-  for (std::uint32_t h = 0; h < halfEdgesA.size(); ++h) {
-    const ConvexHull::HalfEdge& edge = halfEdgesA[h];
-    if (edge.twin < h) continue;
-    const std::uint32_t faceA2 = halfEdgesA[edge.twin].face;
-    if (behindA[edge.face] & behindA[faceA2]) continue;
+  for (const ConvexHull::Edge& edge : a.hull->edges()) {
+    if (behindA[edge.face1] & behindA[edge.face2]) continue;
+    const std::uint32_t h = edge.halfEdge;
     const Vec3 originA = a.vertices[edge.origin];
-    const Vec3 normalA1 = a.planes[edge.face].normal;
-    const Vec3 normalA2 = a.planes[faceA2].normal;
+    const Vec3 normalA1 = a.planes[edge.face1].normal;
+    const Vec3 normalA2 = a.planes[edge.face2].normal;
     const Vec3 u = glm::cross(normalA2, normalA1);
-    const Vec3 directionA = a.vertices[halfEdgesA[edge.next].origin] - originA;
+    const Vec3 directionA = a.vertices[edge.end] - originA;
     float* __restrict side = sides.data();
     for (std::size_t j = 0; j < strideB; ++j) side[j] = xs[j] * u.x + ys[j] * u.y + zs[j] * u.z;
     for (const WorldEdge& edgeB : kept) {
@@ -808,13 +825,12 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     int edgeT = 0;
     std::uint32_t edgeP = 0;
     Vec3 edgeAxis(0.0f);
-    for (std::uint32_t h = 0; h < edges.size(); ++h) {
-      const ConvexHull::HalfEdge& halfEdge = edges[h];
-      if (halfEdge.twin < h) continue;
-      const std::uint32_t face1 = halfEdge.face, face2 = edges[halfEdge.twin].face;
-      const Vec3 origin = poly.vertices[halfEdge.origin];
+    for (const ConvexHull::Edge& edge : poly.hull->edges()) {
+      const std::uint32_t face1 = edge.face1, face2 = edge.face2;
       if (behind[face1] & behind[face2]) continue;
-      const Vec3 direction = poly.vertices[edges[halfEdge.next].origin] - origin;
+      const std::uint32_t h = edge.halfEdge;
+      const Vec3 origin = poly.vertices[edge.origin];
+      const Vec3 direction = poly.vertices[edge.end] - origin;
       for (int k = 0; k < 3; ++k) {
         // da = (-n1) · e_k, db = (-n2) · e_k.
         const float da = -along[k * stride + face1], db = -along[k * stride + face2];

@@ -252,3 +252,34 @@ TEST(ConvexHull, RejectsBadPointSets) {
   const std::vector<Vec3> identical(5, Vec3(3, 4, 5));
   EXPECT_THAT([&] { ConvexHull::fromPoints(identical); }, ThrowsMessage<Error>(HasSubstr("identical")));
 }
+
+// The edge list the separating-axis test walks: every edge exactly once, as its smaller half-edge,
+// with that half-edge's end points and the faces on either side; Euler's V - E + F = 2 holds.
+TEST(ConvexHull, EdgeListNamesEveryEdgeOnceWithItsEndsAndFaces) {
+  std::mt19937 rng(7);
+  for (const ConvexHull& hull : {ConvexHull::fromPoints(boxCorners(kBoxHalfExtents)),
+                                 ConvexHull::fromPoints(randomPointsOnSphere(12, 0.5f, rng)),
+                                 ConvexHull::fromPoints(randomPointsOnSphere(100, 1.0f, rng))}) {
+    const auto halfEdges = hull.halfEdges();
+    ASSERT_EQ(hull.edges().size(), hull.edgeCount());
+    EXPECT_EQ(hull.vertices().size() + hull.faces().size(), hull.edges().size() + 2);
+    std::vector<int> seen(halfEdges.size(), 0);
+    std::uint32_t previous = 0;
+    for (std::size_t i = 0; i < hull.edges().size(); ++i) {
+      const ConvexHull::Edge& edge = hull.edges()[i];
+      const ConvexHull::HalfEdge& half = halfEdges[edge.halfEdge];
+      EXPECT_LT(edge.halfEdge, half.twin);
+      if (i > 0) {
+        EXPECT_GT(edge.halfEdge, previous);  // in half-edge order
+      }
+      previous = edge.halfEdge;
+      EXPECT_EQ(edge.origin, half.origin);
+      EXPECT_EQ(edge.end, halfEdges[half.next].origin);
+      EXPECT_EQ(edge.face1, half.face);
+      EXPECT_EQ(edge.face2, halfEdges[half.twin].face);
+      ++seen[edge.halfEdge];
+      ++seen[half.twin];
+    }
+    for (const int count : seen) EXPECT_EQ(count, 1);
+  }
+}
