@@ -96,7 +96,8 @@ class LaneContactSolver final : public ContactLanes {
     for (int color = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
       const std::uint32_t end = in.colorStart[color + 1];
-      Batch* batch = &batches_[batchStart[color]];
+      // A pointer, not an element: an empty colour may start at the end of the batches.
+      Batch* batch = batches_.data() + batchStart[color];
       for (std::uint32_t first = in.colorStart[color]; first < end; first += perBatch, ++batch) {
         std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
         batch->bodyA.fill(kNoSolverBody);
