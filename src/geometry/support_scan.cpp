@@ -9,13 +9,17 @@
 
 namespace collide::detail {
 
-std::vector<float> blockCoordinates(std::span<const Vec3> points) {
+void blockCoordinatesInto(std::span<const Vec3> points, float* out) {
   const std::size_t lanes = blockedLanes(points.size());
-  std::vector<float> blocked(points.empty() ? 0 : 3 * lanes);
   for (std::size_t i = 0; i < lanes && !points.empty(); ++i) {
     const Vec3& p = points[i < points.size() ? i : 0];
-    for (int axis = 0; axis < 3; ++axis) blocked[axis * lanes + i] = p[axis];
+    for (int axis = 0; axis < 3; ++axis) out[axis * lanes + i] = p[axis];
   }
+}
+
+std::vector<float> blockCoordinates(std::span<const Vec3> points) {
+  std::vector<float> blocked(points.empty() ? 0 : 3 * blockedLanes(points.size()));
+  blockCoordinatesInto(points, blocked.data());
   return blocked;
 }
 

@@ -24,6 +24,7 @@
 #include "dynamics/simd.h"
 #include "geometry/clipping.h"
 #include "geometry/closest_points.h"
+#include "geometry/support_scan.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/triangle_features.h"
 
@@ -101,8 +102,8 @@ struct WorldPolyhedron {
   // without a remainder loop.
   std::span<const float> normalBlocks;
   std::size_t blockStride = 0;
-  // The world vertices again as blocks of x, y and z (vertexStride each, padded with copies of
-  // vertex 0), for the face query's exact test.
+  // The world vertices again as blocks of x, y and z (blockCoordinates' layout: vertexStride each,
+  // padded with copies of vertex 0), for the face query's exact test and the farthest vertex.
   std::span<const float> vertexBlocks;
   std::size_t vertexStride = 0;
   Vec3 inside{0.0f};  // a point inside the solid (its centroid): edge axes point away from it
@@ -123,11 +124,11 @@ struct WorldPolyhedron {
   }
 };
 
-// The face loops run over whole blocks of this many faces (and vertices): one FloatW.
+// The face loops run over whole blocks of this many faces (and vertices): one FloatW, the block of
+// blockedLanes (support_scan.h), which pads both the faces and the vertices.
 constexpr std::size_t kFaceBlock = kLanes;
+static_assert(blockedLanes(1) == kFaceBlock);
 constexpr float kPaddingDistance = 1e30f;
-
-std::size_t paddedFaceCount(std::size_t faces) { return (faces + kFaceBlock - 1) / kFaceBlock * kFaceBlock; }
 
 // The first index of the largest of values[0, count) (NaNs never win; 0 if all are NaN); `padded`
 // of them (a multiple of kFaceBlock) may be read, those past `count` being no larger than the real
@@ -148,7 +149,7 @@ struct Scratch {
   std::vector<Vec3> vertices[2];
   std::vector<Plane> planes[2];
   std::vector<float> normalBlocks[2];
-  std::vector<float> lowest;      // the face query's lowest vertex per face
+  std::vector<float> lowest;      // per face: the face query's bound, the triangle test's separation
   std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
   std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
   std::vector<std::uint32_t> behind[2];  // per face: which of the other shape's points lie behind it
@@ -197,8 +198,8 @@ void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& l
     const Vec3 normal = rotation * face.plane.normal;
     planes[f] = {normal, glm::dot(normal, vertices[hull.halfEdges()[face.firstEdge].origin])};
   }
-  const std::size_t stride = paddedFaceCount(planes.size());
-  const std::size_t vertexStride = paddedFaceCount(vertices.size());
+  const std::size_t stride = blockedLanes(planes.size());
+  const std::size_t vertexStride = blockedLanes(vertices.size());
   blocks.assign(4 * stride + 3 * vertexStride, 0.0f);
   for (std::size_t f = 0; f < planes.size(); ++f) {
     for (int axis = 0; axis < 3; ++axis) blocks[axis * stride + f] = planes[f].normal[axis];
@@ -206,10 +207,7 @@ void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& l
   }
   for (std::size_t f = planes.size(); f < stride; ++f) blocks[3 * stride + f] = kPaddingDistance;
   float* vertexBlocks = blocks.data() + 4 * stride;
-  for (std::size_t i = 0; i < vertexStride; ++i) {
-    const Vec3& v = vertices[i < vertices.size() ? i : 0];
-    for (int axis = 0; axis < 3; ++axis) vertexBlocks[axis * vertexStride + i] = v[axis];
-  }
+  blockCoordinatesInto(vertices, vertexBlocks);
   poly.vertices = vertices;
   poly.planes = planes;
   poly.normalBlocks = std::span<const float>(blocks.data(), 4 * stride);
@@ -373,13 +371,8 @@ void facesBehind(const WorldPolyhedron& poly, std::span<const Vec3> others, floa
 
 // A vertex of `poly` farthest along `direction`.
 Vec3 farthestVertex(const WorldPolyhedron& poly, const Vec3& direction) {
-  Vec3 best = poly.vertices[0];
-  float bestDot = glm::dot(best, direction);
-  for (const Vec3& v : poly.vertices) {
-    const float d = glm::dot(v, direction);
-    if (d > bestDot) bestDot = d, best = v;
-  }
-  return best;
+  const auto count = static_cast<std::uint32_t>(poly.vertices.size());
+  return poly.vertices[farthestAlong(poly.vertexBlocks.data(), count, direction)];
 }
 
 // The edge pairs whose Gauss-map arcs cross, and the largest separation along their cross
