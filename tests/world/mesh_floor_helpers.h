@@ -4,6 +4,7 @@
 #pragma once
 
 #include <collide/world.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -59,6 +60,17 @@ inline FloorSlide slideOverMeshFloor(const BodyDef& mover) {
   return slide;
 }
 
+// What every shape's slide must show: it crossed about six quads with every floor normal within 1°
+// of vertical, hardly a vertical velocity, its speed kept and its height (0.25 m) held.
+inline void expectLevelSlide(const FloorSlide& slide) {
+  EXPECT_GT(slide.end.x, 2.0f);  // it crossed about six quads
+  EXPECT_GT(slide.manifolds, 100);
+  EXPECT_LE(slide.worstNormal, 1.0f);
+  EXPECT_LT(slide.worstVertical, 0.05f);
+  EXPECT_NEAR(slide.velocity.x, 3.0f, 0.03f);
+  EXPECT_NEAR(slide.end.y, 0.25f, 0.01f);
+}
+
 struct FloorRest {
   std::size_t firstIds = 0;  // distinct contact ids in the first manifold after settling
   int steps = 0;             // steps after settling
@@ -96,6 +108,15 @@ inline FloorRest restOnMeshFloor(const BodyDef& body, float floorFriction, int p
   rest.end = world.transform(id).position;
   rest.spin = world.angularVelocity(id);
   return rest;
+}
+
+// What every resting shape must show: after settling, every step's manifold has `points` points
+// with the same ids, and the body rests with its centre at `height`.
+inline void expectStableRest(const FloorRest& rest, std::size_t points, float height) {
+  EXPECT_EQ(rest.firstIds, points);
+  EXPECT_EQ(rest.withPoints, rest.steps);
+  EXPECT_EQ(rest.changed, 0);
+  EXPECT_NEAR(rest.end.y, height, 0.01f);
 }
 
 }  // namespace collide::test
