@@ -81,6 +81,7 @@ class ConvexHull {
     Plane plane;              // outward unit normal
     std::uint32_t firstEdge;  // any half-edge of the face
     std::uint32_t edgeCount;
+    std::uint32_t firstVertex;  // the origin of firstEdge: a vertex on the face without the link
   };
   // An edge once (its smaller half-edge), with its end points and its two faces: what the
   // separating-axis test walks, without skipping twins or following links.

@@ -246,7 +246,7 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
     const auto faceIndex = static_cast<std::uint32_t>(hull.faces_.size());
     const auto first = static_cast<std::uint32_t>(hull.halfEdges_.size());
     const auto count = static_cast<std::uint32_t>(loop.size());
-    hull.faces_.push_back({Plane{Vec3(normal), float(offset)}, first, count});
+    hull.faces_.push_back({Plane{Vec3(normal), float(offset)}, first, count, loop[0]});
     for (std::uint32_t i = 0; i < count; ++i) {
       const std::uint32_t from = loop[i], to = loop[(i + 1) % count];
       if (!edgeByEndpoints.try_emplace(key(from, to), first + i).second) {
