@@ -49,8 +49,10 @@ TEST(FitAllProxies, ReturnsEveryProxyInOrderWithItsMemory) {
   EXPECT_EQ(fit.at("obb").bytes, 40u);      // half extents, centre, rotation
   EXPECT_EQ(fit.at("capsule").bytes, 36u);  // radius, half height, centre, rotation
   const ConvexHull& hull = fit.at("convex_hull").shape.convexHull();
+  // Vertices; half-edges (origin, twin, next, face); faces (plane, first half-edge and its origin,
+  // edge count).
   EXPECT_EQ(fit.at("convex_hull").bytes,
-            hull.vertices().size() * 12 + hull.halfEdges().size() * 16 + hull.faces().size() * 24);
+            hull.vertices().size() * 12 + hull.halfEdges().size() * 16 + hull.faces().size() * 28);
   EXPECT_GT(fit.at("26-dop").bytes, 26u * 4u);
   EXPECT_EQ(fit.at("sphere").shape.type(), ShapeType::Sphere);
   EXPECT_EQ(fit.at("obb").shape.type(), ShapeType::Box);
