@@ -22,6 +22,7 @@
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver.h"
 #include "response/contact_response.h"
+#include "shapes/shape_functions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,8 @@ float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const
 // A body's world box is recomputed once any of its points may have moved this far (m) since the box
 // was computed; until then the old box grown by the possible motion stands in (conservative).
 constexpr float kBoundsReuseDistance = 0.002f;
+// How many bodies (or pairs) ahead the loops that place shapes ask for their data (prefetchPlacement).
+constexpr std::uint32_t kPrefetchAhead = 4;
 
 bool isFinite(const Mat3& m) {
   for (int column = 0; column < 3; ++column) {
@@ -103,6 +106,7 @@ struct World::Impl {
   std::vector<Transform> poses;
   std::vector<Mat3> scaledRotations;  // mat3_cast(rotation) * scale
   std::vector<float> spinReaches;
+  std::vector<std::uint8_t> likelyPlaced;  // moves beyond the manifold cache's tolerance this step
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
   detail::StepSolver stepSolver;
@@ -219,15 +223,22 @@ struct World::Impl {
     return glm::length(com1 - com0) + kPi * glm::length(Vec3(turn.x, turn.y, turn.z)) * r.boundingRadius;
   }
 
+  // Whether the body's last box still serves (grown by `moved`, set then): see currentBounds.
+  bool boundsReusable(std::uint32_t index, float& moved) const {
+    const BodyRecord& r = bodies.records[index];
+    if (!r.boundsValid || r.type == BodyType::Static) return false;
+    const BodyState& s = bodies.states[index];
+    moved = pointMotionBound(r, r.boundsCenter, r.boundsRotation, s.centerOfMass, s.rotation);
+    return moved <= kBoundsReuseDistance;
+  }
+
   // The body's world box. A body that barely moved since its box was last computed (a resting hull
   // transforms all its vertices for it) gets the old box grown by how far it can have moved.
   Aabb currentBounds(std::uint32_t index) {
     BodyRecord& r = bodies.records[index];
+    float moved = 0.0f;
+    if (boundsReusable(index, moved)) return r.bounds.expanded(moved);
     const BodyState& s = bodies.states[index];
-    if (r.boundsValid && r.type != BodyType::Static) {
-      const float moved = pointMotionBound(r, r.boundsCenter, r.boundsRotation, s.centerOfMass, s.rotation);
-      if (moved <= kBoundsReuseDistance) return r.bounds.expanded(moved);
-    }
     r.bounds = worldBounds(r.shape, detail::bodyTransform(r, s));
     r.boundsCenter = s.centerOfMass;
     r.boundsRotation = s.rotation;
@@ -731,9 +742,22 @@ void World::Impl::step(float dt) {
   pendingContactEvents.clear();
   pendingSensorEvents.clear();
   faultEvents.clear();
-  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
+  const auto updated = [&](std::uint32_t i) {
     const BodyRecord& r = bodies.records[i];
-    if (r.alive && r.type != BodyType::Static && r.awake) broadPhase->update(r.proxy, proxyBounds(i, dt));
+    return r.alive && r.type != BodyType::Static && r.awake;
+  };
+  const auto bodyCount = static_cast<std::uint32_t>(bodies.records.size());
+  // The shape data of the bodies a few places on whose boxes will be computed anew (their hulls'
+  // vertices), asked for in two stages (prefetchShapeHeader).
+  const auto recomputed = [&](std::uint32_t i) {
+    float moved = 0.0f;
+    return i < bodyCount && updated(i) && !boundsReusable(i, moved);
+  };
+  for (std::uint32_t i = 0; i < bodyCount; ++i) {
+    if (recomputed(i + 2 * kPrefetchAhead))
+      detail::prefetchShapeHeader(bodies.records[i + 2 * kPrefetchAhead].shape);
+    if (recomputed(i + kPrefetchAhead)) detail::prefetchShapeArrays(bodies.records[i + kPrefetchAhead].shape);
+    if (updated(i)) broadPhase->update(bodies.records[i].proxy, proxyBounds(i, dt));
   }
   broadPhase->findPairs(pairs);
   if (def.sleeping) wakeTouchedIslands(dt);
@@ -799,11 +823,16 @@ void World::Impl::narrowPhase(float dt) {
   poses.resize(bodies.records.size());
   scaledRotations.resize(bodies.records.size());
   spinReaches.resize(bodies.records.size());
+  likelyPlaced.assign(bodies.records.size(), 0);
   for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
     if (!bodies.records[i].alive) continue;
     poses[i] = detail::bodyTransform(bodies.records[i], bodies.states[i]);
     scaledRotations[i] = glm::mat3_cast(poses[i].rotation) * poses[i].scale;
     spinReaches[i] = spinReach(i);
+    // A body that moves this step by more than the manifold cache's tolerance will likely have its
+    // pairs computed, not reused: the pair loop asks ahead for such bodies' shape data.
+    const float motion = dt * (glm::length(bodies.states[i].linearVelocity) + spinReaches[i]);
+    likelyPlaced[i] = motion > def.contact.manifoldCacheDistance;
   }
   std::swap(contacts, previousContacts);
   contacts.clear();
@@ -826,14 +855,29 @@ void World::Impl::narrowPhase(float dt) {
     }
   };
 
-  for (const ProxyPair& pair : pairs) {
+  const auto bodyOf = [&](ProxyId proxy) {
+    return static_cast<std::uint32_t>(broadPhase->records()[proxy.index].userValue);
+  };
+  const auto prefetchPairShapes = [&](std::size_t p, void (*prefetch)(const Shape&)) {
+    if (p >= pairs.size()) return;
+    const std::uint32_t a = bodyOf(pairs[p].a), b = bodyOf(pairs[p].b);
+    if (!likelyPlaced[a] && !likelyPlaced[b]) return;
+    prefetch(bodies.records[a].shape);
+    prefetch(bodies.records[b].shape);
+  };
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const ProxyPair& pair = pairs[p];
+    // The shapes of the pairs a few places on that will likely be computed, not reused, asked for
+    // in two stages (prefetchShapeHeader).
+    prefetchPairShapes(p + 2 * kPrefetchAhead, detail::prefetchShapeHeader);
+    prefetchPairShapes(p + kPrefetchAhead, detail::prefetchShapeArrays);
     const std::uint64_t key = detail::pairKey(pair.a.index, pair.b.index);
     while (j < previousContacts.size() && previousContacts[j].key < key) endVanished(previousContacts[j++]);
     const Contact* previous = nullptr;
     bool reusedManifold = false;
 
-    const auto ia = static_cast<std::uint32_t>(broadPhase->records()[pair.a.index].userValue);
-    const auto ib = static_cast<std::uint32_t>(broadPhase->records()[pair.b.index].userValue);
+    const std::uint32_t ia = bodyOf(pair.a);
+    const std::uint32_t ib = bodyOf(pair.b);
     const BodyRecord& ra = bodies.records[ia];
     const BodyRecord& rb = bodies.records[ib];
     if (j < previousContacts.size() && previousContacts[j].key == key) {

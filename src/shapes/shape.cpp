@@ -158,6 +158,33 @@ Aabb worldBounds(const Shape& shape, const Transform& transform) {
   return shape.visit([&](const auto& s) { return detail::computeWorldBounds(s, transform); });
 }
 
+namespace detail {
+
+namespace {
+void prefetchBytes(const void* data, std::size_t bytes) {
+  const char* begin = static_cast<const char*>(data);
+  for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(begin + offset);
+}
+const ConvexHull* polyhedronOf(const Shape& shape) {
+  if (shape.type() == ShapeType::ConvexHull) return &shape.convexHull();
+  if (shape.type() == ShapeType::Kdop) return &shape.kdop().polytope();
+  return nullptr;
+}
+}  // namespace
+
+void prefetchShapeHeader(const Shape& shape) {
+  if (const ConvexHull* hull = polyhedronOf(shape)) prefetchBytes(hull, sizeof(ConvexHull));
+}
+
+void prefetchShapeArrays(const Shape& shape) {
+  if (const ConvexHull* hull = polyhedronOf(shape)) {
+    prefetchBytes(hull->vertices().data(), hull->vertices().size_bytes());
+    prefetchBytes(hull->faces().data(), hull->faces().size_bytes());
+  }
+}
+
+}  // namespace detail
+
 BoundingSphere localBoundingSphere(const Shape& shape) {
   switch (shape.type()) {
     case ShapeType::Sphere:

@@ -33,6 +33,15 @@ Aabb computeWorldBounds(const ConvexHull& s, const Transform& t);
 Aabb computeWorldBounds(const TriangleMesh& s, const Transform& t);
 Aabb computeWorldBounds(const Compound& s, const Transform& t);
 
+// Asks the memory system for what placing the shape in the world reads, without waiting for it: in
+// a scene of thousands of distinct hulls their data is out of cache, and a placement that waits for
+// each line in turn spends most of its time waiting. Two stages, since a polyhedron's arrays are
+// found through the polyhedron: first the polyhedron itself (prefetchShapeHeader), then, some work
+// later, once it has arrived, its vertices and faces (prefetchShapeArrays). Nothing for the other
+// shapes.
+void prefetchShapeHeader(const Shape& shape);
+void prefetchShapeArrays(const Shape& shape);
+
 // Support mapping of the convex proxies (direction need not be unit, must be non-zero).
 Vec3 computeSupport(const Sphere& s, const Vec3& direction);
 Vec3 computeSupport(const Capsule& s, const Vec3& direction);
