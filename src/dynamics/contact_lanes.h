@@ -80,19 +80,39 @@ class LaneContactSolver final : public ContactLanes {
     }
     batches_.resize(batchStart[kGraphColors + 1]);
     // Filled batch by batch, each cleared just before its first lane (its lines stay in cache while
-    // its lanes are written), with the contacts a few places ahead prefetched: they lie anywhere in
-    // the contact array.
+    // its lanes are written). The contacts lie anywhere in the contact array, and their bodies
+    // anywhere in the body arrays, so both are asked for ahead, in two stages: a contact's lines
+    // 2 * kAhead places ahead, then kAhead places ahead, its body indices now at hand, its bodies'
+    // state, solver body and info. (Reading the indices of a contact not yet in cache would wait
+    // for it, and the prefetch would be no better than the load it replaces.)
     constexpr std::size_t kAhead = 4;
     const std::size_t total = in.order.size();
-    const auto prefetch = [&](std::size_t i) {
-      const Contact& ahead = in.contacts[in.order[i]];
-      const char* bytes = reinterpret_cast<const char*>(&ahead);
+    const auto prefetchContact = [&](std::size_t i) {
+      if (i >= total) return;
+      const char* bytes = reinterpret_cast<const char*>(&in.contacts[in.order[i]]);
       for (std::size_t line = 0; line < offsetof(Contact, cache); line += 64)
         __builtin_prefetch(bytes + line);
-      __builtin_prefetch(&in.storage.states[ahead.bodyA]);
-      __builtin_prefetch(&in.storage.states[ahead.bodyB]);
     };
-    for (std::size_t i = 0; i < std::min(kAhead, total); ++i) prefetch(i);
+    // Both ends of a record: those not aligned to the cache lines straddle two.
+    const auto prefetchRecord = [](const auto& record) {
+      __builtin_prefetch(&record);
+      __builtin_prefetch(reinterpret_cast<const char*>(&record) + sizeof(record) - 1);
+    };
+    const auto prefetchBody = [&](std::uint32_t body) {
+      prefetchRecord(in.storage.states[body]);
+      const std::int32_t solver = in.solverOf[body];
+      if (solver < 0) return;
+      prefetchRecord(in.bodies[solver]);
+      prefetchRecord(in.infos[solver]);
+    };
+    const auto prefetchBodies = [&](std::size_t i) {
+      if (i >= total) return;
+      const Contact& ahead = in.contacts[in.order[i]];
+      prefetchBody(ahead.bodyA);
+      prefetchBody(ahead.bodyB);
+    };
+    for (std::size_t i = 0; i < 2 * kAhead; ++i) prefetchContact(i);
+    for (std::size_t i = 0; i < kAhead; ++i) prefetchBodies(i);
     for (int color = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
       const std::uint32_t end = in.colorStart[color + 1];
@@ -107,7 +127,8 @@ class LaneContactSolver final : public ContactLanes {
         std::memset(static_cast<void*>(&inputs), 0, sizeof(LaneInputs));
         const std::uint32_t last = std::min(first + perBatch, end);
         for (std::uint32_t i = first; i < last; ++i) {
-          if (i + kAhead < total) prefetch(i + kAhead);
+          prefetchContact(i + 2 * kAhead);
+          prefetchBodies(i + kAhead);
           fillLane(in, *batch, inputs, static_cast<int>(i - first), in.order[i]);
         }
         finishBatch(*batch, inputs);
