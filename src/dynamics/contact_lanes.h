@@ -137,7 +137,10 @@ class LaneContactSolver final : public ContactLanes {
   }
 
   void warmStart(std::vector<SolverBody>& bodies) override {
-    for (Batch& c : batches_) {
+    // Backwards: it starts with the batches the last pass (the previous substep's relax) ended
+    // with, still in the L2 cache, and ends with those the solve pass starts with.
+    for (std::size_t i = batches_.size(); i-- > 0;) {
+      Batch& c = batches_[i];
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
       for (int k = 0; k < c.pointCount; ++k) {
