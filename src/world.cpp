@@ -102,10 +102,11 @@ struct World::Impl {
   detail::BodyStorage bodies;
   std::unique_ptr<BroadPhase> broadPhase;
   std::vector<ProxyPair> pairs;
-  // Each body's pose and spin reach, taken once per narrow phase rather than once per pair.
+  // Each body's pose, spin reach and velocity, taken once per narrow phase rather than once per pair.
   std::vector<Transform> poses;
   std::vector<Mat3> scaledRotations;  // mat3_cast(rotation) * scale
   std::vector<float> spinReaches;
+  std::vector<Vec3> velocities;            // linear, for the speculative margins
   std::vector<std::uint8_t> likelyPlaced;  // moves beyond the manifold cache's tolerance this step
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
@@ -280,8 +281,10 @@ struct World::Impl {
   void wakeTouchedIslands(float dt);
   void updateSleep(float dt);
   float speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const;
-  // The same with the bodies' spin reach (|angular velocity| x bounding radius) given.
-  float speculativeMargin(std::uint32_t ia, std::uint32_t ib, float spinA, float spinB, float dt) const;
+  // The same from the bodies' linear velocities and spin reaches (|angular velocity| x bounding
+  // radius), as the narrow phase keeps them per body.
+  float speculativeMargin(const Vec3& velocityA, const Vec3& velocityB, float spinA, float spinB,
+                          float dt) const;
   float spinReach(std::uint32_t index) const;
   void revertPenetrating();
   void refreshEscapedProxies();
@@ -823,15 +826,17 @@ void World::Impl::narrowPhase(float dt) {
   poses.resize(bodies.records.size());
   scaledRotations.resize(bodies.records.size());
   spinReaches.resize(bodies.records.size());
+  velocities.resize(bodies.records.size());
   likelyPlaced.assign(bodies.records.size(), 0);
   for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
     if (!bodies.records[i].alive) continue;
     poses[i] = detail::bodyTransform(bodies.records[i], bodies.states[i]);
     scaledRotations[i] = glm::mat3_cast(poses[i].rotation) * poses[i].scale;
     spinReaches[i] = spinReach(i);
+    velocities[i] = bodies.states[i].linearVelocity;
     // A body that moves this step by more than the manifold cache's tolerance will likely have its
     // pairs computed, not reused: the pair loop asks ahead for such bodies' shape data.
-    const float motion = dt * (glm::length(bodies.states[i].linearVelocity) + spinReaches[i]);
+    const float motion = dt * (glm::length(velocities[i]) + spinReaches[i]);
     likelyPlaced[i] = motion > def.contact.manifoldCacheDistance;
   }
   std::swap(contacts, previousContacts);
@@ -911,7 +916,9 @@ void World::Impl::narrowPhase(float dt) {
     ++tests;
     // A pair that has not moved relative to itself since its manifold was computed (a resting
     // stack, a crate on the terrain) gets that manifold placed again (Jolt's body pair cache).
-    const float margin = sensor ? 0.0f : speculativeMargin(ia, ib, spinReaches[ia], spinReaches[ib], dt);
+    const float margin =
+        sensor ? 0.0f
+               : speculativeMargin(velocities[ia], velocities[ib], spinReaches[ia], spinReaches[ib], dt);
     if (previous && !sensor &&
         detail::reuseManifold(previous->cache, previous->manifold, ta, tb, scaledRotations[ia],
                               scaledRotations[ib], ra.originRadius, rb.originRadius,
@@ -1026,17 +1033,17 @@ void World::Impl::narrowPhase(float dt) {
 
 // Speculative margin: the gap this pair can close within the step (Catto, GDC 2013).
 float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float dt) const {
-  return speculativeMargin(ia, ib, spinReach(ia), spinReach(ib), dt);
+  return speculativeMargin(bodies.states[ia].linearVelocity, bodies.states[ib].linearVelocity, spinReach(ia),
+                           spinReach(ib), dt);
 }
 
 float World::Impl::spinReach(std::uint32_t index) const {
   return glm::length(bodies.states[index].angularVelocity) * bodies.records[index].boundingRadius;
 }
 
-float World::Impl::speculativeMargin(std::uint32_t ia, std::uint32_t ib, float spinA, float spinB,
+float World::Impl::speculativeMargin(const Vec3& velocityA, const Vec3& velocityB, float spinA, float spinB,
                                      float dt) const {
-  const float approach =
-      glm::length(bodies.states[ib].linearVelocity - bodies.states[ia].linearVelocity) + spinA + spinB;
+  const float approach = glm::length(velocityB - velocityA) + spinA + spinB;
   const float margin = def.contact.speculativeDistance + dt * approach;
   // A finite velocity can still have an infinite length (beyond 1.8e19 m/s the square overflows):
   // capped at the largest float (NaN too), so that collide() takes the margin and the step goes
