@@ -103,6 +103,14 @@ class ConvexHull {
   std::span<const Edge> edges() const { return edges_; }
   // The vertices of a face, counter-clockwise seen from outside.
   std::vector<Vec3> faceVertices(std::uint32_t face) const;
+  // The faces around a vertex, in increasing order: one short array to read where walking the
+  // half-edges would chase links or scan them all.
+  std::span<const std::uint32_t> facesAround(std::uint32_t vertex) const {
+    const std::uint32_t* table = vertexFaces_.data();
+    return {table + table[vertex], table + table[vertex + 1]};
+  }
+  // The table behind facesAround, whole: one array, for the caller that prefetches it.
+  std::span<const std::uint32_t> vertexFaceTable() const { return vertexFaces_; }
 
   Vec3 support(const Vec3& direction) const;
   float volume() const { return volume_; }
@@ -119,6 +127,9 @@ class ConvexHull {
   std::vector<HalfEdge> halfEdges_;
   std::vector<Edge> edges_;
   std::vector<Face> faces_;
+  // facesAround: the vertex count + 1 offsets into this same array, then each vertex's faces; the
+  // faces of vertex v are at [vertexFaces_[v], vertexFaces_[v + 1]).
+  std::vector<std::uint32_t> vertexFaces_;
   float volume_ = 0.0f;
   Vec3 centroid_{0.0f};
   Mat3 unitInertia_{0.0f};

@@ -269,6 +269,16 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
         {h, edge.origin, hull.halfEdges_[edge.next].origin, edge.face, hull.halfEdges_[edge.twin].face});
   }
 
+  // Each half-edge leaves one vertex for one face, and the half-edges go face by face, so filling
+  // in their order keeps each vertex's faces in increasing order.
+  const std::size_t vertexCount = hull.vertices_.size();
+  std::vector<std::uint32_t>& table = hull.vertexFaces_;
+  table.assign(vertexCount + 1 + hull.halfEdges_.size(), 0);
+  table[0] = static_cast<std::uint32_t>(vertexCount + 1);
+  for (const ConvexHull::HalfEdge& edge : hull.halfEdges_) ++table[edge.origin + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) table[v + 1] += table[v];
+  std::vector<std::uint32_t> filled(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(vertexCount));
+  for (const ConvexHull::HalfEdge& edge : hull.halfEdges_) table[filled[edge.origin]++] = edge.face;
   hull.blockedVertices_ = detail::blockCoordinates(hull.vertices_);
   for (const Vec3& v : hull.vertices_) hull.bounds_.grow(v);
   // Integrate about the box centre: the polyhedron formulas lose precision far from the origin.

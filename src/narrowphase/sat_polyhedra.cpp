@@ -469,15 +469,14 @@ std::uint32_t incidentFace(const WorldPolyhedron& poly, const Vec3& normal) {
   for (std::uint32_t v = 1; v < poly.vertices.size(); ++v) {
     if (glm::dot(poly.vertices[v], normal) < glm::dot(poly.vertices[deepest], normal)) deepest = v;
   }
-  const auto edges = poly.hull->halfEdges();
+  // The faces around it, in increasing order: the first of the most anti-parallel wins.
   std::uint32_t best = 0;
   float lowest = 1e30f;
-  for (const ConvexHull::HalfEdge& edge : edges) {
-    if (edge.origin != deepest) continue;
-    const float d = glm::dot(poly.planes[edge.face].normal, normal);
+  for (const std::uint32_t face : poly.hull->facesAround(deepest)) {
+    const float d = glm::dot(poly.planes[face].normal, normal);
     if (d < lowest) {
       lowest = d;
-      best = edge.face;
+      best = face;
     }
   }
   return best;

@@ -180,6 +180,7 @@ void prefetchShapeArrays(const Shape& shape) {
   if (const ConvexHull* hull = polyhedronOf(shape)) {
     prefetchBytes(hull->vertices().data(), hull->vertices().size_bytes());
     prefetchBytes(hull->faces().data(), hull->faces().size_bytes());
+    prefetchBytes(hull->vertexFaceTable().data(), hull->vertexFaceTable().size_bytes());
   }
 }
 

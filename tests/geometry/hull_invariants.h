@@ -49,12 +49,25 @@ inline ::testing::AssertionResult isValidHalfEdgeHull(const ConvexHull& hull, fl
     if (vertexUse[i] < 3)
       return ::testing::AssertionFailure() << "vertex " << i << " starts " << vertexUse[i] << " edges";
   }
+  // The faces around each vertex: those of the half-edges leaving it, in increasing order.
+  for (std::uint32_t i = 0; i < vertices.size(); ++i) {
+    std::vector<std::uint32_t> expected;
+    for (const ConvexHull::HalfEdge& edge : edges)
+      if (edge.origin == i) expected.push_back(edge.face);
+    std::sort(expected.begin(), expected.end());
+    const auto around = hull.facesAround(i);
+    if (!std::equal(around.begin(), around.end(), expected.begin(), expected.end()))
+      return ::testing::AssertionFailure() << "facesAround(" << i << ") is not the faces of its half-edges";
+  }
   std::size_t edgeTotal = 0;
   for (std::uint32_t i = 0; i < faces.size(); ++i) {
     const ConvexHull::Face& face = faces[i];
     if (std::abs(glm::length(face.plane.normal) - 1.0f) > 1e-5f) {
       return ::testing::AssertionFailure() << "face " << i << " normal is not unit";
     }
+    if (face.firstVertex != edges[face.firstEdge].origin)
+      return ::testing::AssertionFailure()
+             << "face " << i << " firstVertex is not its first half-edge's origin";
     std::uint32_t h = face.firstEdge;
     for (std::uint32_t k = 0; k < face.edgeCount; ++k) {
       if (edges[h].face != i)
