@@ -877,7 +877,7 @@ void World::Impl::narrowPhase(float dt) {
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const ProxyPair& pair = pairs[p];
     // The shapes of the pairs a few places on that will likely be computed, not reused, asked for
-    // in two stages (prefetchShapeHeader).
+    // in three stages: the bodies' records (where the shape is), the hulls, their arrays.
     prefetchPairShapes(p + 3 * kPrefetchAhead, prefetchRecordShape);
     prefetchPairShapes(p + 2 * kPrefetchAhead, detail::prefetchShapeHeader);
     prefetchPairShapes(p + kPrefetchAhead, detail::prefetchShapeArrays);
