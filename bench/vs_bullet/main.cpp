@@ -219,6 +219,22 @@ std::string figuresJson(const Figures& f) {
   return o.str();
 }
 
+std::string formatRatio(double r) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", r);
+  return text;
+}
+
+// Each run's own ratio, collide / Bullet: the two engines ran back to back, so a slow spell of a
+// shared host weighs on both. Their median is steadier than the ratio of the two medians, which
+// may take its numerator and its denominator from different runs.
+std::vector<double> runRatios(const Summary& collide, const Summary& bullet) {
+  std::vector<double> ratios;
+  for (std::size_t r = 0; r < collide.runs.size() && r < bullet.runs.size(); ++r)
+    ratios.push_back(collide.runs[r].cpuMsPerStep / bullet.runs[r].cpuMsPerStep);
+  return ratios;
+}
+
 std::string engineJson(const Summary& s) {
   std::ostringstream o;
   o << "{\"cpu_ms_per_step\": " << jsonNumber(s.cpuMs())
@@ -307,18 +323,22 @@ int main(int argc, char** argv) try {
       "JSON).\n\n",
       runs);
   std::printf(
-      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target | wall ratio | "
-      "collide MB | Bullet MB |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target | per-run ratios "
+      "(median) | wall ratio | collide MB | Bullet MB |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < infos.size(); ++i) {
     const Summary& c = results[i][Engine::Collide];
     const Summary& b = results[i][Engine::Bullet];
     const double ratio = c.cpuMs() / b.cpuMs();
     const std::string target =
         infos[i].target ? (ratio < *infos[i].target ? "< " : "! < ") + jsonNumber(*infos[i].target) : "-";
-    std::printf("| %s %s | %d | %d | %.3f | %.3f | %.2f | %s | %.2f | %.1f | %.1f |\n", infos[i].id.c_str(),
-                infos[i].name.c_str(), c.figures().dynamicBodies, c.runs.front().steps, c.cpuMs(), b.cpuMs(),
-                ratio, target.c_str(), c.wallMs() / b.wallMs(), c.memoryMb(), b.memoryMb());
+    const std::vector<double> ratios = runRatios(c, b);
+    std::string perRun;
+    for (const double r : ratios) perRun += (perRun.empty() ? "" : " ") + formatRatio(r);
+    std::printf("| %s %s | %d | %d | %.3f | %.3f | %.3f | %s | %s (%.3f) | %.2f | %.1f | %.1f |\n",
+                infos[i].id.c_str(), infos[i].name.c_str(), c.figures().dynamicBodies, c.runs.front().steps,
+                c.cpuMs(), b.cpuMs(), ratio, target.c_str(), perRun.c_str(), median(ratios),
+                c.wallMs() / b.wallMs(), c.memoryMb(), b.memoryMb());
   }
   std::printf("\n(target: the issue's bound on collide/Bullet; \"! <\" marks one not met.)\n\n");
   std::printf(
@@ -352,6 +372,10 @@ int main(int argc, char** argv) try {
           << ", \"target\": " << (infos[i].target ? jsonNumber(*infos[i].target) : "null")
           << ", \"ratio\": " << jsonNumber(c.cpuMs() / b.cpuMs())
           << ", \"wall_ratio\": " << jsonNumber(c.wallMs() / b.wallMs())
+          << ", \"run_ratios\": [";
+      const std::vector<double> ratios = runRatios(c, b);
+      for (std::size_t r = 0; r < ratios.size(); ++r) out << (r ? ", " : "") << jsonNumber(ratios[r]);
+      out << "], \"median_run_ratio\": " << jsonNumber(median(ratios))
           << ",\n   \"collide\": " << engineJson(c) << ",\n   \"bullet\": " << engineJson(b) << "}"
           << (i + 1 < infos.size() ? "," : "") << "\n";
     }

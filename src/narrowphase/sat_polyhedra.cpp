@@ -149,9 +149,10 @@ struct Scratch {
   std::vector<Vec3> vertices[2];
   std::vector<Plane> planes[2];
   std::vector<float> normalBlocks[2];
-  std::vector<float> lowest;      // per face: the face query's bound, the triangle test's separation
-  std::vector<float> arcSides;    // the edge query's dot products of one edge's arc normal with B's faces
-  std::vector<WorldEdge> edgesB;  // the edges of B that the edge query keeps
+  std::vector<float> lowest;          // per face: the face query's bound, the triangle test's separation
+  std::vector<float> arcSides;        // the edge query's dot products of one edge's arc normal with B's faces
+  std::vector<WorldEdge> edgesB;      // the edges of B that the edge query keeps
+  std::vector<float> keptEdgeBlocks;  // their face and arc normals as blocks (queryEdges)
   std::vector<std::uint32_t> behind[2];  // per face: which of the other shape's points lie behind it
 };
 
@@ -409,18 +410,36 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   kept.clear();
   for (const ConvexHull::Edge& edge : b.hull->edges()) {
     if (behindB[edge.face1] & behindB[edge.face2]) continue;
-    const Vec3 origin = b.vertices[edge.origin];
-    const Vec3 n1 = b.planes[edge.face1].normal, n2 = b.planes[edge.face2].normal;
-    kept.push_back(
-        {origin, b.vertices[edge.end] - origin, glm::cross(n2, n1), edge.halfEdge, edge.face1, edge.face2});
+    // Written in place, field by field: a whole struct built on the stack and copied in was read
+    // back before its parts had been stored, a store-forwarding stall per edge.
+    WorldEdge& kept1 = kept.emplace_back();
+    kept1.origin = b.vertices[edge.origin];
+    kept1.direction = b.vertices[edge.end] - kept1.origin;
+    kept1.arcNormal = glm::cross(b.planes[edge.face2].normal, b.planes[edge.face1].normal);
+    kept1.halfEdge = edge.halfEdge;
+    kept1.face1 = edge.face1;
+    kept1.face2 = edge.face2;
   }
   if (kept.empty()) return best;
-  const std::size_t strideB = b.blockStride;
-  std::vector<float>& sides = scratch.arcSides;
-  sides.resize(strideB);
-  const float* __restrict xs = b.normalBlocks.data();
-  const float* __restrict ys = xs + strideB;
-  const float* __restrict zs = ys + strideB;
+  // The kept edges of B again as blocks: the normals of each edge's two faces and its arc normal,
+  // nine rows of `stride` floats (padding lanes zero, which never pass the arc test). The Gauss-map
+  // test of an edge of A then runs against a block of B's edges at a time, without a branch per
+  // pair (the pairs that pass are few, and which ones is unpredictable); those that pass go on one
+  // by one, in the order of B's edges, so the answer is the one the pair-by-pair loop gave.
+  const std::size_t keptCount = kept.size();
+  const std::size_t stride = blockedLanes(keptCount);
+  std::vector<float>& blocks = scratch.keptEdgeBlocks;
+  blocks.assign(9 * stride, 0.0f);
+  for (std::size_t k = 0; k < keptCount; ++k) {
+    const Vec3& n1 = b.planes[kept[k].face1].normal;
+    const Vec3& n2 = b.planes[kept[k].face2].normal;
+    for (int axis = 0; axis < 3; ++axis) {
+      blocks[axis * stride + k] = n1[axis];
+      blocks[(3 + axis) * stride + k] = n2[axis];
+      blocks[(6 + axis) * stride + k] = kept[k].arcNormal[axis];
+    }
+  }
+  const FloatW zero = zeroW();
   for (const ConvexHull::Edge& edge : a.hull->edges()) {
     if (behindA[edge.face1] & behindA[edge.face2]) continue;
     const std::uint32_t h = edge.halfEdge;
@@ -429,28 +448,40 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
     const Vec3 normalA2 = a.planes[edge.face2].normal;
     const Vec3 u = glm::cross(normalA2, normalA1);
     const Vec3 directionA = a.vertices[edge.end] - originA;
-    float* __restrict side = sides.data();
-    for (std::size_t j = 0; j < strideB; ++j) side[j] = xs[j] * u.x + ys[j] * u.y + zs[j] * u.z;
-    for (const WorldEdge& edgeB : kept) {
-      // c = -nB1 and d = -nB2 against A's arc: (c · u)(d · u) < 0.
-      const float cba = -side[edgeB.face1], dba = -side[edgeB.face2];
-      if (!(cba * dba < 0.0f)) continue;
-      const float adc = glm::dot(normalA1, edgeB.arcNormal);
-      const float bdc = glm::dot(normalA2, edgeB.arcNormal);
-      if (!(adc * bdc < 0.0f && cba * bdc > 0.0f)) continue;
-      Vec3 axis = glm::cross(directionA, edgeB.direction);
-      const float length = glm::length(axis);
-      // Parallel edges: their cross product has no direction (the face axes cover that case).
-      if (length < 1e-5f * glm::length(directionA) * glm::length(edgeB.direction)) continue;
-      axis /= length;
-      if (glm::dot(axis, originA - a.inside) < 0.0f) axis = -axis;
-      const float separation = glm::dot(axis, edgeB.origin - originA);
-      if (separation > best.separation) {
-        best.separation = separation;
-        best.edgeA = h;
-        best.edgeB = edgeB.halfEdge;
-        best.axis = axis;
-        if (separation > stopAbove) return best;
+    const FloatW ux = splat(u.x), uy = splat(u.y), uz = splat(u.z);
+    const FloatW a1x = splat(normalA1.x), a1y = splat(normalA1.y), a1z = splat(normalA1.z);
+    const FloatW a2x = splat(normalA2.x), a2y = splat(normalA2.y), a2z = splat(normalA2.z);
+    for (std::size_t block = 0; block < stride; block += kFaceBlock) {
+      const float* row = blocks.data() + block;
+      // With c = -nB1 and d = -nB2 (B's arc), the arcs cross where (c · u)(d · u) < 0,
+      // (a · (d x c))(b · (d x c)) < 0 and (c · u)(b · (d x c)) > 0 (Gregorius 2013); c · u is
+      // -side1, d · u is -side2, and the signs are those of the products below.
+      const FloatW side1 = loadW(row) * ux + loadW(row + stride) * uy + loadW(row + 2 * stride) * uz;
+      const FloatW side2 =
+          loadW(row + 3 * stride) * ux + loadW(row + 4 * stride) * uy + loadW(row + 5 * stride) * uz;
+      const FloatW arcX = loadW(row + 6 * stride), arcY = loadW(row + 7 * stride),
+                   arcZ = loadW(row + 8 * stride);
+      const FloatW adc = a1x * arcX + a1y * arcY + a1z * arcZ;
+      const FloatW bdc = a2x * arcX + a2y * arcY + a2z * arcZ;
+      unsigned crossing = maskBits(
+          andW(andW(greaterW(zero, side1 * side2), greaterW(zero, adc * bdc)), greaterW(zero, side1 * bdc)));
+      while (crossing != 0) {
+        const WorldEdge& edgeB = kept[block + static_cast<unsigned>(std::countr_zero(crossing))];
+        crossing &= crossing - 1;
+        Vec3 axis = glm::cross(directionA, edgeB.direction);
+        const float length = glm::length(axis);
+        // Parallel edges: their cross product has no direction (the face axes cover that case).
+        if (length < 1e-5f * glm::length(directionA) * glm::length(edgeB.direction)) continue;
+        axis /= length;
+        if (glm::dot(axis, originA - a.inside) < 0.0f) axis = -axis;
+        const float separation = glm::dot(axis, edgeB.origin - originA);
+        if (separation > best.separation) {
+          best.separation = separation;
+          best.edgeA = h;
+          best.edgeB = edgeB.halfEdge;
+          best.axis = axis;
+          if (separation > stopAbove) return best;
+        }
       }
     }
   }

@@ -181,6 +181,7 @@ void prefetchShapeArrays(const Shape& shape) {
     prefetchBytes(hull->vertices().data(), hull->vertices().size_bytes());
     prefetchBytes(hull->faces().data(), hull->faces().size_bytes());
     prefetchBytes(hull->vertexFaceTable().data(), hull->vertexFaceTable().size_bytes());
+    prefetchBytes(hull->edges().data(), hull->edges().size_bytes());
   }
 }
 

@@ -37,8 +37,9 @@ Aabb computeWorldBounds(const Compound& s, const Transform& t);
 // a scene of thousands of distinct hulls their data is out of cache, and a placement that waits for
 // each line in turn spends most of its time waiting. Two stages, since a polyhedron's arrays are
 // found through the polyhedron: first the polyhedron itself (prefetchShapeHeader), then, some work
-// later, once it has arrived, its vertices, faces and vertex-to-faces table (prefetchShapeArrays),
-// what a placement and an incident face read. Nothing for the other
+// later, once it has arrived, its vertices, faces, vertex-to-faces table and edges
+// (prefetchShapeArrays): what a placement, the separating-axis test and an incident face read.
+// Nothing for the other
 // shapes.
 void prefetchShapeHeader(const Shape& shape);
 void prefetchShapeArrays(const Shape& shape);
