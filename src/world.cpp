@@ -21,6 +21,7 @@
 #include "dynamics/integrate.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver.h"
+#include "memory/prefetch.h"
 #include "response/contact_response.h"
 #include "shapes/shape_functions.h"
 
@@ -108,6 +109,7 @@ struct World::Impl {
   std::vector<float> spinReaches;
   std::vector<Vec3> velocities;            // linear, for the speculative margins
   std::vector<std::uint8_t> likelyPlaced;  // moves beyond the manifold cache's tolerance this step
+  std::vector<std::uint32_t> proxyBodies;  // the body of each broad-phase proxy slot (its user value)
   std::vector<Contact> contacts;
   std::vector<Contact> previousContacts;
   detail::StepSolver stepSolver;
@@ -862,11 +864,15 @@ void World::Impl::narrowPhase(float dt) {
     }
   };
 
-  const auto bodyOf = [&](ProxyId proxy) {
-    return static_cast<std::uint32_t>(broadPhase->records()[proxy.index].userValue);
-  };
+  // Each proxy's body (its user value), copied once per step into a compact array that the pair
+  // loop and its prefetching read twice a pair, instead of the broad phase's 48-byte records.
+  const auto& proxies = broadPhase->records();
+  proxyBodies.resize(proxies.size());
+  for (std::size_t k = 0; k < proxies.size(); ++k)
+    proxyBodies[k] = static_cast<std::uint32_t>(proxies[k].userValue);
+  const auto bodyOf = [&](ProxyId proxy) { return proxyBodies[proxy.index]; };
   // The record's shape is the first step of the chain: asked for before the shape's own data.
-  const auto prefetchRecordShape = [](const Shape& shape) { __builtin_prefetch(&shape); };
+  const auto prefetchRecordShape = [](const Shape& shape) { detail::prefetchLine(&shape); };
   const auto prefetchPairShapes = [&](std::size_t p, void (*prefetch)(const Shape&)) {
     if (p >= pairs.size()) return;
     const std::uint32_t a = bodyOf(pairs[p].a), b = bodyOf(pairs[p].b);
@@ -874,8 +880,16 @@ void World::Impl::narrowPhase(float dt) {
     prefetch(bodies.records[a].shape);
     prefetch(bodies.records[b].shape);
   };
+  // Last step's contacts are read, and this step's written, in order, 496 bytes each: both asked
+  // for a few contacts ahead (the stride is too long for the hardware to follow it in time).
+  constexpr std::size_t kContactsAhead = 4;
+
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const ProxyPair& pair = pairs[p];
+    if (j + kContactsAhead < previousContacts.size())
+      detail::prefetchBytes(&previousContacts[j + kContactsAhead], sizeof(Contact));
+    if (contacts.size() + kContactsAhead < contacts.capacity())
+      detail::prefetchBytes(contacts.data() + contacts.size() + kContactsAhead, sizeof(Contact));
     // The shapes of the pairs a few places on that will likely be computed, not reused, asked for
     // in three stages: the bodies' records (where the shape is), the hulls, their arrays.
     prefetchPairShapes(p + 3 * kPrefetchAhead, prefetchRecordShape);

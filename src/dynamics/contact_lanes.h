@@ -5,6 +5,7 @@
 
 #include "dynamics/contact_solver.h"
 #include "dynamics/simd.h"
+#include "memory/prefetch.h"
 
 #include <algorithm>
 #include <array>
@@ -89,14 +90,7 @@ class LaneContactSolver final : public ContactLanes {
     const std::size_t total = in.order.size();
     const auto prefetchContact = [&](std::size_t i) {
       if (i >= total) return;
-      const char* bytes = reinterpret_cast<const char*>(&in.contacts[in.order[i]]);
-      for (std::size_t line = 0; line < offsetof(Contact, cache); line += 64)
-        __builtin_prefetch(bytes + line);
-    };
-    // Both ends of a record: those not aligned to the cache lines straddle two.
-    const auto prefetchRecord = [](const auto& record) {
-      __builtin_prefetch(&record);
-      __builtin_prefetch(reinterpret_cast<const char*>(&record) + sizeof(record) - 1);
+      prefetchBytes(&in.contacts[in.order[i]], offsetof(Contact, cache));
     };
     const auto prefetchBody = [&](std::uint32_t body) {
       prefetchRecord(in.storage.states[body]);

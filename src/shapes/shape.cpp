@@ -2,6 +2,8 @@
 // functions of shape_functions.h.
 #include "shapes/shape_functions.h"
 
+#include "memory/prefetch.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -161,10 +163,6 @@ Aabb worldBounds(const Shape& shape, const Transform& transform) {
 namespace detail {
 
 namespace {
-void prefetchBytes(const void* data, std::size_t bytes) {
-  const char* begin = static_cast<const char*>(data);
-  for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(begin + offset);
-}
 const ConvexHull* polyhedronOf(const Shape& shape) {
   if (shape.type() == ShapeType::ConvexHull) return &shape.convexHull();
   if (shape.type() == ShapeType::Kdop) return &shape.kdop().polytope();
