@@ -201,7 +201,17 @@ class LaneContactSolver final : public ContactLanes {
   }
 
   void store(std::vector<Contact>& contacts) const override {
-    for (const Batch& c : batches_) {
+    // The contacts of a batch two places on, asked for ahead: they lie anywhere in the array.
+    constexpr std::size_t kAhead = 2;
+    const auto prefetchContacts = [&](std::size_t batch) {
+      if (batch >= batches_.size()) return;
+      for (const std::int32_t index : batches_[batch].contact)
+        if (index >= 0) prefetchBytes(&contacts[static_cast<std::size_t>(index)], offsetof(Contact, cache));
+    };
+    for (std::size_t i = 0; i < kAhead; ++i) prefetchContacts(i);
+    for (std::size_t i = 0; i < batches_.size(); ++i) {
+      prefetchContacts(i + kAhead);
+      const Batch& c = batches_[i];
       for (int lane = 0; lane < kWidth; ++lane) {
         if (c.contact[lane] < 0) continue;
         Contact& contact = contacts[static_cast<std::size_t>(c.contact[lane])];
