@@ -323,7 +323,8 @@ int main(int argc, char** argv) try {
       "JSON).\n\n",
       runs);
   std::printf(
-      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target | per-run ratios "
+      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target | per-run "
+      "ratios "
       "(median) | wall ratio | collide MB | Bullet MB |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < infos.size(); ++i) {
@@ -371,8 +372,7 @@ int main(int argc, char** argv) try {
           << "\", \"steps\": " << c.runs.front().steps
           << ", \"target\": " << (infos[i].target ? jsonNumber(*infos[i].target) : "null")
           << ", \"ratio\": " << jsonNumber(c.cpuMs() / b.cpuMs())
-          << ", \"wall_ratio\": " << jsonNumber(c.wallMs() / b.wallMs())
-          << ", \"run_ratios\": [";
+          << ", \"wall_ratio\": " << jsonNumber(c.wallMs() / b.wallMs()) << ", \"run_ratios\": [";
       const std::vector<double> ratios = runRatios(c, b);
       for (std::size_t r = 0; r < ratios.size(); ++r) out << (r ? ", " : "") << jsonNumber(ratios[r]);
       out << "], \"median_run_ratio\": " << jsonNumber(median(ratios))
