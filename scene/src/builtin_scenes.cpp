@@ -11,7 +11,7 @@ namespace collide::scene {
 namespace builtin {
 Json billiards();
 Json pile();
-Json rain();
+Json rain(double jitter);
 Json pyramid();
 Json terrain();
 Json proxies();
@@ -33,7 +33,9 @@ const std::vector<Entry>& registry() {
       {{"billiards", "B1: the lecture's break shot, 16 balls on a table with cushions (the default)"},
        builtin::billiards},
       {{"pile", "R1: 4,096 unit cubes in a 16x16x16 lattice falling on the ground"}, builtin::pile},
-      {{"rain", "R2: 8,000 spheres falling into an open container"}, builtin::rain},
+      {{"rain", "R2: 8,000 spheres falling into an open container"}, [] { return builtin::rain(0.0); }},
+      {{"rain-jittered", "R2 with each sphere moved by up to 4 cm sideways, so that the columns topple"},
+       [] { return builtin::rain(0.04); }},
       {{"pyramid", "R3: a 30-row pyramid of 465 touching unit cubes"}, builtin::pyramid},
       {{"terrain", "R4: 2,000 convex hulls falling on a 100x100 sine-terrain mesh"}, builtin::terrain},
       {{"proxies", "three of every droppable proxy type falling on a plane, a mesh ramp and each other"},

@@ -36,6 +36,7 @@ TEST(BuiltinScenes, UnknownNameIsAnError) {
 TEST(BuiltinScenes, ReferenceCounts) {
   EXPECT_EQ(loadBuiltinScene("pile").bodies.size(), 4096u + 1u);
   EXPECT_EQ(loadBuiltinScene("rain").bodies.size(), 8000u + 5u);
+  EXPECT_EQ(loadBuiltinScene("rain-jittered").bodies.size(), 8000u + 5u);
   EXPECT_EQ(loadBuiltinScene("pyramid").bodies.size(), 465u + 1u);
   EXPECT_EQ(loadBuiltinScene("billiards").bodies.size(), 16u + 5u);
 }

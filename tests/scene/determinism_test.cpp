@@ -18,7 +18,7 @@ namespace {
 // whose first contacts come earlier than that and whose steps cost tens of ms (docs/benchmarks.md).
 int stepsFor(std::string_view name) {
   static const std::map<std::string, int, std::less<>> kShorter = {
-      {"pile", 30}, {"rain", 40}, {"terrain", 60}, {"pyramid", 60}};
+      {"pile", 30}, {"rain", 40}, {"rain-jittered", 40}, {"terrain", 60}, {"pyramid", 60}};
   const auto it = kShorter.find(name);
   return it == kShorter.end() ? 120 : it->second;
 }
