@@ -60,7 +60,8 @@ float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const
 // A body's world box is recomputed once any of its points may have moved this far (m) since the box
 // was computed; until then the old box grown by the possible motion stands in (conservative).
 constexpr float kBoundsReuseDistance = 0.002f;
-// How many bodies (or pairs) ahead the loops that place shapes ask for their data (prefetchPlacement).
+// How many bodies (or pairs) ahead the loops that place shapes ask for their data (prefetchShapeHeader,
+// prefetchShapeArrays; the bounds loop looks twice as far, the pair loop up to three times).
 constexpr std::uint32_t kPrefetchAhead = 4;
 
 bool isFinite(const Mat3& m) {
