@@ -6,26 +6,40 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace collide::detail {
 
-inline __attribute__((always_inline)) void prefetchLine(const void* address) {
-#if defined(__x86_64__) || defined(__i386__)
-  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(address)));
+#if defined(__GNUC__)
+#define COLLIDE_PREFETCH_INLINE inline __attribute__((always_inline))
 #else
+#define COLLIDE_PREFETCH_INLINE inline
+#endif
+
+COLLIDE_PREFETCH_INLINE void prefetchLine(const void* address) {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(address)));
+#elif defined(__GNUC__)
   __builtin_prefetch(address);
+#else
+  (void)address;  // no portable prefetch: the loads simply wait
 #endif
 }
 
-// Every cache line of [data, data + bytes).
-inline __attribute__((always_inline)) void prefetchBytes(const void* data, std::size_t bytes) {
-  const char* begin = static_cast<const char*>(data);
-  for (std::size_t offset = 0; offset < bytes; offset += 64) prefetchLine(begin + offset);
+// Every cache line that [data, data + bytes) touches, the last one included when the range does
+// not start on a line (a 496-byte contact spans eight or nine lines).
+COLLIDE_PREFETCH_INLINE void prefetchBytes(const void* data, std::size_t bytes) {
+  if (bytes == 0) return;
+  constexpr std::uintptr_t kLine = 64;
+  const auto begin = reinterpret_cast<std::uintptr_t>(data) & ~(kLine - 1);
+  const auto end = reinterpret_cast<std::uintptr_t>(data) + bytes;
+  for (std::uintptr_t line = begin; line < end; line += kLine)
+    prefetchLine(reinterpret_cast<const void*>(line));
 }
 
 // Both ends of a record: one not aligned to the cache lines straddles two.
 template <typename Record>
-inline __attribute__((always_inline)) void prefetchRecord(const Record& record) {
+COLLIDE_PREFETCH_INLINE void prefetchRecord(const Record& record) {
   prefetchLine(&record);
   prefetchLine(reinterpret_cast<const char*>(&record) + sizeof(Record) - 1);
 }
