@@ -77,15 +77,11 @@ const UnitCube& unitCube() {
 }
 
 // An edge of a placed polyhedron, once (the smaller of its two half-edges), with what the edge
-// query needs: its world segment, its two faces and the normal of its Gauss-map arc's great circle.
-// Made only for the edges of B that the query keeps (facesBehind).
+// query needs: its world segment and its two faces (the half-edge's, then its twin's). Made only
+// for the edges of B that the query keeps (facesBehind).
 struct WorldEdge {
   Vec3 origin{0.0f};
   Vec3 direction{0.0f};  // end - origin
-  // cross(n2, n1) for the normals n1 of the half-edge's face and n2 of its twin's: the arc's
-  // endpoints lie on either side of a plane through the origin exactly when their dot products with
-  // it differ in sign (Gregorius 2013).
-  Vec3 arcNormal{0.0f};
   std::uint32_t halfEdge = 0;
   std::uint32_t face1 = 0, face2 = 0;
 };
@@ -149,10 +145,10 @@ struct Scratch {
   std::vector<Vec3> vertices[2];
   std::vector<Plane> planes[2];
   std::vector<float> normalBlocks[2];
-  std::vector<float> lowest;          // per face: the face query's bound, the triangle test's separation
-  std::vector<float> arcSides;        // the edge query's dot products of one edge's arc normal with B's faces
-  std::vector<WorldEdge> edgesB;      // the edges of B that the edge query keeps
-  std::vector<float> keptEdgeBlocks;  // their face and arc normals as blocks (queryEdges)
+  std::vector<float> lowest;             // per face: the face query's bound, the triangle test's separation
+  std::vector<float> arcSides;           // the triangle test's face normals dotted with each triangle edge
+  std::vector<WorldEdge> edgesB;         // the edges of B that the edge query keeps
+  std::vector<float> keptEdgeBlocks;     // their face and arc normals as blocks (queryEdges)
   std::vector<std::uint32_t> behind[2];  // per face: which of the other shape's points lie behind it
 };
 
@@ -415,14 +411,15 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
     WorldEdge& kept1 = kept.emplace_back();
     kept1.origin = b.vertices[edge.origin];
     kept1.direction = b.vertices[edge.end] - kept1.origin;
-    kept1.arcNormal = glm::cross(b.planes[edge.face2].normal, b.planes[edge.face1].normal);
     kept1.halfEdge = edge.halfEdge;
     kept1.face1 = edge.face1;
     kept1.face2 = edge.face2;
   }
   if (kept.empty()) return best;
-  // The kept edges of B again as blocks: the normals of each edge's two faces and its arc normal,
-  // nine rows of `stride` floats (padding lanes zero, which never pass the arc test). The Gauss-map
+  // The kept edges of B again as blocks: the normals n1 and n2 of each edge's two faces and its arc
+  // normal cross(n2, n1) (the arc's ends lie on either side of a plane through the origin exactly
+  // when their dot products with it differ in sign, Gregorius 2013), nine rows of `stride` floats
+  // (padding lanes zero, which never pass the arc test). The Gauss-map
   // test of an edge of A then runs against a block of B's edges at a time, without a branch per
   // pair (the pairs that pass are few, and which ones is unpredictable); those that pass go on one
   // by one, in the order of B's edges, so the answer is the one the pair-by-pair loop gave.
@@ -433,10 +430,11 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   for (std::size_t k = 0; k < keptCount; ++k) {
     const Vec3& n1 = b.planes[kept[k].face1].normal;
     const Vec3& n2 = b.planes[kept[k].face2].normal;
+    const Vec3 arcNormal = glm::cross(n2, n1);
     for (int axis = 0; axis < 3; ++axis) {
       blocks[axis * stride + k] = n1[axis];
       blocks[(3 + axis) * stride + k] = n2[axis];
-      blocks[(6 + axis) * stride + k] = kept[k].arcNormal[axis];
+      blocks[(6 + axis) * stride + k] = arcNormal[axis];
     }
   }
   const FloatW zero = zeroW();
