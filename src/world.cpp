@@ -26,6 +26,7 @@
 #include "shapes/shape_functions.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -60,8 +61,9 @@ float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const
 // A body's world box is recomputed once any of its points may have moved this far (m) since the box
 // was computed; until then the old box grown by the possible motion stands in (conservative).
 constexpr float kBoundsReuseDistance = 0.002f;
-// How many bodies (or pairs) ahead the loops that place shapes ask for their data (prefetchShapeHeader,
-// prefetchShapeArrays; the bounds loop looks twice as far, the pair loop up to three times).
+// The unit of how far ahead the loops that place shapes ask for their data (prefetchShapeHeader,
+// prefetchShapeArrays): the pair loop looks up to three times this many pairs ahead, the bounds
+// loop four times this many bodies.
 constexpr std::uint32_t kPrefetchAhead = 4;
 
 bool isFinite(const Mat3& m) {
@@ -239,9 +241,13 @@ struct World::Impl {
   // The body's world box. A body that barely moved since its box was last computed (a resting hull
   // transforms all its vertices for it) gets the old box grown by how far it can have moved.
   Aabb currentBounds(std::uint32_t index) {
-    BodyRecord& r = bodies.records[index];
     float moved = 0.0f;
-    if (boundsReusable(index, moved)) return r.bounds.expanded(moved);
+    if (boundsReusable(index, moved)) return bodies.records[index].bounds.expanded(moved);
+    return recomputeBounds(index);
+  }
+  // The body's world box computed anew from its shape and pose, and kept with that pose.
+  Aabb recomputeBounds(std::uint32_t index) {
+    BodyRecord& r = bodies.records[index];
     const BodyState& s = bodies.states[index];
     r.bounds = worldBounds(r.shape, detail::bodyTransform(r, s));
     r.boundsCenter = s.centerOfMass;
@@ -250,10 +256,11 @@ struct World::Impl {
     return r.bounds;
   }
 
-  Aabb proxyBounds(std::uint32_t index, float dt) {
+  Aabb proxyBounds(std::uint32_t index, float dt) { return grownForStep(index, dt, currentBounds(index)); }
+  // The body's current box as its proxy's: grown by the step's motion.
+  Aabb grownForStep(std::uint32_t index, float dt, Aabb box) const {
     const BodyRecord& r = bodies.records[index];
     const BodyState& s = bodies.states[index];
-    Aabb box = currentBounds(index);
     if (r.type == BodyType::Static) return withinFloatRange(box);
     // Speculative contacts need the pair before the bodies meet: grow by the step's motion.
     const Vec3 motion = dt * s.linearVelocity;
@@ -748,24 +755,37 @@ void World::Impl::step(float dt) {
   pendingContactEvents.clear();
   pendingSensorEvents.clear();
   faultEvents.clear();
-  const auto updated = [&](std::uint32_t i) {
-    const BodyRecord& r = bodies.records[i];
-    return r.alive && r.type != BodyType::Static && r.awake;
-  };
-  const auto bodyCount = static_cast<std::uint32_t>(bodies.records.size());
-  // The shape data of the bodies a few places on whose boxes will be computed anew (their hulls'
-  // vertices), asked for in two stages (prefetchShapeHeader).
-  const auto recomputed = [&](std::uint32_t i) {
+  // Each body's verdict (is its proxy updated; is its box grown by how far it moved, or computed
+  // anew) is taken once, kBodiesAhead places ahead, where a box to compute anew has its shape's data
+  // asked for (the hull there, its arrays half-way: prefetchShapeHeader), and kept in a ring until
+  // the body's turn. A box costs less than a pair, so this looks twice as far as the pair loop.
+  struct BoxVerdict {
+    bool updated = false;
+    bool reusable = false;
     float moved = 0.0f;
-    return i < bodyCount && updated(i) && !boundsReusable(i, moved);
   };
+  constexpr std::uint32_t kBodiesAhead = 4 * kPrefetchAhead;
+  std::array<BoxVerdict, kBodiesAhead> verdicts;
+  const auto bodyCount = static_cast<std::uint32_t>(bodies.records.size());
+  const auto judge = [&](std::uint32_t i) {
+    const BodyRecord& r = bodies.records[i];
+    BoxVerdict v;
+    v.updated = r.alive && r.type != BodyType::Static && r.awake;
+    if (v.updated) v.reusable = boundsReusable(i, v.moved);
+    if (v.updated && !v.reusable) detail::prefetchShapeHeader(r.shape);
+    verdicts[i % kBodiesAhead] = v;
+  };
+  for (std::uint32_t i = 0; i < std::min(kBodiesAhead, bodyCount); ++i) judge(i);
   for (std::uint32_t i = 0; i < bodyCount; ++i) {
-    // A body's box costs less than a pair, so these look twice as far ahead.
-    if (recomputed(i + 4 * kPrefetchAhead))
-      detail::prefetchShapeHeader(bodies.records[i + 4 * kPrefetchAhead].shape);
-    if (recomputed(i + 2 * kPrefetchAhead))
-      detail::prefetchShapeArrays(bodies.records[i + 2 * kPrefetchAhead].shape);
-    if (updated(i)) broadPhase->update(bodies.records[i].proxy, proxyBounds(i, dt));
+    const BoxVerdict v = verdicts[i % kBodiesAhead];
+    if (i + kBodiesAhead < bodyCount) judge(i + kBodiesAhead);
+    if (const std::uint32_t half = i + kBodiesAhead / 2; half < bodyCount) {
+      const BoxVerdict& w = verdicts[half % kBodiesAhead];
+      if (w.updated && !w.reusable) detail::prefetchShapeArrays(bodies.records[half].shape);
+    }
+    if (!v.updated) continue;
+    const Aabb box = v.reusable ? bodies.records[i].bounds.expanded(v.moved) : recomputeBounds(i);
+    broadPhase->update(bodies.records[i].proxy, grownForStep(i, dt, box));
   }
   broadPhase->findPairs(pairs);
   if (def.sleeping) wakeTouchedIslands(dt);
