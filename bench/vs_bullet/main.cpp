@@ -323,9 +323,8 @@ int main(int argc, char** argv) try {
       "JSON).\n\n",
       runs);
   std::printf(
-      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target | per-run "
-      "ratios "
-      "(median) | wall ratio | collide MB | Bullet MB |\n");
+      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target "
+      "| per-run ratios (median) | wall ratio | collide MB | Bullet MB |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < infos.size(); ++i) {
     const Summary& c = results[i][Engine::Collide];

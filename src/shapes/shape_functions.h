@@ -39,8 +39,7 @@ Aabb computeWorldBounds(const Compound& s, const Transform& t);
 // found through the polyhedron: first the polyhedron itself (prefetchShapeHeader), then, some work
 // later, once it has arrived, its vertices, faces, vertex-to-faces table and edges
 // (prefetchShapeArrays): what a placement, the separating-axis test and an incident face read.
-// Nothing for the other
-// shapes.
+// Nothing for the other shapes.
 void prefetchShapeHeader(const Shape& shape);
 void prefetchShapeArrays(const Shape& shape);
 
