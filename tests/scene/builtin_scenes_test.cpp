@@ -41,6 +41,44 @@ TEST(BuiltinScenes, ReferenceCounts) {
   EXPECT_EQ(loadBuiltinScene("billiards").bodies.size(), 16u + 5u);
 }
 
+// rain-jittered is R2 with each sphere moved sideways by up to 4 cm: the same heights, the sideways
+// offsets spread over (-4, 4) cm (a draw below float resolution at 6 m leaves a coordinate as it
+// was, so "moved" allows a few), and every sphere still 2 cm clear of its lattice neighbours
+// (radius 0.25, spacing 0.6), so nothing starts overlapping.
+TEST(BuiltinScenes, JitteredRainMovesEverySphereSidewaysWithinItsCell) {
+  const Scene exact = loadBuiltinScene("rain");
+  const Scene jittered = loadBuiltinScene("rain-jittered");
+  ASSERT_EQ(exact.bodies.size(), jittered.bodies.size());
+  std::size_t moved = 0;
+  float lowest = 0.0f, highest = 0.0f;
+  for (std::size_t i = 5; i < exact.bodies.size(); ++i) {
+    const Vec3 a = exact.bodies[i].def.position, b = jittered.bodies[i].def.position;
+    EXPECT_EQ(a.y, b.y);
+    EXPECT_LE(std::abs(b.x - a.x), 0.04f + 1e-6f);
+    EXPECT_LE(std::abs(b.z - a.z), 0.04f + 1e-6f);
+    moved += (a.x != b.x || a.z != b.z) ? 1 : 0;
+    lowest = std::min({lowest, b.x - a.x, b.z - a.z});
+    highest = std::max({highest, b.x - a.x, b.z - a.z});
+  }
+  EXPECT_GE(moved, exact.bodies.size() - 5 - 2);
+  EXPECT_LT(lowest, -0.039f);
+  EXPECT_GT(highest, 0.039f);
+  // Lattice order: x fastest, then z, then y; neighbours along x and z in one layer.
+  const auto at = [&](int x, int y, int z) { return jittered.bodies[5 + x + 20 * z + 400 * y].def.position; };
+  for (int y = 0; y < 20; ++y) {
+    for (int z = 0; z < 20; ++z) {
+      for (int x = 0; x < 20; ++x) {
+        if (x + 1 < 20) {
+          EXPECT_GE(glm::length(at(x + 1, y, z) - at(x, y, z)), 0.52f);
+        }
+        if (z + 1 < 20) {
+          EXPECT_GE(glm::length(at(x, y, z + 1) - at(x, y, z)), 0.52f);
+        }
+      }
+    }
+  }
+}
+
 TEST(BuiltinScenes, PyramidCubesTouchExactly) {
   const Scene s = loadBuiltinScene("pyramid");
   // Row 0 spans x = -14.5 .. 14.5 at y = 0.5; the top cube sits at (0, 29.5, 0).
