@@ -1,0 +1,72 @@
+// Reference state hashes: every built-in scene, stepped as long as the determinism test steps it,
+// ends in the state recorded here. Refactoring the step (moving code between files and layers,
+// splitting functions, renaming) must keep every hash; a change that means to change the physics
+// updates this table in the same commit and says why there.
+//
+// A hash holds for one build only (docs/determinism.md, "Its limits"): these are GCC's Release
+// build on x86-64, the build of the README's test command and of CI's first stage. Other builds
+// (the sanitized clang -O1 one, Debug) skip the comparison; their runs are still compared with
+// each other by Determinism.EveryBuiltinSceneTwiceGivesTheSameState.
+#include <collide/scene/builtin_scenes.h>
+#include <collide/scene/runner.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace collide::scene {
+namespace {
+
+struct ReferenceRun {
+  std::string_view scene;
+  int steps;
+  std::uint64_t stateHash;
+};
+
+constexpr ReferenceRun kReferenceRuns[] = {
+    {"billiards", 120, 0x4c14d59360bd5eb5},
+    {"pile", 30, 0x07aec86cc5b6ae08},
+    {"rain", 40, 0xdface9156540e385},
+    {"rain-jittered", 40, 0x3d58fdf3cd65e3e2},
+    {"pyramid", 60, 0x8c49eb4a433140c8},
+    {"terrain", 60, 0x5e764424774abf7e},
+    {"proxies", 120, 0x8cc26232fe3dfbaa},
+    {"revert", 120, 0x15695fbd2936ea81},
+    {"revert-project", 120, 0x5d63bd24f098944e},
+    {"breakable", 120, 0x6e3f15fe89955261},
+    {"chain", 120, 0x08134ba65e349a46},
+    {"tunneling", 120, 0xf110d638d2854f5d},
+};
+
+std::string hex(std::uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+TEST(ReferenceHashes, EveryBuiltinSceneHasATableEntry) {
+  for (const BuiltinScene& builtin : builtinScenes()) {
+    bool found = false;
+    for (const ReferenceRun& run : kReferenceRuns) found = found || run.scene == builtin.name;
+    EXPECT_TRUE(found) << "no reference hash for built-in scene " << builtin.name;
+  }
+}
+
+TEST(ReferenceHashes, EveryBuiltinSceneEndsInItsRecordedState) {
+#ifndef COLLIDE_REFERENCE_BUILD
+  GTEST_SKIP() << "the recorded hashes are those of GCC's Release build on x86-64";
+#endif
+  for (const ReferenceRun& run : kReferenceRuns) {
+    SCOPED_TRACE(std::string(run.scene));
+    RunOptions options;
+    options.steps = run.steps;
+    const RunSummary summary = runScene(loadBuiltinScene(run.scene), options);
+    EXPECT_EQ(hex(summary.stateHash), hex(run.stateHash));
+  }
+}
+
+}  // namespace
+}  // namespace collide::scene
