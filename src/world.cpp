@@ -87,20 +87,6 @@ std::string formatFloat(float value) {
 
 }  // namespace
 
-float combine(CombineRule rule, float a, float b) {
-  switch (rule) {
-    case CombineRule::Average:
-      return 0.5f * (a + b);
-    case CombineRule::Min:
-      return std::min(a, b);
-    case CombineRule::Max:
-      return std::max(a, b);
-    case CombineRule::Multiply:
-      return a * b;
-  }
-  return a;
-}
-
 struct World::Impl {
   WorldDef def;
   detail::BodyStorage bodies;

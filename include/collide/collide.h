@@ -1,11 +1,16 @@
 // collide: collision detection and response for 3D games. Include this for the whole public API.
 #pragma once
 
+#include <collide/body.h>
+#include <collide/body.h>
 #include <collide/bounding.h>
 #include <collide/broadphase.h>
 #include <collide/error.h>
+#include <collide/events.h>
 #include <collide/math.h>
 #include <collide/narrowphase.h>
+#include <collide/queries.h>
+#include <collide/settings.h>
 #include <collide/shapes.h>
 #include <collide/world.h>
 

@@ -68,7 +68,7 @@ struct Ray {
 struct RayHit {
   float distance = 0.0f;  // along the ray, in world units
   Vec3 point{0.0f};
-  Vec3 normal{0.0f};       // unit, the surface normal at the hit, facing the ray's origin side
+  Vec3 normal{0.0f};           // unit, the surface normal at the hit, facing the ray's origin side
   std::uint32_t subShape = 0;  // triangle index for a mesh, child index for a compound
 };
 
@@ -106,8 +106,8 @@ struct Aabb {
   }
   bool contains(const Aabb& b) const { return contains(b.min) && contains(b.max); }
   bool overlaps(const Aabb& b) const {
-    return min.x <= b.max.x && b.min.x <= max.x && min.y <= b.max.y && b.min.y <= max.y &&
-           min.z <= b.max.z && b.min.z <= max.z;
+    return min.x <= b.max.x && b.min.x <= max.x && min.y <= b.max.y && b.min.y <= max.y && min.z <= b.max.z &&
+           b.min.z <= max.z;
   }
 };
 

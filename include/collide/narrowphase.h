@@ -138,12 +138,12 @@ struct ToiResult {
 };
 
 // The first time in [0, 1] at which A and B, moving by their sweeps, come within
-// settings.targetSeparation of each other (the earliest over a mesh's triangles or a compound's children). Any shapes but two planes: a sphere whose centre moves in
-// a straight line relative to a plane, box, triangle (of a mesh), sphere or capsule that does not
-// turn is swept exactly (a ray against the other shape grown by the radius: the Minkowski sum);
-// everything else by conservative advancement on the distance query, bounding the motion of any
-// point by |delta x| + angle * r_max (Mirtich 1996; Catto, "Continuous Collision", GDC 2013).
-// Meshes and compounds are swept per triangle / child (meshes are two-sided); the earliest hit
+// settings.targetSeparation of each other (the earliest over a mesh's triangles or a compound's children).
+// Any shapes but two planes: a sphere whose centre moves in a straight line relative to a plane, box,
+// triangle (of a mesh), sphere or capsule that does not turn is swept exactly (a ray against the other shape
+// grown by the radius: the Minkowski sum); everything else by conservative advancement on the distance query,
+// bounding the motion of any point by |delta x| + angle * r_max (Mirtich 1996; Catto, "Continuous Collision",
+// GDC 2013). Meshes and compounds are swept per triangle / child (meshes are two-sided); the earliest hit
 // wins. Throws Error for invalid sweeps or settings, two planes, or a turning plane.
 ToiResult timeOfImpact(const Shape& shapeA, const Sweep& sweepA, const Shape& shapeB, const Sweep& sweepB,
                        const ToiSettings& settings = {});

@@ -6,10 +6,14 @@
 // so a stale id is reported with collide::Error instead of aliasing a new body.
 #pragma once
 
+#include <collide/body.h>
 #include <collide/broadphase.h>
 #include <collide/error.h>
+#include <collide/events.h>
 #include <collide/math.h>
 #include <collide/narrowphase.h>
+#include <collide/queries.h>
+#include <collide/settings.h>
 #include <collide/shapes.h>
 
 #include <cstdint>
@@ -22,64 +26,6 @@
 #include <vector>
 
 namespace collide {
-
-// How the two bodies' bounciness (or friction) make the pair's value.
-enum class CombineRule : std::uint8_t { Average, Min, Max, Multiply };
-// Newton: restitution on the normal relative velocity, friction handles the tangent.
-// Interpolated: the lecture's blend of the elastic and the inelastic impact (src/response/).
-enum class ImpactModel : std::uint8_t { Newton, Interpolated };
-enum class FrictionModel : std::uint8_t { Coulomb, Viscous, Damping, None };
-// Project: push bodies apart (mass-weighted, by the soft contact). Revert: put a penetrating body
-// back where it was at the start of the step.
-enum class PenetrationResponse : std::uint8_t { Project, Revert };
-
-// Scene-file names ("average", "newton", ...); parse functions throw Error on unknown names.
-std::string_view toString(CombineRule rule);
-std::string_view toString(ImpactModel model);
-std::string_view toString(FrictionModel model);
-std::string_view toString(PenetrationResponse response);
-CombineRule parseCombineRule(std::string_view name);
-ImpactModel parseImpactModel(std::string_view name);
-FrictionModel parseFrictionModel(std::string_view name);
-PenetrationResponse parsePenetrationResponse(std::string_view name);
-// The pair's value from the two bodies' values (bounciness, friction) under `rule`.
-float combine(CombineRule rule, float a, float b);
-
-// The contact constraint's tuning (Catto, "Solver2D" 2024 / Box2D v3 soft step). Box2D's defaults
-// are 30 Hz and damping ratio 10 at 4 substeps; ours are stiffer so stacks stand (see below).
-struct ContactTuning {
-  // Stiffness of the soft contact, capped at a quarter of the substep rate (90 Hz at 6 substeps of
-  // 1/360 s). A resting point carrying force F sits F / (m_eff omega^2) deep, so the stiffness sets
-  // how far a stack sags (docs/architecture.md, "Stacking").
-  float hertz = 90.0f;
-  // Under-damped spring, but the softness per iteration it gives (mass scale 0.80) keeps stiff
-  // stacks from shivering; over-damped (10) shivers at this stiffness. Impacts do not bounce.
-  float dampingRatio = 0.5f;
-  float pushOutSpeed = 3.0f;          // m/s, the most the position correction may add
-  float restitutionThreshold = 1.0f;  // m/s: slower impacts do not bounce (resting contacts stay quiet)
-  float linearSlop = 0.005f;          // m: the penetration allowed (and the "touching" tolerance of events)
-  float speculativeDistance = 0.02f;  // m: contacts are created this far apart (plus the step's motion)
-  // Passes without the position bias after each substep's position update (Box2D v3's relax), so
-  // that push-out does not turn into bounce.
-  int relaxPasses = 1;
-  // A sticking friction patch holds its place (a point fixed in each body); when the two points
-  // drift apart farther than this (m) along the surface, the anchor is taken again where the patch is.
-  float frictionAnchorReach = 0.02f;
-  // A pair of which no point of either body moved more than this (m) relative to the other since
-  // its manifold was computed gets that manifold placed at the new poses instead of a new
-  // narrow-phase query (Jolt's body pair cache), and a pair found apart stays apart: resting bodies
-  // cost almost nothing. Kept well under the linear slop (what a feature the cached manifold lacks
-  // could sink by) and the speculative distance (what a pair found apart could close). 0 turns the
-  // cache off.
-  float manifoldCacheDistance = 0.002f;
-};
-
-// When a body counts as resting (Box2D's sleep tolerances and time to sleep).
-struct SleepTuning {
-  float linearSpeed = 0.05f;   // m/s, of the centre of mass
-  float angularSpeed = 0.05f;  // rad/s
-  float timeToSleep = 0.5f;    // s every body of an island must rest before the island sleeps
-};
 
 struct WorldDef {
   Vec3 gravity{0.0f, -9.81f, 0.0f};
@@ -102,55 +48,6 @@ struct WorldDef {
   ContactTuning contact{};
 };
 
-enum class BodyType : std::uint8_t { Static, Kinematic, Dynamic };
-std::string_view toString(BodyType type);
-
-struct BodyDef {
-  BodyType type = BodyType::Dynamic;
-  Shape shape{Sphere{0.5f}};
-  Vec3 position{0.0f};
-  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
-  float scale = 1.0f;
-  Vec3 linearVelocity{0.0f};   // world frame, of the centre of mass
-  Vec3 angularVelocity{0.0f};  // world frame, rad/s
-  // Dynamic bodies: mass > 0 if given (inertia scaled from the shape's), else density > 0.
-  std::optional<float> mass;
-  float density = 1000.0f;
-  float bounciness = 0.0f;          // [0, 1]
-  float friction = 0.5f;            // >= 0
-  std::uint32_t layer = 1;          // the body's bits
-  std::uint32_t mask = kAllLayers;  // the layers it collides with; both must agree
-  bool sensor = false;              // reports overlap events, takes no response
-  // A point mass: a dynamic body whose shape must be a Sphere (it collides as a sphere of that
-  // radius times scale) but that has no inertia, no angular velocity and a rotation that never
-  // changes. Cheap links for chains, ropes and cloth-like meshes of distance constraints.
-  bool particle = false;
-  // Continuous collision (docs/ccd.md): when WorldDef::ccd is on and the body moves more than half
-  // its smallest extent in a step, it is stopped at its first time of impact against any other
-  // body (static, kinematic or dynamic) instead of passing through thin or turning obstacles that
-  // the speculative contacts miss. Costs a broad-phase query and a time of impact per candidate
-  // for each such fast body; nothing for a slow one. Ignored for sensors.
-  bool ccd = false;
-  std::uint64_t userData = 0;
-  std::string name;
-};
-
-struct BodyId {
-  static constexpr std::uint32_t kNullIndex = 0xFFFFFFFFu;
-  std::uint32_t index = kNullIndex;
-  std::uint32_t generation = 0;
-  bool isNull() const { return index == kNullIndex; }
-  friend bool operator==(const BodyId&, const BodyId&) = default;
-};
-
-struct JointId {
-  static constexpr std::uint32_t kNullIndex = 0xFFFFFFFFu;
-  std::uint32_t index = kNullIndex;
-  std::uint32_t generation = 0;
-  bool isNull() const { return index == kNullIndex; }
-  friend bool operator==(const JointId&, const JointId&) = default;
-};
-
 // Keeps an anchor on body a at `length` from an anchor on body b (a rope that also pushes: a rod).
 // Any two bodies, at least one dynamic. Anchors are points in each body's local frame (scaled with
 // the body, like its shape); unset, they are the centres of mass. A particle's anchor must be its
@@ -166,82 +63,6 @@ struct DistanceConstraintDef {
   float compliance = 0.0f;
   float dampingRatio = 0.0f;  // of the spring (compliance > 0), >= 0; 1 is critical
 };
-
-// A touching contact that began or ended this step. For begin events, point/normal are the
-// deepest point and the normal (from a to b), impulse the total normal impulse of the step, and
-// speed the normal approach speed before the solve (>= 0). End events carry the last known values.
-// Begin: the bodies started touching this step; Persist: they touched last step and still do
-// (only with WorldDef::persistEvents); End: they stopped touching (or a body was destroyed).
-// point and normal are the deepest point and the manifold's normal, from a to b; impulse the normal
-// impulse of the step (0 for End); speed the normal approach speed before the solve.
-struct ContactEvent {
-  enum class Type : std::uint8_t { Begin, Persist, End };
-  Type type = Type::Begin;
-  BodyId a;
-  BodyId b;
-  Vec3 point{0.0f};
-  Vec3 normal{0.0f, 1.0f, 0.0f};
-  float impulse = 0.0f;
-  float speed = 0.0f;
-};
-
-struct SensorEvent {
-  enum class Type : std::uint8_t { Begin, End };
-  Type type = Type::Begin;
-  BodyId sensor;
-  BodyId visitor;
-};
-
-// A body whose state stopped being finite during the last step (an accumulated force that
-// overflowed, a NaN from a degenerate contact). The world does not let it spread to what it
-// touches: the body is put back where it was at the start of the step, stopped, and frozen as an
-// immovable obstacle (isAwake() false, forces and impulses ignored) until setTransform,
-// setLinearVelocity, setAngularVelocity or wakeBody gives it a new state.
-struct FaultEvent {
-  static constexpr std::uint8_t kPosition = 1, kRotation = 2, kLinearVelocity = 4, kAngularVelocity = 8;
-  BodyId body;
-  // The parts of the state that were non-finite (bits above); kRotation also for a finite rotation
-  // that is no longer a unit quaternion (an overflowing angular velocity integrates to zero).
-  std::uint8_t fields = 0;
-};
-
-// The hit of World::castRay: the body and where its shape was hit.
-struct RayCastResult {
-  BodyId body;
-  float distance = 0.0f;  // along the ray (its direction normalised)
-  Vec3 point{0.0f};
-  Vec3 normal{0.0f};           // unit, the surface normal at the hit, facing the ray's origin side
-  std::uint32_t subShape = 0;  // triangle index for a mesh, child index for a compound
-};
-
-// Two bodies, as World::broadPhasePairs hands them out.
-struct BodyPair {
-  BodyId a;
-  BodyId b;
-  friend bool operator==(const BodyPair&, const BodyPair&) = default;
-};
-
-// What a pre-solve callback may change of one contact for this step. friction and bounciness start
-// as the world's combined values for the pair. surfaceVelocity is the velocity B's surface is to keep
-// relative to A's along the contact plane (its normal part is ignored): friction drives the bodies'
-// relative sliding towards it, a conveyor belt (Box2D's tangent speed). A contact with a surface
-// velocity has no static anchor: it is meant to slide.
-struct ContactSettings {
-  float friction = 0.0f;
-  float bounciness = 0.0f;
-  Vec3 surfaceVelocity{0.0f};
-};
-
-// Called for each contact before the solve (normal from a to b); return false to disable it for
-// this step (one-way platforms), or change its settings (gameplay surfaces: ice, bumpers, belts).
-// Settings out of range (negative or non-finite friction, bounciness outside [0, 1], a non-finite
-// surface velocity) are not applied: the step completes with the contact's own values and then
-// World::step throws Error naming the bodies. The narrow phase takes every body's pose once, before
-// the first pair: a pose set from inside the callback counts from the next step.
-using PreSolveCallback =
-    std::function<bool(BodyId a, BodyId b, const Manifold& manifold, ContactSettings& settings)>;
-// The same without settings, for callbacks that only look or disable.
-using PreSolveFilter = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
 
 class World {
  public:

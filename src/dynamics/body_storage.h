@@ -4,9 +4,9 @@
 // solver treats every pair the same way and the infinite-mass partner of a one-way pair never moves.
 #pragma once
 
+#include <collide/body.h>
 #include <collide/broadphase.h>
 #include <collide/shapes.h>
-#include <collide/world.h>
 
 #include <cstdint>
 #include <string>

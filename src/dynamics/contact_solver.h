@@ -26,7 +26,7 @@
 #include "dynamics/constraint_graph.h"
 #include "dynamics/solver_body.h"
 
-#include <collide/world.h>
+#include <collide/settings.h>
 
 #include <array>
 #include <cstdint>

@@ -9,7 +9,7 @@
 #include "dynamics/body_storage.h"
 #include "dynamics/joint_solver.h"
 
-#include <collide/world.h>
+#include <collide/events.h>
 
 #include <cstdint>
 #include <span>

@@ -1,5 +1,7 @@
 // Scene-file names of the world's settings enums.
-#include <collide/world.h>
+#include <collide/body.h>
+#include <collide/error.h>
+#include <collide/settings.h>
 
 #include <array>
 #include <string>

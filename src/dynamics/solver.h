@@ -16,7 +16,8 @@
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver_body.h"
 
-#include <collide/world.h>
+#include <collide/events.h>
+#include <collide/settings.h>
 
 #include <cstdint>
 #include <vector>

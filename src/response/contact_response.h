@@ -7,7 +7,7 @@
 #include "contacts/contact_cache.h"
 #include "dynamics/body_storage.h"
 
-#include <collide/world.h>
+#include <collide/settings.h>
 
 #include <cstdint>
 #include <vector>

@@ -1,0 +1,66 @@
+// Bodies as the API names them: the type, the ids handed out for bodies and joints (slot index +
+// generation, as Box2D v3: a stale id is detected, never dereferenced) and the definition a body is
+// created from.
+#pragma once
+
+#include <collide/broadphase.h>
+#include <collide/math.h>
+#include <collide/shapes.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace collide {
+
+enum class BodyType : std::uint8_t { Static, Kinematic, Dynamic };
+std::string_view toString(BodyType type);
+
+struct BodyId {
+  static constexpr std::uint32_t kNullIndex = 0xFFFFFFFFu;
+  std::uint32_t index = kNullIndex;
+  std::uint32_t generation = 0;
+  bool isNull() const { return index == kNullIndex; }
+  friend bool operator==(const BodyId&, const BodyId&) = default;
+};
+
+struct JointId {
+  static constexpr std::uint32_t kNullIndex = 0xFFFFFFFFu;
+  std::uint32_t index = kNullIndex;
+  std::uint32_t generation = 0;
+  bool isNull() const { return index == kNullIndex; }
+  friend bool operator==(const JointId&, const JointId&) = default;
+};
+
+struct BodyDef {
+  BodyType type = BodyType::Dynamic;
+  Shape shape{Sphere{0.5f}};
+  Vec3 position{0.0f};
+  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  float scale = 1.0f;
+  Vec3 linearVelocity{0.0f};   // world frame, of the centre of mass
+  Vec3 angularVelocity{0.0f};  // world frame, rad/s
+  // Dynamic bodies: mass > 0 if given (inertia scaled from the shape's), else density > 0.
+  std::optional<float> mass;
+  float density = 1000.0f;
+  float bounciness = 0.0f;          // [0, 1]
+  float friction = 0.5f;            // >= 0
+  std::uint32_t layer = 1;          // the body's bits
+  std::uint32_t mask = kAllLayers;  // the layers it collides with; both must agree
+  bool sensor = false;              // reports overlap events, takes no response
+  // A point mass: a dynamic body whose shape must be a Sphere (it collides as a sphere of that
+  // radius times scale) but that has no inertia, no angular velocity and a rotation that never
+  // changes. Cheap links for chains, ropes and cloth-like meshes of distance constraints.
+  bool particle = false;
+  // Continuous collision (docs/ccd.md): when WorldDef::ccd is on and the body moves more than half
+  // its smallest extent in a step, it is stopped at its first time of impact against any other
+  // body (static, kinematic or dynamic) instead of passing through thin or turning obstacles that
+  // the speculative contacts miss. Costs a broad-phase query and a time of impact per candidate
+  // for each such fast body; nothing for a slow one. Ignored for sensors.
+  bool ccd = false;
+  std::uint64_t userData = 0;
+  std::string name;
+};
+
+}  // namespace collide

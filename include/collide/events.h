@@ -1,0 +1,74 @@
+// What the step tells gameplay code: contact and sensor events, bodies the fault guard froze, and the
+// pre-solve callback that sees (and may change or disable) each contact before the solve.
+#pragma once
+
+#include <collide/body.h>
+#include <collide/math.h>
+#include <collide/narrowphase.h>
+
+#include <cstdint>
+#include <functional>
+
+namespace collide {
+
+// A touching contact that began or ended this step. For begin events, point/normal are the
+// deepest point and the normal (from a to b), impulse the total normal impulse of the step, and
+// speed the normal approach speed before the solve (>= 0). End events carry the last known values.
+// Begin: the bodies started touching this step; Persist: they touched last step and still do
+// (only with WorldDef::persistEvents); End: they stopped touching (or a body was destroyed).
+// point and normal are the deepest point and the manifold's normal, from a to b; impulse the normal
+// impulse of the step (0 for End); speed the normal approach speed before the solve.
+struct ContactEvent {
+  enum class Type : std::uint8_t { Begin, Persist, End };
+  Type type = Type::Begin;
+  BodyId a;
+  BodyId b;
+  Vec3 point{0.0f};
+  Vec3 normal{0.0f, 1.0f, 0.0f};
+  float impulse = 0.0f;
+  float speed = 0.0f;
+};
+
+struct SensorEvent {
+  enum class Type : std::uint8_t { Begin, End };
+  Type type = Type::Begin;
+  BodyId sensor;
+  BodyId visitor;
+};
+
+// A body whose state stopped being finite during the last step (an accumulated force that
+// overflowed, a NaN from a degenerate contact). The world does not let it spread to what it
+// touches: the body is put back where it was at the start of the step, stopped, and frozen as an
+// immovable obstacle (isAwake() false, forces and impulses ignored) until setTransform,
+// setLinearVelocity, setAngularVelocity or wakeBody gives it a new state.
+struct FaultEvent {
+  static constexpr std::uint8_t kPosition = 1, kRotation = 2, kLinearVelocity = 4, kAngularVelocity = 8;
+  BodyId body;
+  // The parts of the state that were non-finite (bits above); kRotation also for a finite rotation
+  // that is no longer a unit quaternion (an overflowing angular velocity integrates to zero).
+  std::uint8_t fields = 0;
+};
+
+// What a pre-solve callback may change of one contact for this step. friction and bounciness start
+// as the world's combined values for the pair. surfaceVelocity is the velocity B's surface is to keep
+// relative to A's along the contact plane (its normal part is ignored): friction drives the bodies'
+// relative sliding towards it, a conveyor belt (Box2D's tangent speed). A contact with a surface
+// velocity has no static anchor: it is meant to slide.
+struct ContactSettings {
+  float friction = 0.0f;
+  float bounciness = 0.0f;
+  Vec3 surfaceVelocity{0.0f};
+};
+
+// Called for each contact before the solve (normal from a to b); return false to disable it for
+// this step (one-way platforms), or change its settings (gameplay surfaces: ice, bumpers, belts).
+// Settings out of range (negative or non-finite friction, bounciness outside [0, 1], a non-finite
+// surface velocity) are not applied: the step completes with the contact's own values and then
+// World::step throws Error naming the bodies. The narrow phase takes every body's pose once, before
+// the first pair: a pose set from inside the callback counts from the next step.
+using PreSolveCallback =
+    std::function<bool(BodyId a, BodyId b, const Manifold& manifold, ContactSettings& settings)>;
+// The same without settings, for callbacks that only look or disable.
+using PreSolveFilter = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
+
+}  // namespace collide
