@@ -15,7 +15,7 @@
 #include <collide/world.h>
 
 #include "contacts/contact_cache.h"
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 #include "dynamics/continuous.h"
 #include "dynamics/fault_guard.h"
 #include "dynamics/integrate.h"

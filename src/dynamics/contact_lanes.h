@@ -4,7 +4,7 @@
 #pragma once
 
 #include "dynamics/contact_solver.h"
-#include "dynamics/simd.h"
+#include "simd/simd.h"
 #include "memory/prefetch.h"
 
 #include <algorithm>

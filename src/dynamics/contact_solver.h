@@ -22,7 +22,7 @@
 #pragma once
 
 #include "contacts/contact_cache.h"
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 #include "dynamics/constraint_graph.h"
 #include "dynamics/solver_body.h"
 

@@ -2,7 +2,7 @@
 // which would change the results); ContactSolver picks it at run time where the processor has AVX2
 // (widestContactLanes). The kernels are those of contact_lanes.h, as for four lanes.
 #include "dynamics/contact_lanes.h"
-#include "dynamics/simd_avx2.h"
+#include "simd/simd_avx2.h"
 
 namespace collide::detail {
 

@@ -5,7 +5,7 @@
 
 #include <collide/broadphase.h>
 
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 
 namespace collide::detail {
 

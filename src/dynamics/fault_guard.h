@@ -6,7 +6,7 @@
 #pragma once
 
 #include "contacts/contact_cache.h"
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 #include "dynamics/joint_solver.h"
 
 #include <collide/events.h>

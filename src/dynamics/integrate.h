@@ -3,7 +3,7 @@
 // constraints act on them, then the pose change follows the new velocities.
 #pragma once
 
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 #include "dynamics/solver_body.h"
 
 #include <vector>

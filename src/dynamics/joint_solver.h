@@ -9,7 +9,7 @@
 // implicitly as a soft constraint in both passes (it is a physical force, not an error correction).
 #pragma once
 
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 #include "dynamics/solver_body.h"
 
 #include <cstdint>

@@ -2,7 +2,7 @@
 
 #include "dynamics/fault_guard.h"
 #include "dynamics/integrate.h"
-#include "dynamics/simd.h"
+#include "simd/simd.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,7 +11,7 @@
 #pragma once
 
 #include "contacts/contact_cache.h"
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver_body.h"

@@ -21,7 +21,7 @@
 #include <limits>
 #include <vector>
 
-#include "dynamics/simd.h"
+#include "simd/simd.h"
 #include "geometry/clipping.h"
 #include "geometry/closest_points.h"
 #include "geometry/support_scan.h"

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "contacts/contact_cache.h"
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 
 #include <collide/settings.h>
 

@@ -1,6 +1,6 @@
 // Convex hull proxy (lecture, slide 51): the queries on a finished half-edge polyhedron. Building it
-// from points is geometry/hull_builder.cpp.
-#include "geometry/hull_builder.h"
+// from points is shapes/hull_builder.cpp.
+#include "shapes/hull_builder.h"
 #include "geometry/support_scan.h"
 #include "shapes/shape_functions.h"
 

@@ -1,7 +1,7 @@
 // k-DOP proxy (lecture, slide 51; Klosowski et al., "Efficient collision detection using bounding
 // volume hierarchies of k-DOPs", IEEE TVCG 1998): k/2 slabs along fixed axes. Point and ray tests
 // use the slabs, which is exact and cheap; support and mass use the polytope the slabs enclose.
-#include "geometry/hull_builder.h"
+#include "shapes/hull_builder.h"
 #include "shapes/shape_functions.h"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Triangle mesh proxy: a surface with its own AABB tree; closed, consistently oriented meshes also
 // have an inside (lecture, slide 51: "triangle mesh").
 #include "geometry/triangle.h"
-#include "geometry/triangle_bvh.h"
+#include "shapes/triangle_bvh.h"
 #include "shapes/shape_functions.h"
 
 #include <algorithm>

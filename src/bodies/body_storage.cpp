@@ -1,4 +1,4 @@
-#include "dynamics/body_storage.h"
+#include "bodies/body_storage.h"
 
 namespace collide::detail {
 

@@ -1,5 +1,5 @@
 // Hull building: the half-edge structure Qhull's facets turn into, on inputs with known answers.
-#include "geometry/hull_builder.h"
+#include "shapes/hull_builder.h"
 
 #include "geometry/hull_invariants.h"
 

@@ -2,7 +2,7 @@
 // hulls", ACM TOMS 1996) finds the facets and merges coplanar ones; we turn its facets into the
 // half-edge polyhedron of shapes.h (Gregorius, "Implementing Quickhull", GDC 2014, explains why
 // merged faces and twin half-edges are what SAT and contact clipping want).
-#include "geometry/hull_builder.h"
+#include "shapes/hull_builder.h"
 #include "geometry/support_scan.h"
 
 #include "shapes/shape_functions.h"

@@ -3,7 +3,7 @@
 // four-lane FloatW of simd.h, lane for lane the same IEEE results (max/min as SSE: a > b ? a : b).
 #pragma once
 
-#include "dynamics/simd.h"
+#include "simd/simd.h"
 
 #include <immintrin.h>
 

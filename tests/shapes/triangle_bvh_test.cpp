@@ -1,4 +1,4 @@
-#include "geometry/triangle_bvh.h"
+#include "shapes/triangle_bvh.h"
 #include "shapes/test_meshes.h"
 
 #include <gtest/gtest.h>

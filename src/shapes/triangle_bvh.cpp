@@ -1,5 +1,5 @@
 // Top-down binned-SAH construction of a triangle mesh's AABB tree.
-#include "geometry/triangle_bvh.h"
+#include "shapes/triangle_bvh.h"
 
 #include <algorithm>
 #include <array>
