@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Plots collide / Bullet time per step for each reference scene, with the issue's targets, from the
-JSON of collide_vs_bullet:
+"""Plots collide / Bullet time per step for each reference scene, with the project's goal for each
+(the JSON's "target"), from the JSON of collide_vs_bullet:
     build/bench/bench/vs_bullet/collide_vs_bullet --runs 3 --json vs_bullet.json
     python3 bench/plot_vs_bullet.py vs_bullet.json docs/images/vs_bullet_ratio.png
 Uses gnuplot (apt-get install gnuplot-nox), so that no Python package is needed."""
@@ -38,7 +38,7 @@ def main(json_path, png_path):
             "set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2 lc rgb 'gray40'",
             f"plot '{data}' using 1:3:xtic(2) with boxes lc rgb '#4477aa' title 'measured ratio', "
             f"'' using 1:3:(sprintf('%.2f', $3)) with labels offset 0,0.8 notitle, "
-            f"'' using 1:4 with points pt 9 ps 2.5 lc rgb '#cc3311' title 'target (issue 8)'",
+            f"'' using 1:4 with points pt 9 ps 2.5 lc rgb '#cc3311' title 'goal'",
         ])
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
 

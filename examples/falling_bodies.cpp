@@ -7,7 +7,7 @@
 
 int main() {
   using namespace collide;
-  World world;  // gravity (0, -9.81, 0), 4 substeps, a dynamic-tree broad phase
+  World world;  // gravity (0, -9.81, 0), 6 substeps, a dynamic-tree broad phase
 
   BodyDef ground;
   ground.type = BodyType::Static;

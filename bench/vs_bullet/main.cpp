@@ -41,7 +41,7 @@ namespace {
 struct SceneInfo {
   std::string id;                // R1 ... or the file name
   std::string name;              // the built-in name, or the path
-  std::optional<double> target;  // the target ratio collide / Bullet
+  std::optional<double> target;  // the goal: collide / Bullet below this ratio
 };
 
 const std::vector<SceneInfo> kReferenceScenes = {{"R1", "pile", 0.34},
@@ -323,7 +323,7 @@ int main(int argc, char** argv) try {
       "JSON).\n\n",
       runs);
   std::printf(
-      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | target "
+      "| scene | bodies | steps | collide ms/step | Bullet ms/step | collide/Bullet | goal "
       "| per-run ratios (median) | wall ratio | collide MB | Bullet MB |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < infos.size(); ++i) {
@@ -340,7 +340,7 @@ int main(int argc, char** argv) try {
                 c.cpuMs(), b.cpuMs(), ratio, target.c_str(), perRun.c_str(), median(ratios),
                 c.wallMs() / b.wallMs(), c.memoryMb(), b.memoryMb());
   }
-  std::printf("\n(target: the issue's bound on collide/Bullet; \"! <\" marks one not met.)\n\n");
+  std::printf("\n(goal: the bound on collide/Bullet the project aims for; \"! <\" marks one not met.)\n\n");
   std::printf(
       "| scene | engine | top body dx, dy, dz (mm) | mean speed | max speed | lowest point y | below terrain "
       "(any / >1 cm, deepest mm) |\n");
