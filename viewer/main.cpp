@@ -169,7 +169,7 @@ struct App {
     ImGui::Text("%.3f ms per step (last %.3f)", stepMs, lastStepMs);
     ImGui::Text("bodies %zu   touching pairs %zu", world.bodyCount(), world.touchingContactCount());
     ImGui::Text("broad phase: %s", std::string(toString(world.def().broadPhase.type)).c_str());
-    const BroadPhaseStats& stats = world.lastStats();
+    const StepStats& stats = world.lastStats();
     if (ImGui::BeginTable("stats", 2)) {
       const auto row = [](const char* label, unsigned long long value) {
         ImGui::TableNextRow();

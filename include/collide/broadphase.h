@@ -76,11 +76,6 @@ struct BroadPhaseStats {
   std::uint64_t potentialPairs = 0;  // n (n - 1) / 2 over all proxies, static ones included
   std::uint64_t keptPairs = 0;       // the pairs reported (box overlaps, static-static excluded)
   std::uint64_t boxTests = 0;        // AABB-vs-AABB tests the algorithm performed to find them
-  std::uint64_t narrowPhaseTests = 0;
-  // Of those, the pairs whose manifold was re-placed from the last computation instead of computed
-  // again, because the two bodies had not moved relative to each other (World's manifold cache).
-  std::uint64_t reusedManifolds = 0;
-  std::uint64_t contactPairs = 0;
 
   // The fraction of potential pairs the broad phase kept (0 when there are none).
   double keptFraction() const {
@@ -153,8 +148,7 @@ class BroadPhase {
   // All pairs of proxies whose boxes overlap (touching counts), at least one of them movable, sorted
   // by (a.index, b.index). Every algorithm gives exactly this list. Returns the counters of the call.
   const BroadPhaseStats& findPairs(std::vector<ProxyPair>& outPairs);
-  // The counters of the last findPairs, writable so the caller can add its narrow-phase figures.
-  BroadPhaseStats& lastStats() { return stats_; }
+  // The counters of the last findPairs.
   const BroadPhaseStats& lastStats() const { return stats_; }
 
   // ---- Queries. A proxy takes part when (its layer & mask) != 0. ----

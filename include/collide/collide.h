@@ -2,7 +2,6 @@
 #pragma once
 
 #include <collide/body.h>
-#include <collide/body.h>
 #include <collide/bounding.h>
 #include <collide/broadphase.h>
 #include <collide/error.h>

@@ -27,6 +27,42 @@
 
 namespace collide {
 
+// The step's funnel (the lecture's argument for a broad phase: almost no pair collides): the
+// potential pairs, those the broad phase kept, the narrow-phase tests and the pairs in contact.
+struct StepStats {
+  std::uint64_t proxies = 0;  // at the end of the step: a count, which += takes rather than adds
+  std::uint64_t potentialPairs = 0;
+  std::uint64_t keptPairs = 0;
+  std::uint64_t boxTests = 0;
+  std::uint64_t narrowPhaseTests = 0;
+  // Of those, the pairs whose manifold was placed again from its last computation instead of
+  // computed, because the two bodies had not moved relative to each other (the manifold cache).
+  std::uint64_t reusedManifolds = 0;
+  std::uint64_t contactPairs = 0;  // touching, sensors left out
+
+  StepStats() = default;
+  explicit StepStats(const BroadPhaseStats& broadPhase)
+      : proxies(broadPhase.proxies),
+        potentialPairs(broadPhase.potentialPairs),
+        keptPairs(broadPhase.keptPairs),
+        boxTests(broadPhase.boxTests) {}
+  // Totals over steps.
+  StepStats& operator+=(const StepStats& step) {
+    proxies = step.proxies;
+    potentialPairs += step.potentialPairs;
+    keptPairs += step.keptPairs;
+    boxTests += step.boxTests;
+    narrowPhaseTests += step.narrowPhaseTests;
+    reusedManifolds += step.reusedManifolds;
+    contactPairs += step.contactPairs;
+    return *this;
+  }
+  // The fraction of potential pairs the broad phase kept (0 when there are none).
+  double keptFraction() const {
+    return potentialPairs == 0 ? 0.0 : static_cast<double>(keptPairs) / static_cast<double>(potentialPairs);
+  }
+};
+
 struct WorldDef {
   Vec3 gravity{0.0f, -9.81f, 0.0f};
   int substeps = 6;  // the contact stiffness cap is a quarter of the substep rate
@@ -133,10 +169,9 @@ class World {
   // Advances by dt > 0 (finite); throws Error otherwise.
   void step(float dt);
 
-  // The funnel of the last step: the broad phase's counters plus narrow-phase tests and pairs in
-  // contact. Totals sum them over all steps.
-  const BroadPhaseStats& lastStats() const;
-  const BroadPhaseStats& totalStats() const;
+  // The funnel of the last step, and its totals over all steps.
+  const StepStats& lastStats() const;
+  const StepStats& totalStats() const;
   // Events of the last step, in a deterministic order.
   std::span<const ContactEvent> contactEvents() const;
   std::span<const SensorEvent> sensorEvents() const;

@@ -64,16 +64,6 @@ void progressBar(int step, int steps) {
   std::fflush(stderr);
 }
 
-void addStats(BroadPhaseStats& total, const BroadPhaseStats& s) {
-  total.proxies = s.proxies;
-  total.potentialPairs += s.potentialPairs;
-  total.keptPairs += s.keptPairs;
-  total.boxTests += s.boxTests;
-  total.narrowPhaseTests += s.narrowPhaseTests;
-  total.reusedManifolds += s.reusedManifolds;
-  total.contactPairs += s.contactPairs;
-}
-
 }  // namespace
 
 std::uint64_t stateHash(const SceneWorld& sw) {
@@ -148,7 +138,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
     sw.world.step(scene.dt);
-    addStats(summary.total, sw.world.lastStats());
+    summary.total += sw.world.lastStats();
     std::vector<std::size_t> broken;
     for (const ContactEvent& e : sw.world.contactEvents()) {
       ++summary.contactEvents;

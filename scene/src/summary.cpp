@@ -15,7 +15,7 @@ std::string hex(std::uint64_t value) {
   return text;
 }
 
-nlohmann::json statsJson(const BroadPhaseStats& s) {
+nlohmann::json statsJson(const StepStats& s) {
   return {{"potential_pairs", s.potentialPairs},
           {"broad_phase_pairs", s.keptPairs},
           {"narrow_phase_tests", s.narrowPhaseTests},

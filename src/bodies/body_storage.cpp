@@ -31,4 +31,11 @@ void BodyStorage::free(std::uint32_t index) {
   --aliveCount;
 }
 
+void BodyStorage::clearForces() {
+  for (BodyRecord& r : records) {
+    r.force = Vec3(0.0f);
+    r.torque = Vec3(0.0f);
+  }
+}
+
 }  // namespace collide::detail

@@ -72,6 +72,23 @@ class BodyStorage {
   std::uint32_t allocate();  // a free slot (reused first), record marked alive
   void free(std::uint32_t index);
 
+  BodyId idOf(std::uint32_t index) const { return {index, records[index].generation}; }
+  bool isAwakeDynamic(std::uint32_t index) const {
+    const BodyRecord& r = records[index];
+    return r.alive && r.type == BodyType::Dynamic && r.awake;
+  }
+  bool isSleeping(std::uint32_t index) const {
+    const BodyRecord& r = records[index];
+    return r.alive && r.type == BodyType::Dynamic && !r.awake;
+  }
+  bool isMovingKinematic(std::uint32_t index) const {
+    const BodyState& s = states[index];
+    return records[index].type == BodyType::Kinematic &&
+           (s.linearVelocity != Vec3(0.0f) || s.angularVelocity != Vec3(0.0f));
+  }
+  // Forces and torques act for one step: cleared once it is solved.
+  void clearForces();
+
   std::vector<BodyRecord> records;
   std::vector<BodyState> states;
   std::size_t aliveCount = 0;

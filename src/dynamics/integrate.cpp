@@ -48,17 +48,6 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3&
 // angular speed. 0.25 pi per substep is 283 rad/s at 60 Hz with 6 substeps.
 constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 
-bool isIsotropic(const Mat3& inertia) {
-  const float scale = std::max({std::abs(inertia[0][0]), std::abs(inertia[1][1]), std::abs(inertia[2][2])});
-  const float tolerance = 1e-6f * scale;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const float expected = i == j ? inertia[0][0] : 0.0f;
-      if (std::abs(inertia[i][j] - expected) > tolerance) return false;
-    }
-  return true;
-}
-
 // A rotation slower than this per substep (rad) keeps its angular velocity as it is: the gyroscopic
 // change of w per substep is at most about h |w| |w| (times the inertia's anisotropy), so below
 // 1e-4 rad per substep it is below 1e-4 of w itself, less than the contact solver's own error. This

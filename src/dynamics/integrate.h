@@ -14,10 +14,6 @@ namespace collide::detail {
 // angular velocity.
 Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& bodyOmega, float h);
 
-// True when the inertia is a multiple of the identity (to float precision), where the gyroscopic
-// term w x (I w) vanishes.
-bool isIsotropic(const Mat3& inertia);
-
 // Velocity step of one substep for the dynamic solver bodies: gravity, the body's accumulated force
 // and torque (SolverBodyInfo's accelerations), and the gyroscopic term; the angular speed is bounded
 // (see integrate.cpp).

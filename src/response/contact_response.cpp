@@ -114,4 +114,12 @@ void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
   }
 }
 
+void applyResponseModels(BodyStorage& bodies, std::vector<Contact>& contacts,
+                         const std::vector<std::uint32_t>& solved, collide::ImpactModel impactModel,
+                         FrictionModel frictionModel, const ContactTuning& tuning, float dt) {
+  if (impactModel == collide::ImpactModel::Interpolated)
+    applyInterpolatedImpacts(bodies, contacts, solved, tuning.restitutionThreshold, tuning.linearSlop);
+  applyProlongedFriction(bodies, contacts, solved, frictionModel, dt);
+}
+
 }  // namespace collide::detail

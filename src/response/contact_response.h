@@ -4,8 +4,8 @@
 // ("In the world").
 #pragma once
 
-#include "contacts/contact_cache.h"
 #include "bodies/body_storage.h"
+#include "contacts/contact_cache.h"
 
 #include <collide/settings.h>
 
@@ -28,5 +28,10 @@ void applyInterpolatedImpacts(BodyStorage& bodies, std::vector<Contact>& contact
 // second over dt, damping with tax = contact.friction clamped to [0, 1]. Other models: nothing.
 void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
                             const std::vector<std::uint32_t>& solved, FrictionModel model, float dt);
+
+// The stage after the solve: both of the above, as the world's impact and friction models ask.
+void applyResponseModels(BodyStorage& bodies, std::vector<Contact>& contacts,
+                         const std::vector<std::uint32_t>& solved, collide::ImpactModel impactModel,
+                         FrictionModel frictionModel, const ContactTuning& tuning, float dt);
 
 }  // namespace collide::detail

@@ -80,7 +80,7 @@ TEST(PairCache, RestingStackReusesItsManifolds) {
   world.createBody(test::groundBox());
   for (int i = 0; i < 5; ++i) world.createBody(test::boxBody(Vec3(0.0f, 0.5f + i, 0.0f), Vec3(0.5f), 1.0f));
   for (int i = 0; i < 120; ++i) world.step(kDt);
-  const BroadPhaseStats& s = world.lastStats();
+  const StepStats& s = world.lastStats();
   EXPECT_EQ(s.narrowPhaseTests, 5u);
   EXPECT_EQ(s.reusedManifolds, 5u);
 }

@@ -126,6 +126,34 @@ TEST(World, CountersFollowTheFunnel) {
   EXPECT_EQ(world.touchingContactCount(), 2u);
   world.step(kDt);
   EXPECT_EQ(world.totalStats().narrowPhaseTests, 4u);
+  EXPECT_EQ(world.totalStats().potentialPairs, 6u);
+  EXPECT_EQ(world.totalStats().proxies, 3u);  // a count, not a sum
+}
+
+// Totals add every counter of each step and keep the latest proxy count.
+TEST(World, StepStatsTotalsSumTheCountersAndKeepTheProxyCount) {
+  BroadPhaseStats broadPhase;
+  broadPhase.proxies = 4;
+  broadPhase.potentialPairs = 6;
+  broadPhase.keptPairs = 3;
+  broadPhase.boxTests = 5;
+  StepStats first(broadPhase);
+  first.narrowPhaseTests = 2;
+  first.reusedManifolds = 1;
+  first.contactPairs = 1;
+  StepStats second = first;
+  second.proxies = 5;
+  StepStats total;
+  total += first;
+  total += second;
+  EXPECT_EQ(total.proxies, 5u);
+  EXPECT_EQ(total.potentialPairs, 12u);
+  EXPECT_EQ(total.keptPairs, 6u);
+  EXPECT_EQ(total.boxTests, 10u);
+  EXPECT_EQ(total.narrowPhaseTests, 4u);
+  EXPECT_EQ(total.reusedManifolds, 2u);
+  EXPECT_EQ(total.contactPairs, 2u);
+  EXPECT_DOUBLE_EQ(total.keptFraction(), 0.5);
 }
 
 TEST(World, ContactEventsBeginOnceWithTheImpactSpeed) {

@@ -36,8 +36,8 @@ struct RunSummary {
   bool sleeping = false;  // the scene's settings.sleeping
   int awakeBodies = 0;
   int asleepBodies = 0;
-  BroadPhaseStats lastStep{};
-  BroadPhaseStats total{};
+  StepStats lastStep{};
+  StepStats total{};
   std::uint64_t contactEvents = 0;
   Vec3 momentum{0.0f};
   float kineticEnergy = 0.0f;

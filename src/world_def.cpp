@@ -1,7 +1,10 @@
-// Scene-file names of the world's settings enums.
+// The world's definition: its validation, and the scene-file names of the settings enums.
 #include <collide/body.h>
 #include <collide/error.h>
 #include <collide/settings.h>
+
+#include "base/format.h"
+#include "world_impl.h"
 
 #include <array>
 #include <string>
@@ -48,6 +51,37 @@ FrictionModel parseFrictionModel(std::string_view name) {
 }
 PenetrationResponse parsePenetrationResponse(std::string_view name) {
   return parseName<PenetrationResponse>(name, kPenetrationNames, "penetration response");
+}
+
+void validateWorldDef(const WorldDef& def) {
+  using detail::formatFloat;
+  if (!isFinite(def.gravity))
+    throw Error("world: gravity must be finite, got " + detail::formatVec(def.gravity));
+  if (def.substeps < 1) throw Error("world: substeps must be >= 1, got " + std::to_string(def.substeps));
+  const ContactTuning& t = def.contact;
+  const auto check = [](float value, bool ok, const char* field) {
+    if (!isFinite(value) || !ok)
+      throw Error(std::string("world: contact.") + field + " out of range, got " + formatFloat(value));
+  };
+  check(t.hertz, t.hertz > 0.0f, "hertz (must be > 0)");
+  check(t.dampingRatio, t.dampingRatio >= 0.0f, "dampingRatio (must be >= 0)");
+  check(t.pushOutSpeed, t.pushOutSpeed > 0.0f, "pushOutSpeed (must be > 0)");
+  check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
+  check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
+  check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
+  check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)");
+  check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
+  if (t.relaxPasses < 0)
+    throw Error("world: contact.relaxPasses out of range (must be >= 0), got " +
+                std::to_string(t.relaxPasses));
+  const SleepTuning& sleep = def.sleep;
+  const auto checkSleep = [](float value, bool ok, const char* field) {
+    if (!isFinite(value) || !ok)
+      throw Error(std::string("world: sleep.") + field + " out of range, got " + formatFloat(value));
+  };
+  checkSleep(sleep.linearSpeed, sleep.linearSpeed >= 0.0f, "linearSpeed (must be >= 0)");
+  checkSleep(sleep.angularSpeed, sleep.angularSpeed >= 0.0f, "angularSpeed (must be >= 0)");
+  checkSleep(sleep.timeToSleep, sleep.timeToSleep > 0.0f, "timeToSleep (must be > 0)");
 }
 
 }  // namespace collide

@@ -1,0 +1,38 @@
+// The first stage of the step: every movable body's world box, and its broad-phase proxy (lecture:
+// bounding volumes, the conservative early reject). A proxy's box is the body's box grown by the
+// speculative distance and by what the body can move within the step, so that the broad phase
+// finds a pair before its bodies meet (speculative contacts need the pair in advance).
+#pragma once
+
+#include <collide/broadphase.h>
+#include <collide/math.h>
+
+#include "bodies/body_storage.h"
+
+#include <cstdint>
+
+namespace collide::detail {
+
+// How far any point of the body can have moved between two poses: the centre's move plus the turn
+// angle times the body's bounding radius about its centre of mass.
+float pointMotionBound(const BodyRecord& record, const Vec3& com0, const Quat& q0, const Vec3& com1,
+                       const Quat& q1);
+
+// The body's world box computed anew from its shape and pose, and kept with that pose.
+Aabb recomputeBounds(BodyStorage& bodies, std::uint32_t index);
+// The body's world box: its last computed box grown by how far it can have moved since, while that
+// is small (a resting hull need not transform all its vertices again), else computed anew.
+Aabb currentBounds(BodyStorage& bodies, std::uint32_t index);
+// The box the body's proxy gets: currentBounds grown by the speculative distance and by the motion
+// of a step of dt at the body's velocities (dt 0 between steps).
+Aabb proxyBounds(BodyStorage& bodies, std::uint32_t index, float dt, float speculativeDistance);
+
+// The stage: the proxy of every awake movable body takes its box for the step of dt.
+void updateProxies(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance);
+
+// After the solve: a body that an impulse (a hit, a constraint) carried out of the box the step
+// predicted for it gets a box where it is now, since the queries between steps (castRay) read
+// these boxes. The next step updates every awake body's box anyway, so no pair depends on this.
+void refreshEscapedProxies(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance);
+
+}  // namespace collide::detail

@@ -1,0 +1,29 @@
+// A body made from its definition (Box2D v3's defs): the definition is checked at the API boundary,
+// with an error that names the body and the field, and turned into the body's record and state
+// (mass, centre of mass and inertia from the shape at uniform density, lecture: "barycenter and
+// moment of inertia assuming uniform density").
+#pragma once
+
+#include <collide/body.h>
+
+#include "bodies/body_storage.h"
+
+#include <string>
+
+namespace collide::detail {
+
+// True when the inertia is a multiple of the identity (to float precision), where the gyroscopic
+// term w x (I w) vanishes (BodyRecord::isotropicInertia).
+bool isIsotropic(const Mat3& inertia);
+
+// The name errors give the body: `body "crate"`, or `body` when it has none.
+std::string bodyLabel(const BodyDef& def);
+
+// Throws Error, prefixed with the body's label, for a definition no body can be made from.
+void validateBodyDef(const BodyDef& def);
+
+// Fills a freshly allocated slot from a valid definition. Throws Error (prefixed with the body's
+// label) when the shape's mass properties or bounds are not representable at this scale and place.
+void initBody(const BodyDef& def, BodyRecord& record, BodyState& state);
+
+}  // namespace collide::detail

@@ -1,0 +1,92 @@
+#include "contacts/contact_events.h"
+
+#include <algorithm>
+
+namespace collide::detail {
+
+namespace {
+
+SensorEvent makeSensorEvent(const BodyStorage& bodies, const Contact& contact, SensorEvent::Type type) {
+  const bool aIsSensor = bodies.records[contact.bodyA].sensor;
+  return {type, bodies.idOf(aIsSensor ? contact.bodyA : contact.bodyB),
+          bodies.idOf(aIsSensor ? contact.bodyB : contact.bodyA)};
+}
+
+}  // namespace
+
+void StepEvents::beginStep() {
+  contacts.assign(pendingContacts.begin(), pendingContacts.end());
+  sensors.assign(pendingSensors.begin(), pendingSensors.end());
+  pendingContacts.clear();
+  pendingSensors.clear();
+  faults.clear();
+}
+
+void StepEvents::endVanished(const BodyStorage& bodies, const Contact& old) {
+  // Contacts of destroyed bodies were erased; a generation mismatch means the slot was reused.
+  if (!old.touching || !bodies.records[old.bodyA].alive || !bodies.records[old.bodyB].alive) return;
+  if (bodies.records[old.bodyA].generation != old.generationA ||
+      bodies.records[old.bodyB].generation != old.generationB)
+    return;
+  if (old.sensor) {
+    sensors.push_back(makeSensorEvent(bodies, old, SensorEvent::Type::End));
+  } else {
+    contacts.push_back(makeContactEvent(bodies, old, ContactEvent::Type::End));
+  }
+}
+
+void StepEvents::endWithDestroyedBody(const BodyStorage& bodies, const Contact& contact) {
+  if (!contact.touching) return;
+  if (contact.sensor) {
+    pendingSensors.push_back(makeSensorEvent(bodies, contact, SensorEvent::Type::End));
+  } else {
+    pendingContacts.push_back(makeContactEvent(bodies, contact, ContactEvent::Type::End));
+  }
+}
+
+ContactEvent makeContactEvent(const BodyStorage& bodies, const Contact& c, ContactEvent::Type type) {
+  ContactEvent e;
+  e.type = type;
+  e.a = bodies.idOf(c.bodyA);
+  e.b = bodies.idOf(c.bodyB);
+  e.normal = c.manifold.normal;
+  int deepest = 0;
+  for (int i = 0; i < c.manifold.count; ++i) {
+    if (c.manifold.points[i].depth > c.manifold.points[deepest].depth) deepest = i;
+    e.impulse += c.points[i].totalNormalImpulse;
+    e.speed = std::max(e.speed, -c.points[i].relativeVelocity);
+  }
+  if (c.manifold.count > 0) e.point = c.manifold.points[deepest].midpoint();
+  if (type == ContactEvent::Type::End) e.impulse = 0.0f;
+  return e;
+}
+
+std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& contacts, StepEvents& events,
+                              bool persistEvents) {
+  std::size_t touchingCount = 0;
+  for (Contact& c : contacts) {
+    // A speculative contact that stopped the bodies this step touched them, though it was still
+    // apart before the solve: count it, so the begin event carries the impact speed and impulse.
+    if (!c.sensor && c.enabled && !c.touching) {
+      for (int i = 0; i < c.manifold.count; ++i)
+        c.touching = c.touching || c.points[i].maxNormalImpulse > 0.0f;
+    }
+    if (c.sensor) {
+      if (c.touching != c.wasTouching) {
+        const auto type = c.touching ? SensorEvent::Type::Begin : SensorEvent::Type::End;
+        events.sensors.push_back(makeSensorEvent(bodies, c, type));
+      }
+      continue;
+    }
+    if (c.touching) ++touchingCount;
+    if (c.touching && !c.wasTouching)
+      events.contacts.push_back(makeContactEvent(bodies, c, ContactEvent::Type::Begin));
+    if (c.touching && c.wasTouching && persistEvents && !c.asleep)
+      events.contacts.push_back(makeContactEvent(bodies, c, ContactEvent::Type::Persist));
+    if (!c.touching && c.wasTouching)
+      events.contacts.push_back(makeContactEvent(bodies, c, ContactEvent::Type::End));
+  }
+  return touchingCount;
+}
+
+}  // namespace collide::detail

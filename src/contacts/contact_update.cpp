@@ -1,0 +1,328 @@
+#include "contacts/contact_update.h"
+
+#include <collide/narrowphase.h>
+
+#include "base/format.h"
+#include "memory/prefetch.h"
+#include "shapes/shape_functions.h"
+
+#include <utility>
+
+namespace collide::detail {
+
+namespace {
+
+// A separating axis is kept for pairs apart where the collider test is costly: polyhedra (k-DOP,
+// hull) against any convex shape. Two support points decide whether the pair is still apart.
+bool separatingAxisPays(const Shape& a, const Shape& b) {
+  const auto polyhedron = [](const Shape& s) {
+    return s.type() == ShapeType::ConvexHull || s.type() == ShapeType::Kdop;
+  };
+  return a.isConvex() && b.isConvex() && (polyhedron(a) || polyhedron(b));
+}
+
+// How far B lies beyond A along the unit world direction: B's farthest point against it minus A's
+// farthest point along it; > 0 is apart.
+float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const Transform& tb,
+                      const Vec3& axis) {
+  const Vec3 pa = ta.applyToPoint(support(a, ta.inverseApplyToDirection(axis)));
+  const Vec3 pb = tb.applyToPoint(support(b, tb.inverseApplyToDirection(-axis)));
+  return glm::dot(pb - pa, axis);
+}
+
+bool settingsInRange(const ContactSettings& s) {
+  return isFinite(s.friction) && s.friction >= 0.0f && isFinite(s.bounciness) && s.bounciness >= 0.0f &&
+         s.bounciness <= 1.0f && isFinite(s.surfaceVelocity);
+}
+
+}  // namespace
+
+// One run of the stage over the pairs: the walk through them, merged with last step's contacts.
+class PairPass {
+ public:
+  PairPass(const ContactUpdate& scratch, const BodyStorage& bodies, std::span<const ProxyPair> pairs,
+           std::vector<Contact>& contacts, const std::vector<Contact>& previous,
+           const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
+           StepEvents& events, std::string& callbackError)
+      : s_(scratch),
+        bodies_(bodies),
+        pairs_(pairs),
+        contacts_(contacts),
+        previous_(previous),
+        settings_(settings),
+        dt_(dt),
+        preSolve_(preSolve),
+        events_(events),
+        callbackError_(callbackError) {}
+
+  ContactUpdateCounts run() {
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      prefetchAhead(p);
+      updatePair(pairs_[p]);
+    }
+    while (next_ < previous_.size()) events_.endVanished(bodies_, previous_[next_++]);
+    return counts_;
+  }
+
+ private:
+  // Last step's contacts are read, and this step's written, in order, and a contact is long: both
+  // are asked for a few contacts ahead, where the hardware's stride detection would come too late.
+  // The shapes of the pairs a few places on that will likely be computed, not reused, are asked for
+  // in three stages: the bodies' records (where the shape is), the hulls, their arrays.
+  static constexpr std::size_t kContactsAhead = 4;
+  static constexpr std::size_t kPairsAhead = 4;
+
+  void prefetchAhead(std::size_t p) const {
+    if (next_ + kContactsAhead < previous_.size())
+      prefetchBytes(&previous_[next_ + kContactsAhead], sizeof(Contact));
+    if (contacts_.size() + kContactsAhead < contacts_.capacity())
+      prefetchBytes(contacts_.data() + contacts_.size() + kContactsAhead, sizeof(Contact));
+    prefetchPairShapes(p + 3 * kPairsAhead, [](const Shape& shape) { prefetchLine(&shape); });
+    prefetchPairShapes(p + 2 * kPairsAhead, prefetchShapeHeader);
+    prefetchPairShapes(p + kPairsAhead, prefetchShapeArrays);
+  }
+  template <typename Prefetch>
+  void prefetchPairShapes(std::size_t p, Prefetch prefetch) const {
+    if (p >= pairs_.size()) return;
+    const std::uint32_t a = bodyOf(pairs_[p].a), b = bodyOf(pairs_[p].b);
+    if (!s_.likelyPlaced_[a] && !s_.likelyPlaced_[b]) return;
+    prefetch(bodies_.records[a].shape);
+    prefetch(bodies_.records[b].shape);
+  }
+
+  std::uint32_t bodyOf(ProxyId proxy) const { return s_.proxyBodies_[proxy.index]; }
+
+  // Last step's contact of this pair, if it was between these very bodies (not a reused slot);
+  // contacts of pairs that came before it and are gone now end.
+  const Contact* takePrevious(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
+    while (next_ < previous_.size() && previous_[next_].key < key)
+      events_.endVanished(bodies_, previous_[next_++]);
+    if (next_ == previous_.size() || previous_[next_].key != key) return nullptr;
+    const Contact& old = previous_[next_++];
+    const bool same = old.bodyA == ia && old.bodyB == ib &&
+                      old.generationA == bodies_.records[ia].generation &&
+                      old.generationB == bodies_.records[ib].generation;
+    return same ? &old : nullptr;
+  }
+
+  void updatePair(const ProxyPair& pair) {
+    const std::uint64_t key = pairKey(pair.a.index, pair.b.index);
+    const std::uint32_t ia = bodyOf(pair.a);
+    const std::uint32_t ib = bodyOf(pair.b);
+    const Contact* previous = takePrevious(key, ia, ib);
+    const BodyRecord& ra = bodies_.records[ia];
+    const BodyRecord& rb = bodies_.records[ib];
+    // Only a dynamic body responds: kinematic-kinematic and kinematic-static pairs are never tested
+    // (static-static never reaches us: the broad phase does not produce them).
+    if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) return;
+    if ((ra.sensor && rb.sensor) || (ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) {
+      if (previous) events_.endVanished(bodies_, *previous);
+      return;
+    }
+    if (!bodies_.isAwakeDynamic(ia) && !bodies_.isAwakeDynamic(ib)) {
+      // Sleeping against static, sleeping or still kinematic: nothing moves, so last step's contact
+      // is kept as it was (touching state, impulses for the warm start on waking), unsolved.
+      if (previous) {
+        Contact& kept = contacts_.emplace_back(*previous);
+        kept.asleep = true;
+        kept.wasTouching = kept.touching;
+      }
+      return;
+    }
+    Contact& c = contacts_.emplace_back();
+    ++counts_.narrowPhaseTests;
+    const bool reused = computeManifold(ia, ib, previous, c);
+    if (c.manifold.count == 0) {
+      if (previous) events_.endVanished(bodies_, *previous);
+      if (!c.cache.valid) {
+        contacts_.pop_back();
+        return;
+      }
+      keepApart(key, ia, ib, c);
+      return;
+    }
+    fillContact(key, ia, ib, previous, reused, c);
+    if (!c.sensor && preSolve_) applyPreSolve(ia, ib, c);
+    const float deepest = c.manifold.maxDepth();
+    c.touching = c.enabled && (c.sensor ? deepest >= 0.0f : deepest >= -settings_.tuning.linearSlop);
+    if (!c.enabled) c.points = {};
+  }
+
+  // The pair's manifold in c.manifold and what the next step may reuse of it in c.cache, by the
+  // cheapest exact way. Returns whether last step's manifold was placed again.
+  bool computeManifold(std::uint32_t ia, std::uint32_t ib, const Contact* previous, Contact& c) {
+    const BodyRecord& ra = bodies_.records[ia];
+    const BodyRecord& rb = bodies_.records[ib];
+    const Transform& ta = s_.poses_[ia];
+    const Transform& tb = s_.poses_[ib];
+    const ContactTuning& tuning = settings_.tuning;
+    const bool sensor = ra.sensor || rb.sensor;
+    const float margin = sensor
+                             ? 0.0f
+                             : speculativeMargin(s_.velocities_[ia], s_.velocities_[ib], s_.spinReaches_[ia],
+                                                 s_.spinReaches_[ib], dt_, tuning.speculativeDistance);
+    // An empty manifold is cached only if the margin exceeds the cache's tolerance: a pair found
+    // apart by more than the margin then cannot touch before it moves beyond the tolerance.
+    const bool cacheApart = margin > 2.0f * tuning.manifoldCacheDistance;
+    if (previous && !sensor &&
+        reuseManifold(previous->cache, previous->manifold, ta, tb, s_.scaledRotations_[ia],
+                      s_.scaledRotations_[ib], ra.originRadius, rb.originRadius, tuning.manifoldCacheDistance,
+                      c.manifold)) {
+      // A pair that has not moved relative to itself since its manifold was computed (a resting
+      // stack, a crate on the terrain).
+      c.cache = previous->cache;
+      ++counts_.reusedManifolds;
+      return true;
+    }
+    if (glm::length(tb.position - ta.position) > ra.originRadius + rb.originRadius + margin) {
+      // The bounding spheres are apart by more than the margin: the lecture's early reject with the
+      // cheapest bounding volume, before the proxies' collider test.
+      c.manifold.count = 0;
+      if (!sensor && cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
+    } else if (previous && !sensor && previous->cache.hasAxis && previous->manifold.count == 0 &&
+               separationAlong(ra.shape, ta, rb.shape, tb,
+                               ta.applyToDirection(previous->cache.separatingAxis)) > margin) {
+      // Still apart along the axis that separated them last time: two support points instead of the
+      // separating-axis test (the broad phase's fat boxes keep many such pairs, e.g. neighbours in a
+      // heap of hulls).
+      c.manifold.count = 0;
+      if (cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
+      c.cache.separatingAxis = previous->cache.separatingAxis;
+      c.cache.hasAxis = true;
+    } else {
+      collide::collide(ra.shape, ta, rb.shape, tb, c.manifold, margin);
+      if (!sensor && (c.manifold.count > 0 || cacheApart)) storeManifold(c.manifold, ta, tb, c.cache);
+      if (!sensor && c.manifold.count == 0 && separatingAxisPays(ra.shape, rb.shape)) {
+        const DistanceResult apart = collide::distance(ra.shape, ta, rb.shape, tb);
+        if (!apart.overlapping && apart.distance > margin) {
+          c.cache.separatingAxis = ta.inverseApplyToDirection(apart.normal);
+          c.cache.hasAxis = true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // A pair found apart is kept as an empty contact, so that next step can take the same "apart"
+  // while the pair does not move. It has no points: the solver, the events and the islands pass it
+  // by. Only its manifold and cache were written since it was made, and the cache is what it is
+  // kept for.
+  void keepApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, Contact& c) const {
+    c.manifold = Manifold{};
+    c.key = key;
+    c.bodyA = ia;
+    c.bodyB = ib;
+    c.generationA = bodies_.records[ia].generation;
+    c.generationB = bodies_.records[ib].generation;
+    c.enabled = false;
+  }
+
+  // A touching or speculative contact: the pair's materials combined, and last step's points and
+  // friction patch carried over (new vs prolonged contact).
+  void fillContact(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const Contact* previous,
+                   bool reused, Contact& c) const {
+    const BodyRecord& ra = bodies_.records[ia];
+    const BodyRecord& rb = bodies_.records[ib];
+    c.key = key;
+    c.bodyA = ia;
+    c.bodyB = ib;
+    c.generationA = ra.generation;
+    c.generationB = rb.generation;
+    c.sensor = ra.sensor || rb.sensor;
+    c.friction = combine(settings_.frictionCombine, ra.friction, rb.friction);
+    c.restitution = combine(settings_.bouncinessCombine, ra.bounciness, rb.bounciness);
+    c.impactBounciness = c.restitution;
+    c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;
+    c.wasTouching = previous ? previous->touching : false;
+    if (settings_.impactModel == ImpactModel::Interpolated) {
+      // The lecture's impact replaces the solver's restitution, and its glued (inelastic) part
+      // already handles the tangent, so the impact step gets no solver bounce and no Coulomb
+      // friction (friction is for prolonged contacts, lecture slide 12). See contact_response.h.
+      c.restitution = 0.0f;
+      if (!c.wasTouching) c.friction = 0.0f;
+    }
+    if (previous) {
+      inheritContact(*previous, c, settings_.tuning.linearSlop, reused);
+    } else {
+      c.points = {};
+    }
+    c.enabled = true;
+  }
+
+  // The pre-solve callback may disable the contact for this step or change its settings. A NaN
+  // friction would reach every body the contact touches: bad settings are refused (the contact
+  // keeps the world's values), the step completes, and then World::step reports them.
+  void applyPreSolve(std::uint32_t ia, std::uint32_t ib, Contact& c) const {
+    ContactSettings settings{c.friction, c.impactBounciness, Vec3(0.0f)};
+    c.enabled = preSolve_(bodies_.idOf(ia), bodies_.idOf(ib), c.manifold, settings);
+    if (!settingsInRange(settings)) {
+      if (callbackError_.empty()) {
+        callbackError_ = "world: step: the pre-solve callback set contact settings out of range for bodies " +
+                         std::to_string(ia) + " and " + std::to_string(ib) + " (friction " +
+                         formatFloat(settings.friction) + ", bounciness " + formatFloat(settings.bounciness) +
+                         ", surfaceVelocity " + formatVec(settings.surfaceVelocity) +
+                         "); the contact kept its own values";
+      }
+      settings = ContactSettings{c.friction, c.impactBounciness, Vec3(0.0f)};
+    }
+    c.friction = settings.friction;
+    c.impactBounciness = settings.bounciness;
+    if (settings_.impactModel != ImpactModel::Interpolated) c.restitution = settings.bounciness;
+    c.surfaceVelocity =
+        settings.surfaceVelocity - glm::dot(settings.surfaceVelocity, c.manifold.normal) * c.manifold.normal;
+  }
+
+  const ContactUpdate& s_;
+  const BodyStorage& bodies_;
+  std::span<const ProxyPair> pairs_;
+  std::vector<Contact>& contacts_;
+  const std::vector<Contact>& previous_;
+  const ContactUpdateSettings& settings_;
+  float dt_;
+  const PreSolveCallback& preSolve_;
+  StepEvents& events_;
+  std::string& callbackError_;
+  std::size_t next_ = 0;  // last step's contacts before this are matched or ended
+  ContactUpdateCounts counts_;
+};
+
+void ContactUpdate::snapshotBodies(const BodyStorage& bodies, const BroadPhase& broadPhase, float dt,
+                                   float cacheDistance) {
+  const std::size_t n = bodies.records.size();
+  poses_.resize(n);
+  scaledRotations_.resize(n);
+  spinReaches_.resize(n);
+  velocities_.resize(n);
+  likelyPlaced_.assign(n, 0);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!bodies.records[i].alive) continue;
+    poses_[i] = bodyTransform(bodies.records[i], bodies.states[i]);
+    scaledRotations_[i] = glm::mat3_cast(poses_[i].rotation) * poses_[i].scale;
+    spinReaches_[i] = spinReach(bodies.records[i], bodies.states[i]);
+    velocities_[i] = bodies.states[i].linearVelocity;
+    // A body that moves this step by more than the manifold cache's tolerance will likely have its
+    // pairs computed, not reused: the pair loop asks ahead for such bodies' shape data.
+    const float motion = dt * (glm::length(velocities_[i]) + spinReaches_[i]);
+    likelyPlaced_[i] = motion > cacheDistance;
+  }
+  // Each proxy's body (its user value), copied into a compact array that the pair loop and its
+  // prefetching read twice a pair, instead of the broad phase's larger records.
+  const auto& proxies = broadPhase.records();
+  proxyBodies_.resize(proxies.size());
+  for (std::size_t k = 0; k < proxies.size(); ++k)
+    proxyBodies_[k] = static_cast<std::uint32_t>(proxies[k].userValue);
+}
+
+ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                       std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
+                                       std::vector<Contact>& previous, const ContactUpdateSettings& settings,
+                                       float dt, const PreSolveCallback& preSolve, StepEvents& events,
+                                       std::string& callbackError) {
+  snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance);
+  std::swap(contacts, previous);
+  contacts.clear();
+  return PairPass(*this, bodies, pairs, contacts, previous, settings, dt, preSolve, events, callbackError)
+      .run();
+}
+
+}  // namespace collide::detail

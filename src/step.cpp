@@ -1,0 +1,64 @@
+// One step of the world: the lecture's pipeline, one stage a call, each in the folder of its layer.
+//   proxies and bounds -> broad phase -> contacts (narrow phase, manifold reuse, pre-solve) -> solve
+//   (soft step, then the lecture's response models) -> continuous -> revert -> fault guard ->
+//   events -> islands and sleep.
+// docs/architecture.md walks one body through these stages.
+#include "world_impl.h"
+
+#include "bodies/body_bounds.h"
+#include "dynamics/continuous.h"
+#include "dynamics/fault_guard.h"
+#include "response/contact_response.h"
+#include "response/revert.h"
+
+namespace collide {
+
+namespace {
+
+detail::ContactUpdateSettings contactSettings(const WorldDef& def) {
+  return {def.contact, def.frictionCombine, def.bouncinessCombine, def.impactModel};
+}
+
+detail::StepSettings solverSettings(const WorldDef& def) {
+  detail::StepSettings settings;
+  settings.gravity = def.gravity;
+  settings.substeps = def.substeps;
+  settings.relaxPasses = def.contact.relaxPasses;
+  settings.tuning = def.contact;
+  // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
+  settings.friction = def.frictionModel == FrictionModel::Coulomb;
+  return settings;
+}
+
+}  // namespace
+
+void World::Impl::step(float dt) {
+  const ContactTuning& tuning = def.contact;
+  events.beginStep();
+  detail::updateProxies(bodies, *broadPhase, dt, tuning.speculativeDistance);
+  lastStats = StepStats(broadPhase->findPairs(pairs));
+  if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
+  const detail::ContactUpdateCounts tested =
+      contactUpdate.run(bodies, *broadPhase, pairs, contacts, previousContacts, contactSettings(def), dt,
+                        preSolve, events, callbackError);
+  lastStats.narrowPhaseTests = tested.narrowPhaseTests;
+  lastStats.reusedManifolds = tested.reusedManifolds;
+
+  stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults);
+  detail::applyResponseModels(bodies, contacts, stepSolver.solvedContacts(), def.impactModel,
+                              def.frictionModel, tuning, dt);
+  bodies.clearForces();
+  if (def.ccd) detail::solveContinuous(bodies, *broadPhase, tuning.linearSlop);
+  if (def.penetrationResponse == PenetrationResponse::Revert)
+    detail::revertPenetrating(bodies, contacts, stepSolver.solvedContacts(), tuning.linearSlop);
+  detail::guardFiniteStates(bodies, events.faults);
+  if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, joints);
+
+  detail::refreshEscapedProxies(bodies, *broadPhase, tuning.speculativeDistance);
+  touchingCount = detail::emitContactEvents(bodies, contacts, events, def.persistEvents);
+  lastStats.contactPairs = touchingCount;
+  if (def.sleeping) islands.updateSleep(bodies, contacts, joints, def.sleep, dt);
+  totalStats += lastStats;
+}
+
+}  // namespace collide

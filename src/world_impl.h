@@ -1,0 +1,55 @@
+// The world's data: what World's API bookkeeping (world.cpp) and its step (step.cpp) share. Each
+// member belongs to the stage of its layer; the world only holds them and hands them over.
+#pragma once
+
+#include <collide/world.h>
+
+#include "bodies/body_storage.h"
+#include "contacts/contact_cache.h"
+#include "contacts/contact_events.h"
+#include "contacts/contact_update.h"
+#include "dynamics/island.h"
+#include "dynamics/joint_solver.h"
+#include "dynamics/solver.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace collide {
+
+// Throws Error naming the setting for a definition no world can run (world_def.cpp).
+void validateWorldDef(const WorldDef& def);
+
+struct World::Impl {
+  WorldDef def;
+  detail::BodyStorage bodies;
+  std::unique_ptr<BroadPhase> broadPhase;
+  std::vector<ProxyPair> pairs;  // the broad phase's pairs of the last step
+  detail::ContactUpdate contactUpdate;
+  std::vector<detail::Contact> contacts;  // in pair order
+  std::vector<detail::Contact> previousContacts;
+  detail::StepSolver stepSolver;
+  std::vector<detail::DistanceJoint> joints;
+  std::vector<std::uint32_t> freeJoints;
+  std::size_t jointCount = 0;
+  detail::StepEvents events;
+  detail::Islands islands;
+  StepStats lastStats;
+  StepStats totalStats;
+  PreSolveCallback preSolve;
+  std::string callbackError;  // reported by step() once the step is complete
+  std::size_t touchingCount = 0;
+
+  // The slot of a live body or joint; Error naming the operation for a stale or invalid id.
+  std::uint32_t resolve(BodyId id, const char* operation) const;
+  std::uint32_t resolve(JointId id, const char* operation) const;
+  void freeJoint(std::uint32_t index);
+  Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
+
+  void step(float dt);
+};
+
+}  // namespace collide
