@@ -115,9 +115,9 @@ void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
 }
 
 void applyResponseModels(BodyStorage& bodies, std::vector<Contact>& contacts,
-                         const std::vector<std::uint32_t>& solved, collide::ImpactModel impactModel,
+                         const std::vector<std::uint32_t>& solved, ImpactModel impactModel,
                          FrictionModel frictionModel, const ContactTuning& tuning, float dt) {
-  if (impactModel == collide::ImpactModel::Interpolated)
+  if (impactModel == ImpactModel::Interpolated)
     applyInterpolatedImpacts(bodies, contacts, solved, tuning.restitutionThreshold, tuning.linearSlop);
   applyProlongedFriction(bodies, contacts, solved, frictionModel, dt);
 }

@@ -31,7 +31,7 @@ void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
 
 // The stage after the solve: both of the above, as the world's impact and friction models ask.
 void applyResponseModels(BodyStorage& bodies, std::vector<Contact>& contacts,
-                         const std::vector<std::uint32_t>& solved, collide::ImpactModel impactModel,
+                         const std::vector<std::uint32_t>& solved, ImpactModel impactModel,
                          FrictionModel frictionModel, const ContactTuning& tuning, float dt);
 
 }  // namespace collide::detail

@@ -97,44 +97,20 @@ void glueUnchecked(ImpactBody& a, ImpactBody& b) {
   }
 }
 
-float newtonUnchecked(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normal, float bounciness) {
-  if (hasInfiniteMass(a) && hasInfiniteMass(b)) return 0.0f;
+// The fully elastic impact (slides 26-29): the normal impulse j that turns the normal relative
+// velocity u at the point into -u, K_nn j = -2 u; for particles K_nn = 1/mA + 1/mB, and this is the
+// slide-27 formula.
+void elasticUnchecked(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normal) {
+  if (hasInfiniteMass(a) && hasInfiniteMass(b)) return;
   const float approach = glm::dot(velocityAt(b, point) - velocityAt(a, point), normal);
-  if (!(approach < 0.0f)) return 0.0f;
-  // The normal impulse j that turns the normal relative velocity u into -e u: K_nn j = -(1 + e) u.
-  // For particles K_nn = 1/mA + 1/mB, and with e = 1 this is the slide-27 formula.
+  if (!(approach < 0.0f)) return;
   const float inverseEffectiveMass = glm::dot(normal, contactInverseMassMatrix(a, b, point) * normal);
-  const float impulse = -(1.0f + bounciness) * approach / inverseEffectiveMass;
+  const float impulse = -2.0f * approach / inverseEffectiveMass;
   applyImpulseAt(b, impulse * normal, point);
   applyImpulseAt(a, -impulse * normal, point);
-  return impulse;
 }
 
 }  // namespace
-
-float combineMaterial(CombineRuleKind rule, float a, float b) {
-  if (!std::isfinite(a) || a < 0.0f || !std::isfinite(b) || b < 0.0f) {
-    throw Error("combineMaterial: values must be finite and >= 0, got " + std::to_string(a) + " and " +
-                std::to_string(b));
-  }
-  switch (rule) {
-    case CombineRuleKind::Average:
-      return 0.5f * (a + b);
-    case CombineRuleKind::Min:
-      return std::min(a, b);
-    case CombineRuleKind::Max:
-      return std::max(a, b);
-    case CombineRuleKind::Multiply:
-      return a * b;
-  }
-  throw Error("combineMaterial: unknown combine rule " + std::to_string(static_cast<int>(rule)));
-}
-
-float resolveImpactNewton(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
-                          float bounciness) {
-  validateImpact(a, b, point, normalAToB, bounciness, "resolveImpactNewton");
-  return newtonUnchecked(a, b, point, normalAToB, bounciness);
-}
 
 Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
                                float bounciness) {
@@ -147,7 +123,7 @@ Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, 
   // linear and angular momentum, and these are linear in the velocities, so the mix keeps them as
   // well; kinetic energy is convex in the velocities, so the mix never gains energy.
   ImpactBody elasticA = a, elasticB = b;
-  newtonUnchecked(elasticA, elasticB, point, normalAToB, 1.0f);
+  elasticUnchecked(elasticA, elasticB, point, normalAToB);
   ImpactBody inelasticA = a, inelasticB = b;
   glueUnchecked(inelasticA, inelasticB);
 
@@ -160,19 +136,6 @@ Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, 
   b.angularVelocity = glm::mix(inelasticB.angularVelocity, elasticB.angularVelocity, e);
   if (!hasInfiniteMass(b)) return (b.linearVelocity - oldVelocityB) / b.inverseMass;
   return -(a.linearVelocity - oldVelocityA) / a.inverseMass;
-}
-
-void resolveImpact(ImpactModel model, ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
-                   float bounciness) {
-  switch (model) {
-    case ImpactModel::Newton:
-      resolveImpactNewton(a, b, point, normalAToB, bounciness);
-      return;
-    case ImpactModel::Interpolated:
-      resolveImpactInterpolated(a, b, point, normalAToB, bounciness);
-      return;
-  }
-  throw Error("resolveImpact: unknown impact model " + std::to_string(static_cast<int>(model)));
 }
 
 void glueVelocities(ImpactBody& a, ImpactBody& b) {

@@ -54,6 +54,13 @@ TEST(World, BadBodyDefsNameTheField) {
   def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
   def.friction = -1.0f;
   expectErrorMentions([&] { world.createBody(def); }, "friction");
+  def.friction = std::numeric_limits<float>::infinity();
+  expectErrorMentions([&] { world.createBody(def); }, "friction");
+  def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
+  def.bounciness = nan;
+  expectErrorMentions([&] { world.createBody(def); }, "bounciness");
+  def.bounciness = -0.1f;
+  expectErrorMentions([&] { world.createBody(def); }, "bounciness");
   def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
   def.rotation = Quat(2.0f, 0.0f, 0.0f, 0.0f);
   expectErrorMentions([&] { world.createBody(def); }, "rotation");
