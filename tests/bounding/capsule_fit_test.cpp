@@ -3,7 +3,7 @@
 #include <collide/bounding.h>
 #include <gtest/gtest.h>
 
-#include "bounding/point_clouds.h"
+#include "support/point_clouds.h"
 
 #include <string>
 

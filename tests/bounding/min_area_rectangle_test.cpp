@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "bounding/min_area_rectangle.h"
-#include "bounding/point_clouds.h"
+#include "support/point_clouds.h"
 
 #include <cmath>
 

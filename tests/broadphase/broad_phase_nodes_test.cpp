@@ -3,7 +3,7 @@
 #include <collide/broadphase.h>
 #include <gtest/gtest.h>
 
-#include "test_random.h"
+#include "support/test_random.h"
 
 #include <algorithm>
 #include <random>

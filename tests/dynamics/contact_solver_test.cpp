@@ -2,7 +2,7 @@
 // and the friction patch (static friction that holds on a slope, sliding at the Coulomb rate, twist).
 #include "dynamics/contact_solver.h"
 #include "dynamics/constraint_graph.h"
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <collide/world.h>
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 #include <random>
-#include "test_assertions.h"
+#include "support/test_assertions.h"
 
 namespace collide {
 namespace {

@@ -2,7 +2,7 @@
 // spectra (diagonal, repeated eigenvalues, random rotations of a chosen diagonal).
 #include <gtest/gtest.h>
 
-#include "bounding/point_clouds.h"
+#include "support/point_clouds.h"
 #include "geometry/symmetric_eigen.h"
 
 using namespace collide;

@@ -6,8 +6,8 @@
 #include <set>
 
 #include "narrowphase/pair_functions.h"
-#include "narrowphase/test_helpers.h"
-#include "test_assertions.h"
+#include "support/narrowphase_helpers.h"
+#include "support/test_assertions.h"
 
 using namespace collide;
 using namespace collide::test;

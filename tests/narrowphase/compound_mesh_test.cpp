@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "narrowphase/pair_functions.h"
-#include "narrowphase/test_helpers.h"
+#include "support/narrowphase_helpers.h"
 
 using namespace collide;
 using namespace collide::test;

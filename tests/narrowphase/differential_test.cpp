@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "narrowphase/ccd_reference.h"
+#include "support/ccd_reference.h"
 #include "narrowphase/convex_support.h"
-#include "narrowphase/support_reference.h"
-#include "narrowphase/test_helpers.h"
+#include "support/support_reference.h"
+#include "support/narrowphase_helpers.h"
 
 #if defined(COLLIDE_HAVE_CCD)
 #include <ccd/ccd.h>

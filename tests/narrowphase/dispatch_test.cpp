@@ -3,7 +3,7 @@
 #include <collide/narrowphase.h>
 #include <gtest/gtest.h>
 
-#include "narrowphase/test_helpers.h"
+#include "support/narrowphase_helpers.h"
 
 using namespace collide;
 using namespace collide::test;

@@ -8,7 +8,7 @@
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/gjk.h"
 #include "narrowphase/pair_functions.h"
-#include "narrowphase/test_helpers.h"
+#include "support/narrowphase_helpers.h"
 
 using namespace collide;
 using namespace collide::test;

@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <set>
 
-#include "narrowphase/ccd_reference.h"
+#include "support/ccd_reference.h"
 #include "narrowphase/pair_functions.h"
-#include "narrowphase/test_helpers.h"
-#include "shapes/flat_grid.h"
+#include "support/narrowphase_helpers.h"
+#include "support/flat_grid.h"
 
 using namespace collide;
 using namespace collide::test;

@@ -13,8 +13,8 @@
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/convex_support.h"
 #include "narrowphase/pair_functions.h"
-#include "narrowphase/test_helpers.h"
-#include "shapes/flat_grid.h"
+#include "support/narrowphase_helpers.h"
+#include "support/flat_grid.h"
 
 namespace collide {
 namespace {

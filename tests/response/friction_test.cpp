@@ -8,8 +8,8 @@
 #include <random>
 
 #include "response/friction.h"
-#include "response_test_helpers.h"
-#include "test_assertions.h"
+#include "support/response_test_helpers.h"
+#include "support/test_assertions.h"
 
 using namespace collide;
 using namespace collide::detail;

@@ -7,8 +7,8 @@
 #include <random>
 
 #include "response/penetration.h"
-#include "test_assertions.h"
-#include "test_random.h"
+#include "support/test_assertions.h"
+#include "support/test_random.h"
 
 using namespace collide;
 using namespace collide::detail;

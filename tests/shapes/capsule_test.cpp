@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include "test_assertions.h"
+#include "support/test_assertions.h"
 
 namespace collide {
 namespace {

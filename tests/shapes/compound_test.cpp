@@ -1,4 +1,4 @@
-#include "shapes/test_meshes.h"
+#include "support/test_meshes.h"
 
 #include <collide/shapes.h>
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 #include <string>
-#include "test_assertions.h"
+#include "support/test_assertions.h"
 
 using namespace collide;
 

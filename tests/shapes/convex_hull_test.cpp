@@ -4,9 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "test_random.h"
+#include "support/test_random.h"
 
-#include "geometry/hull_invariants.h"
+#include "support/hull_invariants.h"
 
 #include <cmath>
 #include <limits>

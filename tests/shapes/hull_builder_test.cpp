@@ -1,7 +1,7 @@
 // Hull building: the half-edge structure Qhull's facets turn into, on inputs with known answers.
 #include "shapes/hull_builder.h"
 
-#include "geometry/hull_invariants.h"
+#include "support/hull_invariants.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #include "geometry/triangle.h"
-#include "shapes/test_meshes.h"
+#include "support/test_meshes.h"
 
 #include <collide/shapes.h>
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <random>
 #include <set>
 #include <string>
-#include "test_assertions.h"
+#include "support/test_assertions.h"
 
 using namespace collide;
 

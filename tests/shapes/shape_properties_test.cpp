@@ -1,7 +1,7 @@
 // Properties every proxy must have, checked over random transforms and rays by the harness in
 // tests/shape_property_harness.h. To cover another proxy, add one line to kCases.
-#include "shape_property_harness.h"
-#include "shapes/test_meshes.h"
+#include "support/shape_property_harness.h"
+#include "support/test_meshes.h"
 
 #include <collide/shapes.h>
 #include <gtest/gtest.h>

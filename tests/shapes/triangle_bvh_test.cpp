@@ -1,5 +1,5 @@
 #include "shapes/triangle_bvh.h"
-#include "shapes/test_meshes.h"
+#include "support/test_meshes.h"
 
 #include <gtest/gtest.h>
 

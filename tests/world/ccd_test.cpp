@@ -4,7 +4,7 @@
 #include <collide/world.h>
 #include <gtest/gtest.h>
 
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <cmath>
 #include <random>

@@ -1,6 +1,6 @@
 // Destroying a body ends its touching contacts and sensor overlaps: the End events open the next
 // step's events and carry the destroyed body's (now stale) id.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

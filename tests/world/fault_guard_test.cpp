@@ -1,7 +1,7 @@
 // The world guards itself (src/dynamics/fault_guard.h): non-finite input is refused at the API, and
 // a state that becomes non-finite inside a step is frozen and reported instead of reaching the
 // bodies it touches.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <collide/world.h>
 

@@ -3,7 +3,7 @@
 // constant force), and the applied force and torque are gone by the next step.
 #include <collide/world.h>
 
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

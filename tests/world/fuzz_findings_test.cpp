@@ -4,7 +4,7 @@
 // with collide::Error, or freeze the body and report it (docs/reliability.md, "The world guards
 // itself"). Before the fixes, each story below crashed the step (an Error thrown half-way through
 // it), hung it, bricked the world, or left a NaN in a state or an event.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <collide/world.h>
 

@@ -1,6 +1,6 @@
 // A cylinder on a static triangle-mesh floor in the World: the mesh–cylinder cell's rim manifolds
 // and internal-edge handling (src/narrowphase/triangle_generic.cpp).
-#include "world/mesh_floor_helpers.h"
+#include "support/mesh_floor_helpers.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // A sphere and a capsule on a static triangle-mesh floor in the World: the mesh–sphere and
 // mesh–capsule cells' closest-point contacts with internal-edge handling
 // (src/narrowphase/triangle_rounded.cpp).
-#include "world/mesh_floor_helpers.h"
-#include "world/world_helpers.h"
+#include "support/mesh_floor_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // A box on a static triangle-mesh floor in the World: the mesh–box cell's clipped four-point
 // manifold and its internal-edge handling (src/narrowphase/mesh_pairs.cpp, docs/narrowphase.md).
-#include "world/mesh_floor_helpers.h"
-#include "world/world_helpers.h"
+#include "support/mesh_floor_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

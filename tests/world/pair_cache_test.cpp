@@ -2,7 +2,7 @@
 // relative to itself keeps its manifold), the bounding-sphere reject and the separating-axis cache
 // (a pair found apart is tested first along the axis that separated it). Each may save work; none may
 // change what the pair's contact is.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <collide/narrowphase.h>
 #include <collide/world.h>

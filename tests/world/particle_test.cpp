@@ -1,5 +1,5 @@
 // Particles: point masses that collide as spheres and never turn.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // The lecture's response models inside the World (src/response/contact_response.cpp): the
 // interpolated impact on new contacts, viscous and damping friction on prolonged ones. Expected
 // values are the lecture's closed forms (docs/response.md), not values read off a run.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include "test_assertions.h"
+#include "support/test_assertions.h"
 
 namespace collide {
 namespace {

@@ -1,6 +1,6 @@
 // World::setDef: settings changed between steps take effect from the next step, and nothing else
 // changes: bodies, handles, contacts and their warm start are kept.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <collide/world.h>
 

@@ -1,6 +1,6 @@
 // The World's API: ids, validation, counters, events, sensors, the pre-solve callback, determinism
 // and the penetration responses.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

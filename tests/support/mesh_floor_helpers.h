@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <set>
 
-#include "shapes/flat_grid.h"
+#include "support/flat_grid.h"
 
 namespace collide::test {
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "response/impact_body.h"
-#include "test_random.h"
+#include "support/test_random.h"
 
 namespace collide::test {
 

@@ -14,7 +14,7 @@
 #include <collide/shapes.h>
 #include <gtest/gtest.h>
 
-#include "test_random.h"
+#include "support/test_random.h"
 
 #include <algorithm>
 #include <cfloat>

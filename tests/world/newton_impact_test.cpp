@@ -1,5 +1,5 @@
 // The lecture's impact cases with ImpactModel::Newton, against the 1D impact formulas.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

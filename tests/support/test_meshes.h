@@ -4,7 +4,7 @@
 
 #include <collide/shapes.h>
 
-#include "test_random.h"
+#include "support/test_random.h"
 
 #include <algorithm>
 #include <cmath>

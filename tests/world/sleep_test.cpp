@@ -1,6 +1,6 @@
 // Islands and sleeping: resting islands sleep after timeToSleep and then do not move at all;
 // contacts, the API and destruction wake them.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

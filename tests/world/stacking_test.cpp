@@ -1,5 +1,5 @@
 // Resting contact and stacking: what the soft step, warm starting and relaxing are for.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <collide/narrowphase.h>
 

@@ -1,6 +1,6 @@
 // The gyroscopic term: torque-free tumbling conserves angular momentum and energy, and a box
 // spun about its intermediate axis flips (the Dzhanibekov effect) when Euler's equations say so.
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 

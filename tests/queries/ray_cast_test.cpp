@@ -3,8 +3,8 @@
 #include <collide/world.h>
 #include <gtest/gtest.h>
 
-#include "test_random.h"
-#include "world/world_helpers.h"
+#include "support/test_random.h"
+#include "support/world_helpers.h"
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
 // Distance constraints in the soft step: rigid and compliant, against analytic answers (pendulum
 // period, spring frequency and static stretch, momentum) and shape keeping (chain, particle cube).
-#include "world/world_helpers.h"
+#include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
 
