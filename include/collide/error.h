@@ -1,6 +1,8 @@
 // Errors at the API boundary. Constructors, builders and fitters validate their input and throw
 // collide::Error with a message that names the problem and the offending value, e.g.
-// "sphere: radius must be finite and > 0, got -1". Inside the step, invariants are asserts.
+// "sphere: radius must be finite and > 0, got -1". World::step throws only for a bad dt, or once the
+// step is complete for settings a pre-solve callback got wrong; a body whose state stops being finite
+// during the step is frozen and reported instead (World::faultEvents).
 #pragma once
 
 #include <stdexcept>

@@ -169,8 +169,9 @@ struct MeshTriangle {
 };
 
 // A triangle mesh with its own bounding volume hierarchy (an AABB tree over the triangles).
-// Meshes are surfaces: they collide on both sides unless the user says otherwise later. A closed,
-// consistently oriented mesh also has an inside (point containment, volume, mass).
+// Meshes are surfaces: they collide on both sides (each triangle is seen from the side the other
+// shape is on). A closed, consistently oriented mesh also has an inside (point containment, volume,
+// mass).
 class TriangleMesh {
  public:
   struct BvhNode {

@@ -66,8 +66,8 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   solvedContacts_.clear();
   writtenBodies_.clear();
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
-    // The lines read here (ids, manifold count, flags) a few contacts ahead: at 496 bytes a contact,
-    // a stride the hardware does not follow in time.
+    // The lines read here (ids, manifold count, flags) a few contacts ahead: a contact spans several
+    // cache lines, a stride the hardware's prefetcher does not follow in time.
     if (ci + 8 < contacts.size()) {
       const Contact& ahead = contacts[ci + 8];
       prefetchLine(&ahead.manifold.count);

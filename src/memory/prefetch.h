@@ -1,8 +1,8 @@
-// Asking the memory system for data ahead of its use (the world's pair loop, the contact batch
-// build, the hulls' arrays). Through these functions, not __builtin_prefetch directly: GCC finds a
-// helper that does nothing but prefetch free of effects (its pure-const analysis) and drops the
-// calls to it, so a prefetch written in a small lambda silently vanished from the contact solver's
-// batch build. An asm statement is an effect the optimiser keeps.
+// Asking the memory system for data ahead of its use (the contacts stage's pair loop, the bounds
+// stage, the contact batch build, the hulls' arrays). Through these functions, not
+// __builtin_prefetch directly: GCC finds a helper that does nothing but prefetch free of effects
+// (its pure-const analysis) and drops the calls to it, so a prefetch in a small lambda can vanish
+// from the build. An asm statement is an effect the optimiser keeps.
 #pragma once
 
 #include <cstddef>
@@ -27,7 +27,7 @@ COLLIDE_PREFETCH_INLINE void prefetchLine(const void* address) {
 }
 
 // Every cache line that [data, data + bytes) touches, the last one included when the range does
-// not start on a line (a 496-byte contact spans eight or nine lines).
+// not start on a line (a record of eight lines' length then spans nine).
 COLLIDE_PREFETCH_INLINE void prefetchBytes(const void* data, std::size_t bytes) {
   if (bytes == 0) return;
   constexpr std::uintptr_t kLine = 64;

@@ -122,8 +122,8 @@ inline bool normalAllowed(const TriangleFrame& t, const SatTriangle& triangle, c
     const std::uint32_t edgeBits = (1u << k) | (1u << ((k + 1) % 3));
     // An active edge (outline or convex bend) has the normals between its two faces': beyond the
     // bend (the per-triangle SAT's edge-edge axis can be anywhere on the triangle's half circle) the
-    // neighbour's face is nearer, and the face contacts hold the shape (R4: a 35° normal on a
-    // 2.8° bend). 1e-3 rad of slack for rounding.
+    // neighbour's face is nearer, and the face contacts hold the shape (an edge axis far outside a
+    // shallow bend would push the shape sideways across the mesh). 1e-3 rad of slack for rounding.
     if (top == edgeBits) {
       if (!((active >> k) & 1u)) return false;
       const float bend = triangle.bendCosine[k];

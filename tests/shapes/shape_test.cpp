@@ -122,7 +122,7 @@ TEST(QueryValidation, InvalidTransformIsRejectedByEveryWorldQuery) {
     EXPECT_THAT([&] { containsPoint(s, bad, Vec3(0.0f)); }, ThrowsMessage<Error>(HasSubstr("transform")));
     EXPECT_THAT([&] { closestPoint(s, bad, Vec3(0.0f)); }, ThrowsMessage<Error>(HasSubstr("transform")));
     EXPECT_THAT([&] { rayCast(s, bad, ray); }, ThrowsMessage<Error>(HasSubstr("transform")));
-    // Bug: worldBounds used to accept any transform and return NaN or inside-out boxes.
+    // A bad transform would give NaN or inside-out boxes: worldBounds refuses it like the rest.
     EXPECT_THAT([&] { worldBounds(s, bad); }, ThrowsMessage<Error>(HasSubstr("transform")));
   }
   EXPECT_THAT([&] { worldBounds(s, nonUnitRotation); }, ThrowsMessage<Error>(HasSubstr("rotation (w 2")));
@@ -146,7 +146,7 @@ TEST(QueryValidation, MassPropertiesRejectBadDensityScaleAndPlanes) {
 
 TEST(QueryValidation, SupportRejectsPlanesAndZeroOrNonFiniteDirections) {
   EXPECT_THAT([] { support(Plane{}, Vec3(0.0f, 1.0f, 0.0f)); }, ThrowsMessage<Error>(HasSubstr("plane")));
-  // Bug: a zero direction used to return NaN for the sphere, capsule and ellipsoid.
+  // A zero direction has no farthest point (the sphere's, capsule's and ellipsoid's would be NaN).
   for (const Shape& s :
        {Shape(Sphere{1.0f}), Shape(Capsule{}), Shape(Box{}), Shape(Ellipsoid{}), Shape(Cylinder{})}) {
     EXPECT_THAT([&] { support(s, Vec3(0.0f)); }, ThrowsMessage<Error>(HasSubstr("direction")))

@@ -2,8 +2,8 @@
 // but extreme (a 3e38 m sphere, a body at 1e20 m/s, a spin of 1e30 rad/s): a game reaches them by
 // a unit error or an uninitialised value, and the world must then go on stepping, refuse the input
 // with collide::Error, or freeze the body and report it (docs/reliability.md, "The world guards
-// itself"). Before the fixes, each story below crashed the step (an Error thrown half-way through
-// it), hung it, bricked the world, or left a NaN in a state or an event.
+// itself"). Each story checks that the step neither throws half-way, hangs, leaves the world unable
+// to step, nor leaves a NaN in a state or an event.
 #include "support/world_helpers.h"
 
 #include <collide/world.h>

@@ -35,7 +35,7 @@ void expectRestingBoxStill(const BodyDef& ground) {
   std::printf("resting box drift %g m, largest late speed %g m/s\n",
               glm::length(t.position - Vec3(0.0f, 0.5f, 0.0f)), largestLateSpeed);
   EXPECT_LT(glm::length(t.position - Vec3(0.0f, 0.5f, 0.0f)), 1e-3f);
-  EXPECT_LT(largestLateSpeed, 1e-3f);  // no jitter: under 1 mm/s over the last 100 steps (issue 5)
+  EXPECT_LT(largestLateSpeed, 1e-3f);  // no jitter: under 1 mm/s over the last 100 steps
   EXPECT_LT(glm::length(world.angularVelocity(box)), 1e-2f);
 }
 
@@ -96,7 +96,7 @@ TEST(Stacking, TenBoxStackSagsByTheSoftContactsPrediction) {
   EXPECT_LT(r.largestFinalSpeed, 1e-2f);  // no jitter
 }
 
-// Issue 5: a stack and the R3 pyramid stand for 10 s, the top box within 1 cm of where it started in
+// A stack and the R3 pyramid stand for 10 s, the top box within 1 cm of where it started in
 // each axis. With the defaults (6 substeps, contacts at 90 Hz, the quarter substep rate) the sag (y)
 // is the soft contacts' spring (the prediction above) and the sideways walk (x, z) is held by the
 // friction patches' static anchors: measured (-0.01, -0.31, 0.00) cm for the stack and (0.34, -0.78,
