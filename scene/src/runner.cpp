@@ -166,6 +166,20 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
         }
       }
     }
+    if (events) {
+      for (const SensorEvent& e : sw.world.sensorEvents()) {
+        const nlohmann::json line = {{"step", step},
+                                     {"type", e.type == SensorEvent::Type::Begin ? "begin" : "end"},
+                                     {"a", names[e.sensor.index]},
+                                     {"b", names[e.visitor.index]},
+                                     {"sensor", true}};
+        *events << line.dump() << '\n';
+      }
+      for (const FaultEvent& e : sw.world.faultEvents()) {
+        const nlohmann::json line = {{"step", step}, {"type", "fault"}, {"a", names[e.body.index]}};
+        *events << line.dump() << '\n';
+      }
+    }
     for (std::size_t body : broken) {
       sw.world.destroyBody(sw.bodies[body]);
       ++summary.brokenBodies;

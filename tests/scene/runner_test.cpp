@@ -107,6 +107,70 @@ TEST(Runner, RecordingAndEventsFollowTheFormat) {
   std::filesystem::remove(events);
 }
 
+// A ball falls through a sensor slab: the events file has the sensor's begin and end, naming the
+// sensor first and the visitor second, marked as sensor events (scene-format.md, "--events").
+TEST(Runner, EventsFileHasSensorOverlaps) {
+  const auto events = scratch("sensor_events.jsonl");
+  const Scene scene = parseScene(R"({ "format": "collide-scene/1",
+    "settings": { "dt": 0.016666667, "steps": 60 },
+    "bodies": [
+      { "name": "gate", "type": "static", "sensor": true,
+        "shape": { "type": "box", "half_extents": [2, 0.25, 2] }, "position": [0, 1, 0] },
+      { "name": "ball", "type": "dynamic", "shape": { "type": "sphere", "radius": 0.2 },
+        "position": [0, 2.1, 0] } ] })",
+                                 "sensor_drop");
+  RunOptions options;
+  options.steps = 60;
+  options.eventsPath = events.string();
+  runScene(scene, options);
+  std::ifstream eventsFile(events);
+  std::string line;
+  std::vector<std::pair<std::string, int>> sensorLines;
+  while (std::getline(eventsFile, line)) {
+    const auto e = nlohmann::json::parse(line);
+    if (!e.contains("sensor")) continue;
+    EXPECT_EQ(e["sensor"], true);
+    EXPECT_EQ(e["a"], "gate");
+    EXPECT_EQ(e["b"], "ball");
+    sensorLines.emplace_back(e["type"].get<std::string>(), e["step"].get<int>());
+  }
+  ASSERT_EQ(sensorLines.size(), 2u);
+  EXPECT_EQ(sensorLines[0].first, "begin");
+  EXPECT_EQ(sensorLines[1].first, "end");
+  // After n steps of dt in 6 substeps (symplectic Euler) the ball has fallen g dt^2 n (n + 1/6) / 2.
+  // It overlaps the slab once fallen 0.65 m (after 22 steps; 21 give 0.630 m) until fallen 1.55 m
+  // (after 34 steps; 33 give 1.491 m), and a step's sensor test sees the poses the step starts from.
+  EXPECT_EQ(sensorLines[0].second, 23);
+  EXPECT_EQ(sensorLines[1].second, 35);
+  std::filesystem::remove(events);
+}
+
+// A gravity of -3e38 m/s^2 is finite, but the ball's velocity overflows within a hundred steps: the
+// fault guard freezes it, and the events file says so once.
+TEST(Runner, EventsFileHasFaults) {
+  const auto events = scratch("fault_events.jsonl");
+  const Scene scene = parseScene(R"({ "format": "collide-scene/1",
+    "settings": { "dt": 0.016666667, "steps": 100, "gravity": [0, -3e38, 0] },
+    "bodies": [ { "name": "ball", "type": "dynamic", "shape": { "type": "sphere", "radius": 0.5 } } ] })",
+                                 "overflow");
+  RunOptions options;
+  options.steps = 100;
+  options.eventsPath = events.string();
+  runScene(scene, options);
+  std::ifstream eventsFile(events);
+  std::string line;
+  int faults = 0;
+  while (std::getline(eventsFile, line)) {
+    const auto e = nlohmann::json::parse(line);
+    if (e["type"] != "fault") continue;
+    ++faults;
+    EXPECT_EQ(e["a"], "ball");
+    EXPECT_GT(e["step"].get<int>(), 1);
+  }
+  EXPECT_EQ(faults, 1);
+  std::filesystem::remove(events);
+}
+
 TEST(Runner, SummaryJsonHasTheTablesNumbers) {
   RunOptions options;
   options.steps = 5;
