@@ -6,6 +6,7 @@
 #include "world_impl.h"
 
 #include "bodies/body_bounds.h"
+#include "contacts/sensor_crossings.h"
 #include "dynamics/continuous.h"
 #include "dynamics/fault_guard.h"
 #include "response/contact_response.h"
@@ -56,6 +57,7 @@ void World::Impl::step(float dt) {
 
   detail::refreshEscapedProxies(bodies, *broadPhase, tuning.speculativeDistance);
   touchingCount = detail::emitContactEvents(bodies, contacts, events, def.persistEvents);
+  detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, events);
   lastStats.contactPairs = touchingCount;
   if (def.sleeping) islands.updateSleep(bodies, contacts, joints, def.sleep, dt);
   totalStats += lastStats;

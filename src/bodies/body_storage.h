@@ -6,6 +6,7 @@
 
 #include <collide/body.h>
 #include <collide/broadphase.h>
+#include <collide/narrowphase.h>
 #include <collide/shapes.h>
 
 #include <cstdint>
@@ -104,6 +105,18 @@ inline Vec3 bodyOrigin(const BodyRecord& record, const BodyState& state) {
 
 inline Transform bodyTransform(const BodyRecord& record, const BodyState& state) {
   return {bodyOrigin(record, state), state.rotation, record.scale};
+}
+
+// The body's motion over the step so far: from its pose at the step's start to its pose now.
+inline Sweep bodySweep(const BodyRecord& record, const BodyState& state) {
+  Sweep sweep;
+  sweep.localCenter = record.localCenterOfMass;
+  sweep.center0 = state.centerOfMass0;
+  sweep.center1 = state.centerOfMass;
+  sweep.rotation0 = state.rotation0;
+  sweep.rotation1 = state.rotation;
+  sweep.scale = record.scale;
+  return sweep;
 }
 
 inline Mat3 worldInverseInertia(const Mat3& inverseInertiaLocal, const Quat& rotation) {

@@ -7,21 +7,6 @@
 
 namespace collide::detail {
 
-namespace {
-
-Sweep bodySweep(const BodyRecord& record, const BodyState& state) {
-  Sweep sweep;
-  sweep.localCenter = record.localCenterOfMass;
-  sweep.center0 = state.centerOfMass0;
-  sweep.center1 = state.centerOfMass;
-  sweep.rotation0 = state.rotation0;
-  sweep.rotation1 = state.rotation;
-  sweep.scale = record.scale;
-  return sweep;
-}
-
-}  // namespace
-
 ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, float linearSlop) {
   ContinuousStats stats;
   ToiSettings settings;

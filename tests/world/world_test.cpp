@@ -234,6 +234,66 @@ TEST(World, SensorReportsOverlapAndTakesNoResponse) {
   EXPECT_TRUE(world.contactEvents().empty());
 }
 
+// A ball at 60 m/s moves 1 m a step and crosses a 4 cm sensor between two steps: never inside it at
+// a step's start or end, it is still reported, begin and end in the same step (the step that carries
+// it across), and only once. A kinematic sensor passing over a resting ball is the same.
+TEST(World, BodyCrossingAThinSensorWithinOneStepIsReported) {
+  World world(test::zeroGravityWorld());
+  BodyDef sensorDef = test::boxBody(Vec3(0.0f), Vec3(0.02f, 1.0f, 1.0f), 1.0f);
+  sensorDef.type = BodyType::Static;
+  sensorDef.sensor = true;
+  const BodyId sensor = world.createBody(sensorDef);
+  // Starts 0.23 m short of the slab's near face; after step 1 it is 0.23 m past the far face.
+  const BodyId ball =
+      world.createBody(test::sphereBody(Vec3(-0.5f, 0.0f, 0.0f), 0.25f, 1.0f, Vec3(60.0f, 0.0f, 0.0f)));
+  std::vector<std::pair<int, SensorEvent>> seen;
+  for (int i = 1; i <= 10; ++i) {
+    world.step(kDt);
+    for (const SensorEvent& e : world.sensorEvents()) seen.emplace_back(i, e);
+  }
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[0].first, 1);
+  EXPECT_EQ(seen[1].first, 1);
+  EXPECT_EQ(seen[0].second.type, SensorEvent::Type::Begin);
+  EXPECT_EQ(seen[1].second.type, SensorEvent::Type::End);
+  for (const auto& [step, e] : seen) {
+    EXPECT_EQ(e.sensor, sensor);
+    EXPECT_EQ(e.visitor, ball);
+  }
+  EXPECT_EQ(world.linearVelocity(ball), Vec3(60.0f, 0.0f, 0.0f));  // no response
+
+  // The sensor moving: a kinematic slab at 60 m/s sweeping over a resting ball.
+  World moving(test::zeroGravityWorld());
+  BodyDef sweeper = sensorDef;
+  sweeper.type = BodyType::Kinematic;
+  sweeper.position = Vec3(-0.5f, 0.0f, 0.0f);
+  sweeper.linearVelocity = Vec3(60.0f, 0.0f, 0.0f);
+  moving.createBody(sweeper);
+  moving.createBody(test::sphereBody(Vec3(0.0f), 0.25f, 1.0f));
+  moving.step(kDt);
+  ASSERT_EQ(moving.sensorEvents().size(), 2u);
+  EXPECT_EQ(moving.sensorEvents()[0].type, SensorEvent::Type::Begin);
+  EXPECT_EQ(moving.sensorEvents()[1].type, SensorEvent::Type::End);
+}
+
+// A ball that ends a step inside a sensor it entered during that step begins there once, from the
+// next step's test, and is not reported as crossing.
+TEST(World, BodyEndingInsideASensorBeginsOnce) {
+  World world(test::zeroGravityWorld());
+  BodyDef sensorDef = test::boxBody(Vec3(0.0f), Vec3(2.0f, 1.0f, 1.0f), 1.0f);
+  sensorDef.type = BodyType::Static;
+  sensorDef.sensor = true;
+  world.createBody(sensorDef);
+  world.createBody(test::sphereBody(Vec3(-2.5f, 0.0f, 0.0f), 0.25f, 1.0f, Vec3(30.0f, 0.0f, 0.0f)));
+  int begins = 0, ends = 0;
+  for (int i = 0; i < 20; ++i) {
+    world.step(kDt);
+    for (const SensorEvent& e : world.sensorEvents()) (e.type == SensorEvent::Type::Begin ? begins : ends)++;
+  }
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(ends, 1);
+}
+
 TEST(World, PreSolveCallbackMakesAOneWayPlatform) {
   World world;
   BodyDef platform = test::boxBody(Vec3(0.0f, 2.0f, 0.0f), Vec3(2.0f, 0.1f, 2.0f), 1.0f);
