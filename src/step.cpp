@@ -51,7 +51,7 @@ void World::Impl::step(float dt) {
   bodies.clearForces();
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, tuning.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert)
-    detail::revertPenetrating(bodies, contacts, stepSolver.solvedContacts(), tuning.linearSlop);
+    revert.apply(bodies, *broadPhase, pairs, contacts, tuning.linearSlop);
   detail::guardFiniteStates(bodies, events.faults);
   if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, joints);
 

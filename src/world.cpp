@@ -8,6 +8,7 @@
 #include "bodies/body_def.h"
 #include "dynamics/fault_guard.h"
 #include "queries/world_queries.h"
+#include "response/revert.h"
 
 #include <algorithm>
 #include <cmath>
@@ -72,6 +73,10 @@ void World::setDef(const WorldDef& def) {
   }
   if (w.def.sleeping && !def.sleeping) {
     for (std::uint32_t i = 0; i < w.bodies.records.size(); ++i) detail::wakeIsland(w.bodies, i);
+  }
+  if (def.penetrationResponse == PenetrationResponse::Revert &&
+      w.def.penetrationResponse != PenetrationResponse::Revert) {
+    detail::takeCurrentPosesAsValid(w.bodies);  // revert goes back no further than this switch
   }
   w.def = def;
 }
@@ -157,6 +162,8 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) 
   s.rotation = glm::normalize(rotation);
   s.centerOfMass = position + s.rotation * r.localCenterOfMass;
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
+  r.validCenterOfMass = s.centerOfMass;  // placed by the user: where revert goes back to from now
+  r.validRotation = s.rotation;
   w.broadPhase->update(r.proxy, detail::proxyBounds(w.bodies, i, 0.0f, w.def.contact.speculativeDistance));
   detail::wakeByUser(w.bodies, i);
 }

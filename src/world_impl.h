@@ -11,6 +11,7 @@
 #include "dynamics/island.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver.h"
+#include "response/revert.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -37,6 +38,7 @@ struct World::Impl {
   std::size_t jointCount = 0;
   detail::StepEvents events;
   detail::Islands islands;
+  detail::RevertResponse revert;
   StepStats lastStats;
   StepStats totalStats;
   PreSolveCallback preSolve;

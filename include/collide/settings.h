@@ -14,8 +14,8 @@ enum class CombineRule : std::uint8_t { Average, Min, Max, Multiply };
 // Interpolated: the lecture's blend of the elastic and the inelastic impact (src/response/).
 enum class ImpactModel : std::uint8_t { Newton, Interpolated };
 enum class FrictionModel : std::uint8_t { Coulomb, Viscous, Damping, None };
-// Project: push bodies apart (mass-weighted, by the soft contact). Revert: put a penetrating body
-// back where it was at the start of the step.
+// Project: push bodies apart (mass-weighted, by the soft contact). Revert: the push-out, then a body
+// still penetrating goes back to its last valid pose, the last at which it penetrated nothing.
 enum class PenetrationResponse : std::uint8_t { Project, Revert };
 
 // Scene-file names ("average", "newton", ...); parse functions throw Error on unknown names.

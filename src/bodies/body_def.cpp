@@ -147,6 +147,8 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   s.centerOfMass = def.position + s.rotation * r.localCenterOfMass;
   s.centerOfMass0 = s.centerOfMass;
   s.rotation0 = s.rotation;
+  r.validCenterOfMass = s.centerOfMass;
+  r.validRotation = s.rotation;
   if (def.type != BodyType::Static) {
     s.linearVelocity = def.linearVelocity;
     s.angularVelocity = def.angularVelocity;

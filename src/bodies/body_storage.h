@@ -62,6 +62,9 @@ struct BodyRecord {
   Vec3 boundsCenter{0.0f};
   Quat boundsRotation{1.0f, 0.0f, 0.0f, 0.0f};
   bool boundsValid = false;
+  // The last pose at which the body penetrated nothing (PenetrationResponse::Revert goes back there).
+  Vec3 validCenterOfMass{0.0f};
+  Quat validRotation{1.0f, 0.0f, 0.0f, 0.0f};
   Vec3 force{0.0f};
   Vec3 torque{0.0f};
   std::string name;

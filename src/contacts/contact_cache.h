@@ -14,8 +14,10 @@
 
 #include <collide/narrowphase.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace collide::detail {
@@ -104,6 +106,13 @@ void inheritContact(const Contact& previous, Contact& current, float matchDistan
 
 inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
   return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;
+}
+
+// The contact of the pair with this key, if the step kept one (contacts are in key order).
+inline const Contact* findContact(std::span<const Contact> contacts, std::uint64_t key) {
+  const auto it = std::lower_bound(contacts.begin(), contacts.end(), key,
+                                   [](const Contact& c, std::uint64_t k) { return c.key < k; });
+  return it != contacts.end() && it->key == key ? &*it : nullptr;
 }
 
 }  // namespace collide::detail

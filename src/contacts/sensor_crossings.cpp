@@ -2,20 +2,11 @@
 
 #include <collide/narrowphase.h>
 
-#include <algorithm>
-
 namespace collide::detail {
 
 namespace {
 
 bool moved(const BodyState& s) { return s.centerOfMass != s.centerOfMass0 || s.rotation != s.rotation0; }
-
-// The sensor contact of this pair, when the contacts stage kept one (contacts are in key order).
-const Contact* contactOf(std::span<const Contact> contacts, std::uint64_t key) {
-  const auto it = std::lower_bound(contacts.begin(), contacts.end(), key,
-                                   [](const Contact& c, std::uint64_t k) { return c.key < k; });
-  return it != contacts.end() && it->key == key ? &*it : nullptr;
-}
 
 }  // namespace
 
@@ -35,7 +26,7 @@ void reportSensorCrossings(const BodyStorage& bodies, const BroadPhase& broadPha
     const BodyState& sa = bodies.states[ia];
     const BodyState& sb = bodies.states[ib];
     if (!moved(sa) && !moved(sb)) continue;
-    const Contact* contact = contactOf(contacts, pairKey(pair.a.index, pair.b.index));
+    const Contact* contact = findContact(contacts, pairKey(pair.a.index, pair.b.index));
     if (contact && contact->touching) continue;  // inside at the start: its own events
     const Sweep sweepA = bodySweep(ra, sa);
     const Sweep sweepB = bodySweep(rb, sb);

@@ -8,34 +8,82 @@ namespace collide::detail {
 
 namespace {
 
-void backToStepStart(const BodyRecord& r, BodyState& s) {
-  s.centerOfMass = s.centerOfMass0;
-  s.rotation = s.rotation0;
+bool canGoBack(const BodyRecord& r) { return r.alive && r.type == BodyType::Dynamic && !r.faulted; }
+
+void backToValidPose(const BodyRecord& r, BodyState& s) {
+  s.centerOfMass = r.validCenterOfMass;
+  s.rotation = r.validRotation;
   s.inverseInertiaWorld = worldInverseInertia(r.inverseInertiaLocal, s.rotation);
 }
 
 }  // namespace
 
-void revertPenetrating(BodyStorage& bodies, std::span<const Contact> contacts,
-                       std::span<const std::uint32_t> solvedContacts, float linearSlop) {
-  for (const std::uint32_t index : solvedContacts) {
-    const Contact& c = contacts[index];
-    const BodyRecord& ra = bodies.records[c.bodyA];
-    const BodyRecord& rb = bodies.records[c.bodyB];
-    BodyState& sa = bodies.states[c.bodyA];
-    BodyState& sb = bodies.states[c.bodyB];
+bool RevertResponse::pass(BodyStorage& bodies, float linearSlop) {
+  std::fill(penetrating_.begin(), penetrating_.end(), 0);
+  bool wentBack = false;
+  for (const Candidate& pair : candidates_) {
+    const BodyRecord& ra = bodies.records[pair.a];
+    const BodyRecord& rb = bodies.records[pair.b];
+    BodyState& sa = bodies.states[pair.a];
+    BodyState& sb = bodies.states[pair.b];
     Manifold now;
     if (!collide::collide(ra.shape, bodyTransform(ra, sa), rb.shape, bodyTransform(rb, sb), now)) continue;
     if (now.maxDepth() <= linearSlop) continue;
+    penetrating_[pair.a] = penetrating_[pair.b] = 1;
     const Vec3 n = now.normal;  // from A to B
-    if (ra.type == BodyType::Dynamic && !ra.faulted) {
-      backToStepStart(ra, sa);
+    if (canGoBack(ra) && !reverted_[pair.a]) {
+      backToValidPose(ra, sa);
       sa.linearVelocity -= std::max(0.0f, glm::dot(sa.linearVelocity, n)) * n;  // A moving into B
+      reverted_[pair.a] = 1;
+      wentBack = true;
     }
-    if (rb.type == BodyType::Dynamic && !rb.faulted) {
-      backToStepStart(rb, sb);
+    if (canGoBack(rb) && !reverted_[pair.b]) {
+      backToValidPose(rb, sb);
       sb.linearVelocity -= std::min(0.0f, glm::dot(sb.linearVelocity, n)) * n;  // B moving into A
+      reverted_[pair.b] = 1;
+      wentBack = true;
     }
+  }
+  return wentBack;
+}
+
+void RevertResponse::apply(BodyStorage& bodies, const BroadPhase& broadPhase,
+                           std::span<const ProxyPair> pairs, std::span<const Contact> contacts,
+                           float linearSlop) {
+  // The pairs that respond: a dynamic body, no sensor, the layers agree, not both asleep, and not a
+  // contact the pre-solve callback disabled (a one-way platform lets bodies through).
+  candidates_.clear();
+  for (const ProxyPair& pair : pairs) {
+    const auto a = static_cast<std::uint32_t>(broadPhase.userValue(pair.a));
+    const auto b = static_cast<std::uint32_t>(broadPhase.userValue(pair.b));
+    const BodyRecord& ra = bodies.records[a];
+    const BodyRecord& rb = bodies.records[b];
+    if (!ra.alive || !rb.alive || ra.sensor || rb.sensor) continue;
+    if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) continue;
+    if ((ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) continue;
+    if (!bodies.isAwakeDynamic(a) && !bodies.isAwakeDynamic(b)) continue;
+    const Contact* contact = findContact(contacts, pairKey(pair.a.index, pair.b.index));
+    if (contact && contact->manifold.count > 0 && !contact->enabled) continue;
+    candidates_.push_back({a, b});
+  }
+  reverted_.assign(bodies.records.size(), 0);
+  penetrating_.assign(bodies.records.size(), 0);
+  while (pass(bodies, linearSlop)) {
+  }
+  // The last pass moved nothing: it saw the final poses. A body that penetrates nothing there is
+  // valid where it is.
+  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
+    BodyRecord& r = bodies.records[i];
+    if (!canGoBack(r) || penetrating_[i]) continue;
+    r.validCenterOfMass = bodies.states[i].centerOfMass;
+    r.validRotation = bodies.states[i].rotation;
+  }
+}
+
+void takeCurrentPosesAsValid(BodyStorage& bodies) {
+  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
+    bodies.records[i].validCenterOfMass = bodies.states[i].centerOfMass;
+    bodies.records[i].validRotation = bodies.states[i].rotation;
   }
 }
 

@@ -245,3 +245,61 @@ TEST(BuiltinScenes, TunnelingPassesOnlyWithoutCcd) {
 
 }  // namespace
 }  // namespace collide::scene
+
+namespace collide::scene {
+namespace {
+
+// The world's mechanical energy: kinetic plus the potential of gravity (m g h of each dynamic body).
+double mechanicalEnergy(const SceneWorld& sw, const Vec3& gravity) {
+  double potential = 0.0;
+  for (BodyId id : sw.bodies) {
+    if (!sw.world.isValid(id) || sw.world.type(id) != BodyType::Dynamic) continue;
+    potential -= double(sw.world.mass(id)) * glm::dot(gravity, sw.world.centerOfMass(id));
+  }
+  return sw.world.kineticEnergy() + potential;
+}
+
+// The deepest penetration between any two bodies (brute force over every pair).
+float deepestPenetration(const SceneWorld& sw, std::string* where) {
+  float deepest = 0.0f;
+  for (std::size_t i = 0; i < sw.bodies.size(); ++i) {
+    for (std::size_t j = i + 1; j < sw.bodies.size(); ++j) {
+      const World& w = sw.world;
+      if (w.type(sw.bodies[i]) == BodyType::Static && w.type(sw.bodies[j]) == BodyType::Static) continue;
+      Manifold m;
+      if (!collide(w.shape(sw.bodies[i]), w.transform(sw.bodies[i]), w.shape(sw.bodies[j]),
+                   w.transform(sw.bodies[j]), m))
+        continue;
+      if (m.maxDepth() > deepest) {
+        deepest = m.maxDepth();
+        if (where) *where = w.name(sw.bodies[i]) + " in " + w.name(sw.bodies[j]);
+      }
+    }
+  }
+  return deepest;
+}
+
+// The lecture's revert (slide 10): a body that would penetrate goes back to its last valid position.
+// In the built-in `revert` drop no body ends a step inside another (deeper than the linear slop, the
+// tolerance every contact has), and the mechanical energy never grows: the response may only take
+// energy out.
+TEST(BuiltinScenes, RevertLeavesNoBodyInsideAnotherAndAddsNoEnergy) {
+  const Scene scene = loadBuiltinScene("revert");
+  SceneWorld sw = buildWorld(scene);
+  const float slop = scene.world.contact.linearSlop;
+  double energy = mechanicalEnergy(sw, scene.world.gravity);
+  const double scale = energy;
+  ASSERT_LE(deepestPenetration(sw, nullptr), 0.0f);  // the drop starts with every body apart
+  for (int step = 1; step <= scene.steps; ++step) {
+    sw.world.step(scene.dt);
+    const double now = mechanicalEnergy(sw, scene.world.gravity);
+    EXPECT_LE(now, energy + 1e-4 * scale) << "step " << step;
+    energy = now;
+    std::string where;
+    const float deepest = deepestPenetration(sw, &where);
+    EXPECT_LE(deepest, slop + 1e-4f) << "step " << step << ": " << where << " by " << deepest;
+  }
+}
+
+}  // namespace
+}  // namespace collide::scene
