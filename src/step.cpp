@@ -28,6 +28,7 @@ detail::StepSettings solverSettings(const WorldDef& def) {
   settings.tuning = def.contact;
   // Viscous and damping friction replace the solver's Coulomb friction (applied after the solve).
   settings.friction = def.frictionModel == FrictionModel::Coulomb;
+  settings.projection = def.penetrationResponse == PenetrationResponse::Project;
   return settings;
 }
 

@@ -27,7 +27,7 @@ Enum parseName(std::string_view name, const std::array<std::string_view, N>& nam
 constexpr std::array<std::string_view, 4> kCombineNames{"average", "min", "max", "multiply"};
 constexpr std::array<std::string_view, 2> kImpactNames{"newton", "interpolated"};
 constexpr std::array<std::string_view, 4> kFrictionNames{"coulomb", "viscous", "damping", "none"};
-constexpr std::array<std::string_view, 2> kPenetrationNames{"project", "revert"};
+constexpr std::array<std::string_view, 3> kPenetrationNames{"soft", "project", "revert"};
 constexpr std::array<std::string_view, 3> kBodyTypeNames{"static", "kinematic", "dynamic"};
 
 }  // namespace

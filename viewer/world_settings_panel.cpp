@@ -72,7 +72,7 @@ bool editWorldSettings(WorldDef& def, float& dt) {
   changed |= enumCombo("friction model", def.frictionModel, 4);
   changed |= enumCombo("bounciness combine", def.bouncinessCombine, 4);
   changed |= enumCombo("friction combine", def.frictionCombine, 4);
-  changed |= enumCombo("penetration response", def.penetrationResponse, 2);
+  changed |= enumCombo("penetration response", def.penetrationResponse, 3);
   changed |= ImGui::Checkbox("ccd (bodies flagged ccd)", &def.ccd);
 
   section("contact tuning");

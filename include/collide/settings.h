@@ -14,9 +14,12 @@ enum class CombineRule : std::uint8_t { Average, Min, Max, Multiply };
 // Interpolated: the lecture's blend of the elastic and the inelastic impact (src/response/).
 enum class ImpactModel : std::uint8_t { Newton, Interpolated };
 enum class FrictionModel : std::uint8_t { Coulomb, Viscous, Damping, None };
-// Project: push bodies apart (mass-weighted, by the soft contact). Revert: the push-out, then a body
-// still penetrating goes back to its last valid pose, the last at which it penetrated nothing.
-enum class PenetrationResponse : std::uint8_t { Project, Revert };
+// Non-penetration (lecture, slides 10-11; docs/response.md). Soft: the soft contact pushes bodies
+// apart, mass-weighted, at most ContactTuning::pushOutSpeed. Project: the same, and in the solver's
+// position stage each contact's penetration beyond the linear slop is projected away at once, split
+// by the lecture's mass weighting. Revert: the soft push-out, then a body still penetrating goes back
+// to its last valid pose, the last at which it penetrated nothing.
+enum class PenetrationResponse : std::uint8_t { Soft, Project, Revert };
 
 // Scene-file names ("average", "newton", ...); parse functions throw Error on unknown names.
 std::string_view toString(CombineRule rule);

@@ -71,7 +71,7 @@ struct WorldDef {
   CombineRule frictionCombine = CombineRule::Average;
   ImpactModel impactModel = ImpactModel::Newton;
   FrictionModel frictionModel = FrictionModel::Coulomb;
-  PenetrationResponse penetrationResponse = PenetrationResponse::Project;
+  PenetrationResponse penetrationResponse = PenetrationResponse::Soft;
   // Resting islands sleep (docs/architecture.md, "Islands and sleeping").
   bool sleeping = false;
   // Continuous collision: bodies with BodyDef::ccd get a time-of-impact pass after the solve

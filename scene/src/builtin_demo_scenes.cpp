@@ -83,7 +83,8 @@ Json proxies() {
 }
 
 // The same drop with one penetration response: boxes and spheres falling fast into a heap, so that
-// bodies penetrate and the response shows (run `revert` and `revert-project` and compare).
+// bodies penetrate and the response shows (run `revert`, `revert-project` and `revert-soft` and
+// compare).
 Json penetrationDrop(const char* response) {
   Json doc = demoDocument();
   doc["settings"]["penetration_response"] = response;

@@ -44,6 +44,8 @@ const std::vector<Entry>& registry() {
        [] { return builtin::penetrationDrop("revert"); }},
       {{"revert-project", "the same drop as revert, penetration response project"},
        [] { return builtin::penetrationDrop("project"); }},
+      {{"revert-soft", "the same drop as revert, penetration response soft (the default)"},
+       [] { return builtin::penetrationDrop("soft"); }},
       {{"breakable", "a brick wall whose bricks break under contact impulses, hit by a heavy ball"},
        builtin::breakable},
       {{"chain", "particles and distance constraints: a swinging rope and a net falling over a ball"},

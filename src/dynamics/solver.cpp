@@ -102,6 +102,8 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
   contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h);
+  if (settings.projection)
+    projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   JointSolverView view{bodies_, infos_, solverOf_, storage};
   prepareJoints(view, joints);
   // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
@@ -115,6 +117,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
     solveJoints(view, joints, h, rigidHertz, true);
     contacts_.solve(bodies_, h, true);
     integratePositions(bodies_, infos_, h);
+    if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
     solveJoints(view, joints, h, rigidHertz, false);
     for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false);
     guard();

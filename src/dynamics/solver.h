@@ -10,8 +10,9 @@
 // last word on penetration.
 #pragma once
 
-#include "contacts/contact_cache.h"
 #include "bodies/body_storage.h"
+#include "contacts/contact_cache.h"
+#include "dynamics/contact_projection.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver_body.h"
@@ -29,7 +30,8 @@ struct StepSettings {
   int substeps = 4;
   int relaxPasses = 1;
   ContactTuning tuning;
-  bool friction = true;  // Coulomb friction in the solver (off under the viscous and damping models)
+  bool friction = true;     // Coulomb friction in the solver (off under the viscous and damping models)
+  bool projection = false;  // PenetrationResponse::Project (contact_projection.h)
 };
 
 class StepSolver {
@@ -50,6 +52,7 @@ class StepSolver {
   std::vector<std::int32_t> solverOf_;  // body index -> solver body, kNoSolverBody if none
   std::vector<std::uint8_t> faultFields_;
   ContactSolver contacts_;
+  ContactProjection projection_;
 };
 
 }  // namespace collide::detail

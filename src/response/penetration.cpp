@@ -21,6 +21,11 @@ Displacements projectApart(float inverseMassA, float inverseMassB, const Vec3& n
   if (!std::isfinite(depth) || depth < 0.0f) {
     throw Error("projectApart: depth must be finite and >= 0, got " + std::to_string(depth));
   }
+  return projectApartUnchecked(inverseMassA, inverseMassB, normalAToB, depth);
+}
+
+Displacements projectApartUnchecked(float inverseMassA, float inverseMassB, const Vec3& normalAToB,
+                                    float depth) {
   const float total = inverseMassA + inverseMassB;
   if (total == 0.0f) return {};
   // Lagrange condition: each displacement is parallel to n and proportional to the inverse mass.

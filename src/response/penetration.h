@@ -19,5 +19,9 @@ struct Displacements {
 // never handles) give no displacement. Throws collide::Error on a negative or non-finite inverse mass
 // or depth, or a normal that is not unit length.
 Displacements projectApart(float inverseMassA, float inverseMassB, const Vec3& normalAToB, float depth);
+// The same without the checks, for the solver, whose inputs are valid by construction (a step must
+// not throw half-way).
+Displacements projectApartUnchecked(float inverseMassA, float inverseMassB, const Vec3& normalAToB,
+                                    float depth);
 
 }  // namespace collide::detail

@@ -35,7 +35,7 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"terrain", 60, 0x5e764424774abf7e},
     {"proxies", 120, 0x8cc26232fe3dfbaa},
     {"revert", 120, 0x88cf9a8fd20b60b9},
-    {"revert-project", 120, 0x5d63bd24f098944e},
+    {"revert-project", 120, 0xc5e079c8f0259847}, {"revert-soft", 120, 0x5d63bd24f098944e},
     {"breakable", 120, 0x6e3f15fe89955261},
     {"chain", 120, 0x08134ba65e349a46},
     {"tunneling", 120, 0xf110d638d2854f5d},

@@ -88,6 +88,10 @@ TEST(World, BadWorldDefsAreErrors) {
   expectErrorMentions([&] { World w(def); }, "timeToSleep");
   EXPECT_EQ(parseCombineRule("multiply"), CombineRule::Multiply);
   EXPECT_EQ(parsePenetrationResponse("revert"), PenetrationResponse::Revert);
+  EXPECT_EQ(parsePenetrationResponse("project"), PenetrationResponse::Project);
+  EXPECT_EQ(parsePenetrationResponse("soft"), PenetrationResponse::Soft);
+  EXPECT_EQ(WorldDef{}.penetrationResponse, PenetrationResponse::Soft);
+  expectErrorMentions([] { parsePenetrationResponse("push"); }, "soft, project, revert");
   expectErrorMentions([] { parseFrictionModel("sticky"); }, "sticky");
 }
 
@@ -451,10 +455,13 @@ TEST(World, SameSceneTwiceGivesBitIdenticalStates) {
   EXPECT_EQ(std::memcmp(first.data(), second.data(), first.size() * sizeof(float)), 0);
 }
 
-// A sphere created half inside a static box: Project pushes it out; Revert puts it back where the
-// step began and removes its velocity into the box.
+// A sphere created half inside a static box: Soft pushes it out (capped at the push-out speed);
+// Revert puts it back where it was created, its last valid pose, and removes its velocity into the
+// box; Project moves it out along the normal at once, to the linear slop.
 TEST(World, PenetrationResponses) {
-  for (PenetrationResponse response : {PenetrationResponse::Project, PenetrationResponse::Revert}) {
+  for (PenetrationResponse response :
+       {PenetrationResponse::Soft, PenetrationResponse::Project, PenetrationResponse::Revert}) {
+    SCOPED_TRACE(std::string(toString(response)));
     WorldDef def = test::zeroGravityWorld();
     def.penetrationResponse = response;
     World world(def);
@@ -466,13 +473,39 @@ TEST(World, PenetrationResponses) {
     world.step(kDt);
     const Vec3 p = world.transform(ball).position;
     const Vec3 v = world.linearVelocity(ball);
-    if (response == PenetrationResponse::Project) {
-      EXPECT_GT(p.y, 0.2f);  // pushed up (capped at the push-out speed)
+    if (response == PenetrationResponse::Soft) {
+      EXPECT_GT(p.y, 0.2f);  // pushed up, at most 3 m/s x dt = 5 cm of the 30 cm
+      EXPECT_LT(p.y, 0.2f + def.contact.pushOutSpeed * kDt + 1e-4f);
+    } else if (response == PenetrationResponse::Project) {
+      // Out of the box within the step, whatever the depth was: no deeper than the slop (where the
+      // projection leaves it; the soft contact takes the rest), and not pushed beyond touching.
+      EXPECT_GE(p.y, 0.5f - def.contact.linearSlop - 1e-5f);
+      EXPECT_LE(p.y, 0.5f + 1e-4f);
     } else {
       EXPECT_EQ(p, Vec3(0.0f, 0.2f, 0.0f));
       EXPECT_GE(v.y, 0.0f);
     }
   }
+}
+
+// The lecture's projection between two movable bodies (slide 11): both move along the normal, the
+// displacements inversely proportional to the masses, so that the mass-weighted squared
+// displacement is least and the centre of mass stays where it was.
+TEST(World, ProjectionSplitsTheCorrectionByMass) {
+  WorldDef def = test::zeroGravityWorld();
+  def.penetrationResponse = PenetrationResponse::Project;
+  World world(def);
+  const BodyId light = world.createBody(test::sphereBody(Vec3(-0.4f, 0.0f, 0.0f), 0.5f, 1.0f));
+  const BodyId heavy = world.createBody(test::sphereBody(Vec3(0.4f, 0.0f, 0.0f), 0.5f, 3.0f));
+  const Vec3 center0 = (1.0f * world.centerOfMass(light) + 3.0f * world.centerOfMass(heavy)) / 4.0f;
+  world.step(kDt);  // 0.2 m deep: apart to the slop within the step
+  const Vec3 a = world.centerOfMass(light), b = world.centerOfMass(heavy);
+  EXPECT_GE(glm::distance(a, b), 1.0f - def.contact.linearSlop - 1e-5f);
+  EXPECT_LE(glm::distance(a, b), 1.0f + 1e-4f);
+  EXPECT_LE(glm::length((1.0f * a + 3.0f * b) / 4.0f - center0), 1e-5f);
+  EXPECT_NEAR((-0.4f - a.x) / (b.x - 0.4f), 3.0f, 1e-3f);  // the light one moved three times as far
+  EXPECT_NEAR(a.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(b.z, 0.0f, 1e-6f);
 }
 
 }  // namespace
