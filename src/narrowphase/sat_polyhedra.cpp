@@ -153,8 +153,8 @@ struct Scratch {
 };
 
 // The placed polyhedra of this thread, by hull and pose: within a step each body keeps its pose, so
-// one placed for a pair serves every other pair of that body (R4's hulls meet the terrain and up to
-// a dozen neighbours). Direct-mapped; an entry is the same computation's result, so a hit changes
+// one placed for a pair serves every other pair of that body (a hull meets the terrain and each of
+// its neighbours). Direct-mapped; an entry is the same computation's result, so a hit changes
 // nothing. Slot 0 of a query is placed first; slot 1 never takes slot 0's entry from under it.
 struct PlacementCache {
   static constexpr std::size_t kEntries = 256;
@@ -192,8 +192,9 @@ void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& l
   for (std::size_t f = 0; f < planes.size(); ++f) {
     const ConvexHull::Face& face = hull.faces()[f];
     // A box's faces are axis-aligned, so its non-uniform scale leaves their normals alone. The
-    // face's vertex by its index, not through its half-edge: with a large scene's hulls out of
-    // cache, that chain of dependent loads was most of the placement's time.
+    // face's vertex by its index, not through its half-edge, so that the placement reads only the
+    // face record: with a large scene's hulls out of cache, each link followed is a dependent load
+    // that misses.
     const Vec3 normal = rotation * face.plane.normal;
     planes[f] = {normal, glm::dot(normal, vertices[face.firstVertex])};
   }
@@ -406,8 +407,8 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   kept.clear();
   for (const ConvexHull::Edge& edge : b.hull->edges()) {
     if (behindB[edge.face1] & behindB[edge.face2]) continue;
-    // Written in place, field by field: a whole struct built on the stack and copied in was read
-    // back before its parts had been stored, a store-forwarding stall per edge.
+    // Written in place, field by field: a whole struct built on the stack and copied in would be
+    // read back before its parts are stored, a store-forwarding stall per edge.
     WorldEdge& kept1 = kept.emplace_back();
     kept1.origin = b.vertices[edge.origin];
     kept1.direction = b.vertices[edge.end] - kept1.origin;
@@ -422,7 +423,7 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   // (padding lanes zero, which never pass the arc test). The Gauss-map
   // test of an edge of A then runs against a block of B's edges at a time, without a branch per
   // pair (the pairs that pass are few, and which ones is unpredictable); those that pass go on one
-  // by one, in the order of B's edges, so the answer is the one the pair-by-pair loop gave.
+  // by one, in the order of B's edges, so the answer is the one the pair-by-pair loop gives.
   const std::size_t keptCount = kept.size();
   const std::size_t stride = blockedLanes(keptCount);
   std::vector<float>& blocks = scratch.keptEdgeBlocks;
@@ -489,8 +490,8 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
 // The incident face for a reference face with outward `normal`: of the faces around `poly`'s
 // deepest vertex along -normal, the one most anti-parallel to the normal. The most anti-parallel face
 // of the whole polyhedron need not hold that vertex (a hull resting on a ridge whose two faces are
-// steep, next to a flatter face at one end of it), and clipping it would lose the deepest point: in
-// R4 a hull sank 5 cm into the terrain at the vertex its manifold left out. Every face around the
+// steep, next to a flatter face at one end of it), and clipping it would lose the deepest point: the
+// hull would sink into the terrain at the vertex its manifold left out. Every face around the
 // deepest vertex holds it, and among them the most anti-parallel one is the face a resting body
 // lies on (for a box: the face the global search finds).
 std::uint32_t incidentFace(const WorldPolyhedron& poly, const Vec3& normal) {
