@@ -21,12 +21,12 @@
 #include <limits>
 #include <vector>
 
-#include "simd/simd.h"
 #include "geometry/clipping.h"
 #include "geometry/closest_points.h"
 #include "geometry/support_scan.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/triangle_features.h"
+#include "simd/simd.h"
 
 namespace collide::detail {
 
@@ -375,6 +375,49 @@ Vec3 farthestVertex(const WorldPolyhedron& poly, const Vec3& direction) {
   return poly.vertices[farthestAlong(poly.vertexBlocks.data(), count, direction)];
 }
 
+// The edges of B whose faces facesBehind does not rule out: made once per query, so that the loop
+// over A's edges reads them without following B's topology.
+void keepEdges(const WorldPolyhedron& b, const std::vector<std::uint32_t>& behindB,
+               std::vector<WorldEdge>& kept) {
+  kept.clear();
+  for (const ConvexHull::Edge& edge : b.hull->edges()) {
+    if (behindB[edge.face1] & behindB[edge.face2]) continue;
+    // Written in place, field by field: a whole struct built on the stack and copied in would be
+    // read back before its parts are stored, a store-forwarding stall per edge.
+    WorldEdge& kept1 = kept.emplace_back();
+    kept1.origin = b.vertices[edge.origin];
+    kept1.direction = b.vertices[edge.end] - kept1.origin;
+    kept1.halfEdge = edge.halfEdge;
+    kept1.face1 = edge.face1;
+    kept1.face2 = edge.face2;
+  }
+}
+
+// The kept edges of B again as blocks: the normals n1 and n2 of each edge's two faces and its arc
+// normal cross(n2, n1) (the arc's ends lie on either side of a plane through the origin exactly
+// when their dot products with it differ in sign, Gregorius 2013), nine rows of `stride` floats
+// (padding lanes zero, which never pass the arc test). The Gauss-map test of an edge of A then runs
+// against a block of B's edges at a time, without a branch per pair (the pairs that pass are few,
+// and which ones is unpredictable); those that pass go on one by one, in the order of B's edges, so
+// the answer is the one the pair-by-pair loop gives. Returns the stride.
+std::size_t blockKeptEdges(const WorldPolyhedron& b, const std::vector<WorldEdge>& kept,
+                           std::vector<float>& blocks) {
+  const std::size_t keptCount = kept.size();
+  const std::size_t stride = blockedLanes(keptCount);
+  blocks.assign(9 * stride, 0.0f);
+  for (std::size_t k = 0; k < keptCount; ++k) {
+    const Vec3& n1 = b.planes[kept[k].face1].normal;
+    const Vec3& n2 = b.planes[kept[k].face2].normal;
+    const Vec3 arcNormal = glm::cross(n2, n1);
+    for (int axis = 0; axis < 3; ++axis) {
+      blocks[axis * stride + k] = n1[axis];
+      blocks[(3 + axis) * stride + k] = n2[axis];
+      blocks[(6 + axis) * stride + k] = arcNormal[axis];
+    }
+  }
+  return stride;
+}
+
 // The edge pairs whose Gauss-map arcs cross, and the largest separation along their cross
 // products. Arc (a, b) is the Gauss image of an edge of A between faces with normals a and b; (c, d)
 // that of an edge of B, negated (the Minkowski difference A - B has -B's normals). Two arcs cross
@@ -404,40 +447,10 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   facesBehind(a, pointsOfB, threshold, behindA);
   facesBehind(b, pointsOfA, threshold, behindB);
   std::vector<WorldEdge>& kept = scratch.edgesB;
-  kept.clear();
-  for (const ConvexHull::Edge& edge : b.hull->edges()) {
-    if (behindB[edge.face1] & behindB[edge.face2]) continue;
-    // Written in place, field by field: a whole struct built on the stack and copied in would be
-    // read back before its parts are stored, a store-forwarding stall per edge.
-    WorldEdge& kept1 = kept.emplace_back();
-    kept1.origin = b.vertices[edge.origin];
-    kept1.direction = b.vertices[edge.end] - kept1.origin;
-    kept1.halfEdge = edge.halfEdge;
-    kept1.face1 = edge.face1;
-    kept1.face2 = edge.face2;
-  }
+  keepEdges(b, behindB, kept);
   if (kept.empty()) return best;
-  // The kept edges of B again as blocks: the normals n1 and n2 of each edge's two faces and its arc
-  // normal cross(n2, n1) (the arc's ends lie on either side of a plane through the origin exactly
-  // when their dot products with it differ in sign, Gregorius 2013), nine rows of `stride` floats
-  // (padding lanes zero, which never pass the arc test). The Gauss-map
-  // test of an edge of A then runs against a block of B's edges at a time, without a branch per
-  // pair (the pairs that pass are few, and which ones is unpredictable); those that pass go on one
-  // by one, in the order of B's edges, so the answer is the one the pair-by-pair loop gives.
-  const std::size_t keptCount = kept.size();
-  const std::size_t stride = blockedLanes(keptCount);
   std::vector<float>& blocks = scratch.keptEdgeBlocks;
-  blocks.assign(9 * stride, 0.0f);
-  for (std::size_t k = 0; k < keptCount; ++k) {
-    const Vec3& n1 = b.planes[kept[k].face1].normal;
-    const Vec3& n2 = b.planes[kept[k].face2].normal;
-    const Vec3 arcNormal = glm::cross(n2, n1);
-    for (int axis = 0; axis < 3; ++axis) {
-      blocks[axis * stride + k] = n1[axis];
-      blocks[(3 + axis) * stride + k] = n2[axis];
-      blocks[(6 + axis) * stride + k] = arcNormal[axis];
-    }
-  }
+  const std::size_t stride = blockKeptEdges(b, kept, blocks);
   const FloatW zero = zeroW();
   for (const ConvexHull::Edge& edge : a.hull->edges()) {
     if (behindA[edge.face1] & behindA[edge.face2]) continue;
