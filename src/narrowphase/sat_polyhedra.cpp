@@ -789,6 +789,127 @@ void polyhedronFaceContact(const TriangleFrame& t, const SatTriangle& triangle, 
   }
 }
 
+// ---- The stages of collideTrianglesPolyhedron, one triangle at a time ----
+
+// 1. The triangle's face, from the side the polyhedron is on (`side` +1: the polyhedron above the
+// front). Every triangle near the shape pays for it, and a triangle the polyhedron is clear of
+// stops here, before anything else is computed.
+float triangleFaceSeparation(const TriangleFrame& t, const WorldPolyhedron& poly, float& side) {
+  float lowest = 1e30f, highest = -1e30f;
+  for (const Vec3& p : poly.vertices) {
+    const float d = glm::dot(t.normal, p);
+    lowest = std::min(lowest, d);
+    highest = std::max(highest, d);
+  }
+  const float planeOffset = glm::dot(t.normal, t.v[0]);
+  const float frontSeparation = lowest - planeOffset, backSeparation = planeOffset - highest;
+  side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
+  return std::max(frontSeparation, backSeparation);
+}
+
+// 2. The polyhedron's faces against the triangle's vertices, all faces at once over the blocked
+// normals so that the loop vectorises; the first of the largest separations wins.
+FaceQuery deepestFaceOverTriangle(const WorldPolyhedron& poly, const TriangleFrame& t, Scratch& scratch) {
+  const std::size_t stride = poly.blockStride;
+  const float* __restrict xs = poly.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const float* __restrict ds = zs + stride;
+  std::vector<float>& lowestOnFace = scratch.lowest;
+  lowestOnFace.resize(stride);
+  float* __restrict low = lowestOnFace.data();
+  const Vec3 v0 = t.v[0], v1 = t.v[1], v2 = t.v[2];
+  for (std::size_t j = 0; j < stride; ++j) {
+    const float d0 = xs[j] * v0.x + ys[j] * v0.y + zs[j] * v0.z;
+    const float d1 = xs[j] * v1.x + ys[j] * v1.y + zs[j] * v1.z;
+    const float d2 = xs[j] * v2.x + ys[j] * v2.y + zs[j] * v2.z;
+    const float d01 = d1 < d0 ? d1 : d0;
+    low[j] = (d2 < d01 ? d2 : d01) - ds[j];
+  }
+  const std::uint32_t face = firstLargest(low, poly.planes.size(), stride);
+  return {low[face], face};
+}
+
+// The best pair of a triangle edge and a polyhedron edge.
+struct TriangleEdgeQuery {
+  float separation = -1e30f;
+  int edgeT = 0;            // triangle edge k, from vertex k
+  std::uint32_t edgeP = 0;  // the polyhedron's half-edge
+  Vec3 axis{0.0f};          // from the triangle to the polyhedron
+};
+
+// 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
+// great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
+// each face normal's dot product with the three edges is computed once (vectorised over the
+// blocked normals) rather than twice per pair. Edges of the polyhedron whose pairs cannot exceed
+// `edgeMatters` are skipped (facesBehind: a point of the triangle lies behind both of their faces).
+TriangleEdgeQuery queryTriangleEdges(const TriangleFrame& t, const WorldPolyhedron& poly, float margin,
+                                     float edgeMatters, Scratch& scratch) {
+  const std::size_t stride = poly.blockStride;
+  const float* __restrict xs = poly.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
+  std::vector<std::uint32_t>& behind = scratch.behind[0];
+  facesBehind(poly, trianglePoints, edgeMatters, behind);
+  std::vector<float>& along = scratch.arcSides;
+  along.resize(3 * stride);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = t.edge[k];
+    float* __restrict out = along.data() + k * stride;
+    for (std::size_t j = 0; j < stride; ++j) out[j] = xs[j] * e.x + ys[j] * e.y + zs[j] * e.z;
+  }
+  TriangleEdgeQuery best;
+  for (const ConvexHull::Edge& edge : poly.hull->edges()) {
+    const std::uint32_t face1 = edge.face1, face2 = edge.face2;
+    if (behind[face1] & behind[face2]) continue;
+    const std::uint32_t h = edge.halfEdge;
+    const Vec3 origin = poly.vertices[edge.origin];
+    const Vec3 direction = poly.vertices[edge.end] - origin;
+    for (int k = 0; k < 3; ++k) {
+      // da = (-n1) · e_k, db = (-n2) · e_k.
+      const float da = -along[k * stride + face1], db = -along[k * stride + face2];
+      if (!(da * db < 0.0f)) continue;
+      const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
+      const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
+      if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
+      Vec3 axis = glm::cross(t.edge[k], direction);
+      const float length = glm::length(axis);
+      if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
+      axis /= length;
+      if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
+      const float separation = glm::dot(axis, origin - t.v[k]);
+      if (separation > best.separation) {
+        best.separation = separation;
+        best.edgeT = k;
+        best.edgeP = h;
+        best.axis = axis;
+      }
+    }
+    if (best.separation > margin) break;  // apart: the rest cannot change that
+  }
+  return best;
+}
+
+// 4. Edge contact: the closest points of the two edges. False when they lie beyond the margin, and
+// a face contact answers instead.
+bool triangleEdgeContact(const TriangleFrame& t, const SatTriangle& triangle, const WorldPolyhedron& poly,
+                         const TriangleEdgeQuery& edge, float margin, std::vector<NormalContact>& contacts) {
+  const auto edges = poly.hull->halfEdges();
+  const SegmentPair closest =
+      closestPointsSegmentSegment(t.v[edge.edgeT], t.v[(edge.edgeT + 1) % 3],
+                                  poly.vertices[edges[edge.edgeP].origin], poly.edgeEnd(edge.edgeP));
+  NormalContact contact;
+  contact.normal = edge.axis;
+  contact.point.pointOnA = closest.pointOnFirst;
+  contact.point.pointOnB = closest.pointOnSecond;
+  contact.point.depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edge.axis);
+  contact.point.featureId = featurePair(triangle.edgeFeature[edge.edgeT], poly.edgeFeature(edge.edgeP));
+  if (!(contact.point.depth >= -margin)) return false;
+  contacts.push_back(contact);
+  return true;
+}
+
 }  // namespace
 
 void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& shape,
@@ -796,41 +917,14 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
                                 std::vector<NormalContact>& contacts) {
   thread_local Scratch scratch;
   const WorldPolyhedron poly = place(shape, transform, 0, scratch);
-  const auto edges = poly.hull->halfEdges();
-  const std::size_t faceCount = poly.planes.size();
-  const std::size_t stride = poly.blockStride;
-  const float* __restrict xs = poly.normalBlocks.data();
-  const float* __restrict ys = xs + stride;
-  const float* __restrict zs = ys + stride;
-  const float* __restrict ds = zs + stride;
   for (const SatTriangle& triangle : triangles) {
     TriangleFrame t = planeFrameOf(triangle.vertices);
-    // 1. The triangle's face, from the side the polyhedron is on.
-    float lowest = 1e30f, highest = -1e30f;
-    for (const Vec3& p : poly.vertices) {
-      const float d = glm::dot(t.normal, p);
-      lowest = std::min(lowest, d);
-      highest = std::max(highest, d);
-    }
-    const float planeOffset = glm::dot(t.normal, t.v[0]);
-    const float frontSeparation = lowest - planeOffset, backSeparation = planeOffset - highest;
-    const float side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
-    const float triangleSeparation = std::max(frontSeparation, backSeparation);
+    float side = 1.0f;
+    const float triangleSeparation = triangleFaceSeparation(t, poly, side);
     if (triangleSeparation > margin) continue;
-    // 2. The polyhedron's faces against the triangle's vertices (all faces at once, vectorised).
-    std::vector<float>& lowestOnFace = scratch.lowest;
-    lowestOnFace.resize(stride);
-    float* __restrict low = lowestOnFace.data();
-    const Vec3 v0 = t.v[0], v1 = t.v[1], v2 = t.v[2];
-    for (std::size_t j = 0; j < stride; ++j) {
-      const float d0 = xs[j] * v0.x + ys[j] * v0.y + zs[j] * v0.z;
-      const float d1 = xs[j] * v1.x + ys[j] * v1.y + zs[j] * v1.z;
-      const float d2 = xs[j] * v2.x + ys[j] * v2.y + zs[j] * v2.z;
-      const float d01 = d1 < d0 ? d1 : d0;
-      low[j] = (d2 < d01 ? d2 : d01) - ds[j];
-    }
-    const std::uint32_t face = firstLargest(low, faceCount, stride);
-    const float faceSeparation = low[face];
+    const FaceQuery deepest = deepestFaceOverTriangle(poly, t, scratch);
+    const std::uint32_t face = deepest.face;
+    const float faceSeparation = deepest.separation;
     if (faceSeparation > margin) continue;
     completeFrame(t);
     // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
@@ -840,73 +934,17 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float absolute = 1e-3f * std::min(t.size, poly.size);
     const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
     const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
-    // 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
-    // great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
-    // each face normal's dot product with the three edges is computed once (vectorised over the
-    // blocked normals) rather than twice per pair.
-    // Edges of the polyhedron whose pairs cannot separate the pair or beat the face are skipped
-    // (facesBehind: a point of the triangle lies behind both of their faces).
+    // Edge pairs matter only if they separate the pair (beyond the margin) or beat the face.
     const float edgeMatters =
         std::min(std::min(margin, kRelative * bestFace + absolute), 0.0f) - 1e-5f * (t.size + poly.size);
-    const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
-    std::vector<std::uint32_t>& behind = scratch.behind[0];
-    facesBehind(poly, trianglePoints, edgeMatters, behind);
-    std::vector<float>& along = scratch.arcSides;
-    along.resize(3 * stride);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 e = t.edge[k];
-      float* __restrict out = along.data() + k * stride;
-      for (std::size_t j = 0; j < stride; ++j) out[j] = xs[j] * e.x + ys[j] * e.y + zs[j] * e.z;
-    }
-    float edgeSeparation = -1e30f;
-    int edgeT = 0;
-    std::uint32_t edgeP = 0;
-    Vec3 edgeAxis(0.0f);
-    for (const ConvexHull::Edge& edge : poly.hull->edges()) {
-      const std::uint32_t face1 = edge.face1, face2 = edge.face2;
-      if (behind[face1] & behind[face2]) continue;
-      const std::uint32_t h = edge.halfEdge;
-      const Vec3 origin = poly.vertices[edge.origin];
-      const Vec3 direction = poly.vertices[edge.end] - origin;
-      for (int k = 0; k < 3; ++k) {
-        // da = (-n1) · e_k, db = (-n2) · e_k.
-        const float da = -along[k * stride + face1], db = -along[k * stride + face2];
-        if (!(da * db < 0.0f)) continue;
-        const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
-        const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
-        if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
-        Vec3 axis = glm::cross(t.edge[k], direction);
-        const float length = glm::length(axis);
-        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
-        axis /= length;
-        if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
-        const float separation = glm::dot(axis, origin - t.v[k]);
-        if (separation > edgeSeparation) {
-          edgeSeparation = separation;
-          edgeT = k;
-          edgeP = h;
-          edgeAxis = axis;
-        }
-      }
-      if (edgeSeparation > margin) break;  // apart: the rest cannot change that
-    }
-    if (edgeSeparation > margin) continue;
+    const TriangleEdgeQuery edge = queryTriangleEdges(t, poly, margin, edgeMatters, scratch);
+    if (edge.separation > margin) continue;
 
     const std::size_t before = contacts.size();
     Vec3 normal = side * t.normal;
-    if (edgeSeparation > kRelative * bestFace + absolute) {
-      const SegmentPair closest = closestPointsSegmentSegment(
-          t.v[edgeT], t.v[(edgeT + 1) % 3], poly.vertices[edges[edgeP].origin], poly.edgeEnd(edgeP));
-      NormalContact contact;
-      contact.normal = edgeAxis;
-      contact.point.pointOnA = closest.pointOnFirst;
-      contact.point.pointOnB = closest.pointOnSecond;
-      contact.point.depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edgeAxis);
-      contact.point.featureId = featurePair(triangle.edgeFeature[edgeT], poly.edgeFeature(edgeP));
-      if (contact.point.depth >= -margin) {
-        contacts.push_back(contact);
-        normal = edgeAxis;
-      }
+    if (edge.separation > kRelative * bestFace + absolute &&
+        triangleEdgeContact(t, triangle, poly, edge, margin, contacts)) {
+      normal = edge.axis;
     }
     if (contacts.size() == before && polyhedronFace) {
       polyhedronFaceContact(t, triangle, poly, face, margin, contacts);
