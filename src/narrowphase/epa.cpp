@@ -285,10 +285,10 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
     if (polytope.vertexCount == kMaxVertices) break;
     // A support point already in the polytope cannot lie beyond one of its faces unless rounding
     // folded the polytope there: that face is not on the hull of the polytope's vertices, so it
-    // bounds nothing. Adding the point again would only make slivers; instead the face is retired
+    // bounds nothing. Adding the point again would only make slivers, so the face is retired
     // (treated like a sliver: never the nearest, removed by the next expansion that reaches it)
-    // and the search goes on with the next nearest face. Stopping here instead left the depth
-    // short by up to 10 % on cylinder rims (differential test).
+    // and the search goes on with the next nearest face: ending it at a folded face would leave the
+    // depth short, as on cylinder rims.
     bool known = false;
     for (int i = 0; i < polytope.vertexCount && !known; ++i) {
       const Vec3 d = polytope.vertices[i].w - w.w;
