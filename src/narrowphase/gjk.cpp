@@ -309,6 +309,52 @@ void finishInWorld(const PairFrame& frame, GjkResult& result) {
   }
 }
 
+// The closest points on A and B from the simplex's coordinates, summed in double precision like the
+// closest point; the warm start's early answer and the end of the loop both need them.
+void witnessPoints(GjkResult& result) {
+  const Simplex& simplex = result.simplex;
+  DVec3 pointOnA(0.0), pointOnB(0.0);
+  for (int i = 0; i < simplex.count; ++i) {
+    pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
+    pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
+  }
+  result.pointOnA = Vec3(pointOnA);
+  result.pointOnB = Vec3(pointOnB);
+}
+
+// The first simplex: the cached one placed by the current transforms (a warm start, for shapes
+// without an inflated radius), else one support point towards the origin. Apart from the loop,
+// which starts from either alike. True when the cached tetrahedron still encloses the origin: the
+// pair overlaps, EPA can start from it, and `result` holds the answer in A's frame.
+bool startSimplex(const PairFrame& frame, const GjkCache* cache, GjkResult& result) {
+  Simplex& simplex = result.simplex;
+  if (cache != nullptr && cache->count > 0 && !frame.a.inflated && !frame.b.inflated) {
+    simplex.count = std::min(cache->count, 4);
+    for (int i = 0; i < simplex.count; ++i) {
+      SimplexVertex& vertex = simplex.vertices[i];
+      vertex.a = frame.fromLocalA(cache->localA[i]);
+      vertex.b = frame.fromLocalB(cache->localB[i]);
+      vertex.w = vertex.a - vertex.b;
+    }
+    DVec3 closest;
+    if (!closestPointOfSimplexD(simplex, closest)) {
+      result.status = GjkResult::Status::Overlapping;
+      result.iterations = 0;
+      witnessPoints(result);
+      return true;
+    }
+  } else {
+    // A - B contains a.center() - b.center() (the origins); the origin lies in direction
+    // b.center() - a.center() from it.
+    Vec3 direction = frame.positionB;
+    if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
+    simplex.vertices[0] = frame.support(direction);
+    simplex.lambda[0] = 1.0;
+    simplex.count = 1;
+  }
+  return false;
+}
+
 double largestSquared(const Simplex& simplex) {
   double largest = 0.0;
   for (int i = 0; i < simplex.count; ++i)
@@ -322,39 +368,11 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
   const PairFrame frame(a, b);
   GjkResult result;
   Simplex& simplex = result.simplex;
-  if (cache != nullptr && cache->count > 0 && !a.inflated && !b.inflated) {
-    // Warm start: last query's simplex placed by the current transforms.
-    simplex.count = std::min(cache->count, 4);
-    for (int i = 0; i < simplex.count; ++i) {
-      SimplexVertex& vertex = simplex.vertices[i];
-      vertex.a = frame.fromLocalA(cache->localA[i]);
-      vertex.b = frame.fromLocalB(cache->localB[i]);
-      vertex.w = vertex.a - vertex.b;
-    }
-    DVec3 closest;
-    if (!closestPointOfSimplexD(simplex, closest)) {
-      // The cached tetrahedron still encloses the origin: overlapping, and EPA can start from it.
-      result.status = GjkResult::Status::Overlapping;
-      result.iterations = 0;
-      DVec3 pointOnA(0.0), pointOnB(0.0);
-      for (int i = 0; i < simplex.count; ++i) {
-        pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
-        pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
-      }
-      result.pointOnA = Vec3(pointOnA);
-      result.pointOnB = Vec3(pointOnB);
-      saveCache(frame, simplex, cache);
-      finishInWorld(frame, result);
-      return result;
-    }
-  } else {
-    // A - B contains a.center() - b.center() (the origins); the origin lies in direction
-    // b.center() - a.center() from it.
-    Vec3 direction = frame.positionB;
-    if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
-    simplex.vertices[0] = frame.support(direction);
-    simplex.lambda[0] = 1.0;
-    simplex.count = 1;
+  if (startSimplex(frame, cache, result)) {
+    // The cached tetrahedron still encloses the origin: overlapping, and EPA can start from it.
+    saveCache(frame, simplex, cache);
+    finishInWorld(frame, result);
+    return result;
   }
   DVec3 v = pointOf(simplex);
   double maxVertexSquared = largestSquared(simplex);
@@ -405,13 +423,7 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
     maxVertexSquared = largestSquared(simplex);
   }
 
-  DVec3 pointOnA(0.0), pointOnB(0.0);
-  for (int i = 0; i < simplex.count; ++i) {
-    pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
-    pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
-  }
-  result.pointOnA = Vec3(pointOnA);
-  result.pointOnB = Vec3(pointOnB);
+  witnessPoints(result);
   saveCache(frame, simplex, cache);
   if (overlapping) {
     result.status = GjkResult::Status::Overlapping;
