@@ -175,7 +175,7 @@ constexpr PairTable buildPairTable() {
       T::Plane, T::Cylinder, A::Analytic,
       "lowest rim points: four on a cap standing flat, two lying on the side, else one");
 
-  // 3. Closed forms over the generic entry.
+  // 3. Dedicated routines over the generic entry: closed forms, and capsule × box.
   b.add<collideSphereSphere>(T::Sphere, T::Sphere, A::Analytic, "distance of the centres; one point");
   b.add<collideSphereCapsule>(T::Sphere, T::Capsule, A::Analytic,
                               "centre against the capsule's segment; one point");
@@ -184,7 +184,7 @@ constexpr PairTable buildPairTable() {
   b.add<collideCapsuleCapsule>(T::Capsule, T::Capsule, A::Analytic,
                                "closest points of the two segments (lecture, slide 61); two points when "
                                "parallel and overlapping");
-  b.add<collideCapsuleBox>(T::Capsule, T::Box, A::Analytic,
+  b.add<collideCapsuleBox>(T::Capsule, T::Box, A::GjkEpaClip,
                            "GJK/EPA on the core segment, clipped to the box face when lying on it; up to two "
                            "points");
 
@@ -288,6 +288,8 @@ std::string_view toString(PairAlgorithm algorithm) {
       return "SAT";
     case PairAlgorithm::GjkEpa:
       return "GJK/EPA";
+    case PairAlgorithm::GjkEpaClip:
+      return "GJK/EPA + clip";
     case PairAlgorithm::Mesh:
       return "mesh";
     case PairAlgorithm::Compound:
