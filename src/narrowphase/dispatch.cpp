@@ -142,6 +142,8 @@ constexpr ShapeType kAllTypes[] = {
     ShapeType::Sphere,    ShapeType::Capsule,  ShapeType::Plane,      ShapeType::Box,  ShapeType::Kdop,
     ShapeType::Ellipsoid, ShapeType::Cylinder, ShapeType::ConvexHull, ShapeType::Mesh, ShapeType::Compound};
 
+// Kept whole although it is long: the table is data, one registration per cell, and its order is
+// its meaning (the generic entry first, the specialised ones over it), read top to bottom here.
 constexpr PairTable buildPairTable() {
   using T = ShapeType;
   using A = PairAlgorithm;
