@@ -483,17 +483,18 @@ class LaneContactSolver final : public ContactLanes {
     return {selectW(mask, a.x, zero), selectW(mask, a.y, zero), selectW(mask, a.z, zero)};
   }
 
-  // One contact into one lane, the scalar part: bodies, masses, basis, settings and the friction
-  // patch's warm start and static anchor; the rest (anchors, effective masses, approach velocity)
-  // is finishBatch's, for all lanes at once.
-  static void fillLane(const ContactBatchInput& in, Batch& c, LaneInputs& inputs, int lane,
-                       std::uint32_t contactIndex) {
-    Contact& contact = in.contacts[contactIndex];
-    const BodyState& stateA = in.storage.states[contact.bodyA];
-    const BodyState& stateB = in.storage.states[contact.bodyB];
+  // The inverse masses the solver uses for a lane's two bodies: zero for a side it does not move.
+  struct LaneMasses {
+    float a, b;
+  };
+
+  // One lane's bodies: which of them the batch writes back, their masses, inertias, velocities and
+  // centres. Apart from the rest of fillLane because it reads the body arrays, the rest the contact.
+  static COLLIDE_INLINE LaneMasses fillBodies(const ContactBatchInput& in, Batch& c, LaneInputs& inputs,
+                                              int lane, const Contact& contact, const BodyState& stateA,
+                                              const BodyState& stateB) {
     const std::int32_t ia = in.solverOf[contact.bodyA];
     const std::int32_t ib = in.solverOf[contact.bodyB];
-    c.contact[lane] = static_cast<std::int32_t>(contactIndex);
     c.bodyA[lane] = ia;
     c.bodyB[lane] = ib;
     c.writeA[lane] = ia >= 0 && in.infos[ia].dynamic;
@@ -517,6 +518,20 @@ class LaneContactSolver final : public ContactLanes {
     setLane(inputs.centerB, lane, stateB.centerOfMass);
     laneOf(c.inverseMassA, lane) = mA;
     laneOf(c.inverseMassB, lane) = mB;
+    return {mA, mB};
+  }
+
+  // One contact into one lane, the scalar part: bodies, masses, basis, settings and the friction
+  // patch's warm start and static anchor; the rest (anchors, effective masses, approach velocity)
+  // is finishBatch's, for all lanes at once.
+  static void fillLane(const ContactBatchInput& in, Batch& c, LaneInputs& inputs, int lane,
+                       std::uint32_t contactIndex) {
+    Contact& contact = in.contacts[contactIndex];
+    const BodyState& stateA = in.storage.states[contact.bodyA];
+    const BodyState& stateB = in.storage.states[contact.bodyB];
+    c.contact[lane] = static_cast<std::int32_t>(contactIndex);
+    const LaneMasses masses = fillBodies(in, c, inputs, lane, contact, stateA, stateB);
+    const float mA = masses.a, mB = masses.b;
 
     const Vec3 n = contact.manifold.normal;
     Vec3 t1, t2;
