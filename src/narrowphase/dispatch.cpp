@@ -258,8 +258,8 @@ std::string format(const Vec3& v) {
   throw Error(out.str());
 }
 
-// The same test as isValid() but cheap enough for a 5 ns pair: one NaN/infinity probe (x * 0 is
-// 0 only for finite x), then the unit quaternion and the positive scale.
+// The same test as isValid() but cheap enough for the cheapest pairs: one NaN/infinity probe
+// (x * 0 is 0 only for finite x), then the unit quaternion and the positive scale.
 inline void requireValid(const Transform& t, const char* query, const char* which) {
   const float probe = (t.position.x + t.position.y + t.position.z + t.rotation.x + t.rotation.y +
                        t.rotation.z + t.rotation.w + t.scale) *

@@ -94,7 +94,7 @@ DVec3 pointOf(const Simplex& simplex) {
 // volumes; where one is not positive the origin lies beyond the opposite face, and only those faces
 // can hold the closest point, so only they are searched (Johnson's sub-simplices without the full
 // enumeration). Double precision from single-precision points: the areas subtract nearly equal
-// products (a thin triangle far from the origin), and in single precision that misplaced the
+// products (a thin triangle far from the origin), and in single precision that misplaces the
 // closest point enough for GJK to stall or cycle; on x86-64 a scalar double costs what a float does.
 
 bool sameSign(double a, double b) { return (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0); }
@@ -297,8 +297,8 @@ void saveCache(const PairFrame& frame, const Simplex& simplex, GjkCache* cache) 
 void finishInWorld(const PairFrame& frame, GjkResult& result) {
   result.pointOnA = frame.toWorld(result.pointOnA);
   result.pointOnB = frame.toWorld(result.pointOnB);
-  // Renormalised: a rotation within the accepted 1e-3 of unit length scales what it turns (the
-  // narrow-phase fuzzer found a normal 1.0015 long).
+  // Renormalised: a rotation within the accepted 1e-3 of unit length scales what it turns, so the
+  // normal would be off unit length by as much.
   if (result.status == GjkResult::Status::Separated)
     result.normal = glm::normalize(frame.a.rotation * result.normal);
   for (int i = 0; i < result.simplex.count; ++i) {
