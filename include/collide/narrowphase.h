@@ -154,6 +154,7 @@ enum class PairAlgorithm : std::uint8_t {
   Analytic,      // closed form for this pair
   Sat,           // separating-axis test and face clipping
   GjkEpa,        // generic: GJK distance on the core shapes, EPA when the cores overlap
+  GjkEpaClip,    // GJK/EPA on the core shapes, the core then clipped to the face it lies on
   Mesh,          // per triangle of the mesh's BVH against the other shape
   Compound,      // per child against the other shape, manifolds merged
   NotSupported,  // the pair cannot occur; collide() throws

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "dynamics/contact_solver.h"
-#include "simd/simd.h"
 #include "memory/prefetch.h"
+#include "simd/simd.h"
 
 #include <algorithm>
 #include <array>
@@ -311,113 +311,148 @@ class LaneContactSolver final : public ContactLanes {
     addScaled(b.v, impulse * c.inverseMassB, direction);
   }
 
-  // One pass; the biased and the relax pass are two instantiations, so neither tests the flag inside.
+  // What a batch's points need of its bodies' change of pose since the step began: the normal seen
+  // from each body's frame at the step start, how far B moved from A along it, and in the biased pass
+  // how far the static anchors drifted apart along the tangents.
+  struct PoseChange {
+    Vec normalA, normalB;
+    F moved, drift1, drift2;
+  };
+
+  // The current separation from the anchors carried along with each body's change of pose,
+  // without a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r. Its own function so
+  // that the poses are dropped before the velocities are read, which then keep the registers.
   template <bool useBias>
-  void solvePass(std::vector<SolverBody>& bodies, float h) {
+  static COLLIDE_INLINE PoseChange poseChange(const std::vector<SolverBody>& bodies, const Batch& c) {
+    const F zero = zeroT<F>();
+    PoseChange out;
+    out.drift1 = zero;
+    out.drift2 = zero;
+    const Poses pa = gatherPoses(bodies, c.bodyA);
+    const Poses pb = gatherPoses(bodies, c.bodyB);
+    out.normalA = rotateInverse(pa, c.normal);
+    out.normalB = rotateInverse(pb, c.normal);
+    const Vec dp = pb.dp - pa.dp;
+    out.moved = dot(dp, c.normal);
+    if constexpr (useBias) {
+      const Vec drift = dp + cross(smallRotation(pb), c.stickB) - cross(smallRotation(pa), c.stickA);
+      out.drift1 = c.stickGap1 + dot(drift, c.tangent1);
+      out.drift2 = c.stickGap2 + dot(drift, c.tangent2);
+    }
+    return out;
+  }
+
+  // The batch's normal points, in order; returns the sum of their accumulated impulses, which bounds
+  // the friction patch and the twist that follow.
+  template <bool useBias>
+  static COLLIDE_INLINE F solveNormalPoints(Batch& c, Velocities& a, Velocities& b, const PoseChange& pose,
+                                            F inverseH, F maxPushOut) {
     const F zero = zeroT<F>();
     const F one = splatT<F>(1.0f);
-    const F inverseH = splatT<F>(1.0f / h);
-    const F maxPushOut = splatT<F>(-pushOutSpeed_);
-    for (Batch& c : batches_) {
-      // The current separation from the anchors carried along with each body's change of pose,
-      // without a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r. And in the biased
-      // pass, how far the static anchors drifted apart along the tangents.
-      Vec normalA, normalB;
-      F moved, drift1 = zero, drift2 = zero;
-      {
-        const Poses pa = gatherPoses(bodies, c.bodyA);
-        const Poses pb = gatherPoses(bodies, c.bodyB);
-        normalA = rotateInverse(pa, c.normal);
-        normalB = rotateInverse(pb, c.normal);
-        const Vec dp = pb.dp - pa.dp;
-        moved = dot(dp, c.normal);
-        if constexpr (useBias) {
-          const Vec drift = dp + cross(smallRotation(pb), c.stickB) - cross(smallRotation(pa), c.stickA);
-          drift1 = c.stickGap1 + dot(drift, c.tangent1);
-          drift2 = c.stickGap2 + dot(drift, c.tangent2);
-        }
-      }
-      Velocities a = gatherVelocities(bodies, c.bodyA);
-      Velocities b = gatherVelocities(bodies, c.bodyB);
-
-      F normalSum = zero;
-      for (int k = 0; k < c.pointCount; ++k) {
-        BatchPoint<F>& p = c.points[k];
-        const F separation = moved + dot(normalB, p.anchorB) - dot(normalA, p.anchorA) + p.baseSeparation;
-        // Speculative: a point still apart may close exactly its gap within the substep.
-        const F apart = greaterW(separation, zero);
-        F bias = separation * inverseH;
-        F massScale = one;
-        F impulseScale = zero;
-        if constexpr (useBias) {
-          bias = selectW(apart, bias, maxW(c.biasRate * separation, maxPushOut));
-          massScale = selectW(apart, one, c.massScale);
-          impulseScale = selectW(apart, zero, c.impulseScale);
-        } else {
-          bias = selectW(apart, bias, zero);
-        }
-        // w . (r x n) = r . (n x w): the anchors' crosses are not stored, to keep the batch small
-        // (the solver streams every batch several times a substep).
-        const F vn = dot(b.v - a.v, c.normal) + dot(p.anchorB, cross(c.normal, b.w)) -
-                     dot(p.anchorA, cross(c.normal, a.w));
-        F impulse = -(p.normalMass * massScale * (vn + bias)) - impulseScale * p.normalImpulse;
-        // Contacts only push: the accumulated impulse stays >= 0.
-        const F total = maxW(p.normalImpulse + impulse, zero);
-        impulse = total - p.normalImpulse;
-        p.normalImpulse = total;
-        p.maxNormalImpulse = maxW(p.maxNormalImpulse, impulse);
-        p.totalNormalImpulse = p.totalNormalImpulse + impulse;
-        normalSum = normalSum + total;
-        applyLinear(a, b, c, impulse, c.normal);
-        addScaled(a.w, -impulse, p.turnA);
-        addScaled(b.w, impulse, p.turnB);
-      }
-
-      // Friction patch: the tangential velocity at the centroid (relative to the surface velocity),
-      // plus in the biased pass the gap of the static anchors, driven to zero inside the Coulomb disc.
-      const Vec dv = b.v - a.v;
-      const Vec atCentroid = dv + cross(b.w, c.patchB) - cross(a.w, c.patchA);
-      F v1 = dot(atCentroid, c.tangent1) - c.surfaceSpeed1;
-      F v2 = dot(atCentroid, c.tangent2) - c.surfaceSpeed2;
+    F normalSum = zero;
+    for (int k = 0; k < c.pointCount; ++k) {
+      BatchPoint<F>& p = c.points[k];
+      const F separation =
+          pose.moved + dot(pose.normalB, p.anchorB) - dot(pose.normalA, p.anchorA) + p.baseSeparation;
+      // Speculative: a point still apart may close exactly its gap within the substep.
+      const F apart = greaterW(separation, zero);
+      F bias = separation * inverseH;
       F massScale = one;
       F impulseScale = zero;
       if constexpr (useBias) {
-        v1 = v1 + c.stickRate * drift1;
-        v2 = v2 + c.stickRate * drift2;
-        massScale = c.massScale;
-        impulseScale = c.impulseScale;
+        bias = selectW(apart, bias, maxW(c.biasRate * separation, maxPushOut));
+        massScale = selectW(apart, one, c.massScale);
+        impulseScale = selectW(apart, zero, c.impulseScale);
+      } else {
+        bias = selectW(apart, bias, zero);
       }
-      F next1 = c.tangentImpulse1 - massScale * (c.tangentMass11 * v1 + c.tangentMass12 * v2) -
-                impulseScale * c.tangentImpulse1;
-      F next2 = c.tangentImpulse2 - massScale * (c.tangentMass12 * v1 + c.tangentMass22 * v2) -
-                impulseScale * c.tangentImpulse2;
-      const F limit = c.friction * normalSum;
-      const F length = sqrtW(next1 * next1 + next2 * next2);
-      const F beyond = greaterW(length, limit);
-      const F scale = selectW(beyond, limit / maxW(length, splatT<F>(1e-30f)), one);
-      next1 = next1 * scale;
-      next2 = next2 * scale;
-      if constexpr (useBias) c.sliding = orW(c.sliding, beyond);
-      const F d1 = next1 - c.tangentImpulse1;
-      const F d2 = next2 - c.tangentImpulse2;
-      c.tangentImpulse1 = next1;
-      c.tangentImpulse2 = next2;
-      applyLinear(a, b, c, d1, c.tangent1);
-      applyLinear(a, b, c, d2, c.tangent2);
-      addScaled(a.w, -d1, c.tangent1TurnA);
-      addScaled(a.w, -d2, c.tangent2TurnA);
-      addScaled(b.w, d1, c.tangent1TurnB);
-      addScaled(b.w, d2, c.tangent2TurnB);
+      // w . (r x n) = r . (n x w): the anchors' crosses are not stored, to keep the batch small
+      // (the solver streams every batch several times a substep).
+      const F vn = dot(b.v - a.v, c.normal) + dot(p.anchorB, cross(c.normal, b.w)) -
+                   dot(p.anchorA, cross(c.normal, a.w));
+      F impulse = -(p.normalMass * massScale * (vn + bias)) - impulseScale * p.normalImpulse;
+      // Contacts only push: the accumulated impulse stays >= 0.
+      const F total = maxW(p.normalImpulse + impulse, zero);
+      impulse = total - p.normalImpulse;
+      p.normalImpulse = total;
+      p.maxNormalImpulse = maxW(p.maxNormalImpulse, impulse);
+      p.totalNormalImpulse = p.totalNormalImpulse + impulse;
+      normalSum = normalSum + total;
+      applyLinear(a, b, c, impulse, c.normal);
+      addScaled(a.w, -impulse, p.turnA);
+      addScaled(b.w, impulse, p.turnB);
+    }
+    return normalSum;
+  }
 
-      // Twist about the normal.
-      const F spin = dot(b.w - a.w, c.normal);
-      const F twistLimit = c.friction * c.twistRadius * normalSum;
-      const F twist = maxW(minW(c.twistImpulse - c.twistMass * spin, twistLimit), -twistLimit);
-      const F dt = twist - c.twistImpulse;
-      c.twistImpulse = twist;
-      addScaled(a.w, -dt, c.twistTurnA);
-      addScaled(b.w, dt, c.twistTurnB);
+  // Friction patch: the tangential velocity at the centroid (relative to the surface velocity),
+  // plus in the biased pass the gap of the static anchors, driven to zero inside the Coulomb disc
+  // whose radius the normal impulses set.
+  template <bool useBias>
+  static COLLIDE_INLINE void solveFriction(Batch& c, Velocities& a, Velocities& b, F normalSum,
+                                           const PoseChange& pose) {
+    const F zero = zeroT<F>();
+    const F one = splatT<F>(1.0f);
+    const Vec dv = b.v - a.v;
+    const Vec atCentroid = dv + cross(b.w, c.patchB) - cross(a.w, c.patchA);
+    F v1 = dot(atCentroid, c.tangent1) - c.surfaceSpeed1;
+    F v2 = dot(atCentroid, c.tangent2) - c.surfaceSpeed2;
+    F massScale = one;
+    F impulseScale = zero;
+    if constexpr (useBias) {
+      v1 = v1 + c.stickRate * pose.drift1;
+      v2 = v2 + c.stickRate * pose.drift2;
+      massScale = c.massScale;
+      impulseScale = c.impulseScale;
+    }
+    F next1 = c.tangentImpulse1 - massScale * (c.tangentMass11 * v1 + c.tangentMass12 * v2) -
+              impulseScale * c.tangentImpulse1;
+    F next2 = c.tangentImpulse2 - massScale * (c.tangentMass12 * v1 + c.tangentMass22 * v2) -
+              impulseScale * c.tangentImpulse2;
+    const F limit = c.friction * normalSum;
+    const F length = sqrtW(next1 * next1 + next2 * next2);
+    const F beyond = greaterW(length, limit);
+    const F scale = selectW(beyond, limit / maxW(length, splatT<F>(1e-30f)), one);
+    next1 = next1 * scale;
+    next2 = next2 * scale;
+    if constexpr (useBias) c.sliding = orW(c.sliding, beyond);
+    const F d1 = next1 - c.tangentImpulse1;
+    const F d2 = next2 - c.tangentImpulse2;
+    c.tangentImpulse1 = next1;
+    c.tangentImpulse2 = next2;
+    applyLinear(a, b, c, d1, c.tangent1);
+    applyLinear(a, b, c, d2, c.tangent2);
+    addScaled(a.w, -d1, c.tangent1TurnA);
+    addScaled(a.w, -d2, c.tangent2TurnA);
+    addScaled(b.w, d1, c.tangent1TurnB);
+    addScaled(b.w, d2, c.tangent2TurnB);
+  }
 
+  // Twist about the normal, bounded like the friction by the normal impulses.
+  static COLLIDE_INLINE void solveTwist(Batch& c, Velocities& a, Velocities& b, F normalSum) {
+    const F spin = dot(b.w - a.w, c.normal);
+    const F twistLimit = c.friction * c.twistRadius * normalSum;
+    const F twist = maxW(minW(c.twistImpulse - c.twistMass * spin, twistLimit), -twistLimit);
+    const F dt = twist - c.twistImpulse;
+    c.twistImpulse = twist;
+    addScaled(a.w, -dt, c.twistTurnA);
+    addScaled(b.w, dt, c.twistTurnB);
+  }
+
+  // One pass; the biased and the relax pass are two instantiations, so neither tests the flag inside.
+  // Each batch: the pose change, then the normal points, the friction patch and the twist, in that
+  // order, on the same gathered velocities.
+  template <bool useBias>
+  void solvePass(std::vector<SolverBody>& bodies, float h) {
+    const F inverseH = splatT<F>(1.0f / h);
+    const F maxPushOut = splatT<F>(-pushOutSpeed_);
+    for (Batch& c : batches_) {
+      const PoseChange pose = poseChange<useBias>(bodies, c);
+      Velocities a = gatherVelocities(bodies, c.bodyA);
+      Velocities b = gatherVelocities(bodies, c.bodyB);
+      const F normalSum = solveNormalPoints<useBias>(c, a, b, pose, inverseH, maxPushOut);
+      solveFriction<useBias>(c, a, b, normalSum, pose);
+      solveTwist(c, a, b, normalSum);
       scatter(bodies, c.bodyA, c.writeA, a);
       scatter(bodies, c.bodyB, c.writeB, b);
     }
@@ -448,17 +483,18 @@ class LaneContactSolver final : public ContactLanes {
     return {selectW(mask, a.x, zero), selectW(mask, a.y, zero), selectW(mask, a.z, zero)};
   }
 
-  // One contact into one lane, the scalar part: bodies, masses, basis, settings and the friction
-  // patch's warm start and static anchor; the rest (anchors, effective masses, approach velocity)
-  // is finishBatch's, for all lanes at once.
-  static void fillLane(const ContactBatchInput& in, Batch& c, LaneInputs& inputs, int lane,
-                       std::uint32_t contactIndex) {
-    Contact& contact = in.contacts[contactIndex];
-    const BodyState& stateA = in.storage.states[contact.bodyA];
-    const BodyState& stateB = in.storage.states[contact.bodyB];
+  // The inverse masses the solver uses for a lane's two bodies: zero for a side it does not move.
+  struct LaneMasses {
+    float a, b;
+  };
+
+  // One lane's bodies: which of them the batch writes back, their masses, inertias, velocities and
+  // centres. Apart from the rest of fillLane because it reads the body arrays, the rest the contact.
+  static COLLIDE_INLINE LaneMasses fillBodies(const ContactBatchInput& in, Batch& c, LaneInputs& inputs,
+                                              int lane, const Contact& contact, const BodyState& stateA,
+                                              const BodyState& stateB) {
     const std::int32_t ia = in.solverOf[contact.bodyA];
     const std::int32_t ib = in.solverOf[contact.bodyB];
-    c.contact[lane] = static_cast<std::int32_t>(contactIndex);
     c.bodyA[lane] = ia;
     c.bodyB[lane] = ib;
     c.writeA[lane] = ia >= 0 && in.infos[ia].dynamic;
@@ -482,6 +518,20 @@ class LaneContactSolver final : public ContactLanes {
     setLane(inputs.centerB, lane, stateB.centerOfMass);
     laneOf(c.inverseMassA, lane) = mA;
     laneOf(c.inverseMassB, lane) = mB;
+    return {mA, mB};
+  }
+
+  // One contact into one lane, the scalar part: bodies, masses, basis, settings and the friction
+  // patch's warm start and static anchor; the rest (anchors, effective masses, approach velocity)
+  // is finishBatch's, for all lanes at once.
+  static void fillLane(const ContactBatchInput& in, Batch& c, LaneInputs& inputs, int lane,
+                       std::uint32_t contactIndex) {
+    Contact& contact = in.contacts[contactIndex];
+    const BodyState& stateA = in.storage.states[contact.bodyA];
+    const BodyState& stateB = in.storage.states[contact.bodyB];
+    c.contact[lane] = static_cast<std::int32_t>(contactIndex);
+    const LaneMasses masses = fillBodies(in, c, inputs, lane, contact, stateA, stateB);
+    const float mA = masses.a, mB = masses.b;
 
     const Vec3 n = contact.manifold.normal;
     Vec3 t1, t2;

@@ -166,6 +166,21 @@ inline void writeFacePoint(const ClipPoint& p, float separation, const Vec3& nor
                  out);
 }
 
+// The incident box's corner deepest below the reference face (axis, sign), named for the reference
+// face. Deep or skewed overlaps can leave no clipped point within the margin; this corner then stands
+// for the contact, as in the generic routine.
+ClipPoint deepestIncidentCorner(const Vec3& hi, const Relative& inc, int axis, float sign,
+                                int referenceFace) {
+  Vec3 p = inc.center;
+  int code = 0;
+  for (int m = 0; m < 3; ++m) {
+    const float s = sign * inc.axes[m][axis] > 0.0f ? -1.0f : 1.0f;
+    p += (s * hi[m]) * inc.axes[m];
+    code += signDigit(s) * kPow3[m];
+  }
+  return {p, referenceFace, code};
+}
+
 // Face contact with the reference face (axis, sign) of the reference box (half extents hr) and
 // the incident box (half extents hi) placed by `inc` in the reference frame (absAxes: |inc.axes|).
 // Writes world points through `frame` (the reference box's); refIsA says which box is A.
@@ -224,17 +239,8 @@ bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, const Mat3
     anyWithin = anyWithin || separations[i] <= margin;
   }
   if (!anyWithin) {
-    // Deep or skewed overlaps can leave no clipped point below the reference plane: the incident
-    // box's deepest corner stands for the contact (as in the generic routine).
-    Vec3 p = inc.center;
-    int code = 0;
-    for (int m = 0; m < 3; ++m) {
-      const float s = sign * inc.axes[m][axis] > 0.0f ? -1.0f : 1.0f;
-      p += (s * hi[m]) * inc.axes[m];
-      code += signDigit(s) * kPow3[m];
-    }
-    in[0] = {p, referenceFace, code};
-    separations[0] = sign * p[axis] - planeOffset;
+    in[0] = deepestIncidentCorner(hi, inc, axis, sign, referenceFace);
+    separations[0] = sign * in[0].position[axis] - planeOffset;
     count = 1;
   }
 
@@ -254,81 +260,121 @@ bool faceContact(const Vec3& hr, const Vec3& hi, const Relative& inc, const Mat3
   return kept > 0;
 }
 
-}  // namespace
+// ---- The stages of collideBoxBox, all in A's frame ----
 
-bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
-                   const Transform& transformB, float margin, Manifold& out) {
-  out.count = 0;
-  const Vec3 hA = shapeA.box().halfExtents * transformA.scale;
-  const Vec3 hB = shapeB.box().halfExtents * transformB.scale;
-  const Frame frameA{glm::mat3_cast(transformA.rotation), transformA.position};
-  const Mat3 rotationB = glm::mat3_cast(transformB.rotation);
-  // B in A's frame, computed once: R's column j is B's axis j (R = Aᵀ B), T is B's centre. Every
-  // axis below is read from R, |R| and T; nothing else is transformed.
+// The preference of a face over an edge pair and between faces, as in collidePolyhedra.
+constexpr float kRelative = 0.98f;
+
+// B in A's frame, computed once: R's column j is B's axis j (R = Aᵀ B), T is B's centre. Every
+// axis of the test is read from R, |R| and T; nothing else is transformed.
+struct BoxPair {
+  Vec3 hA, hB;  // half extents, scaled
   Mat3 R, absR;
+  Vec3 T;
+};
+
+BoxPair boxPairInFrameOf(const Frame& frameA, const Vec3& hA, const Vec3& hB, const Mat3& rotationB,
+                         const Vec3& offset) {
+  BoxPair pair{hA, hB, Mat3(), Mat3(), Vec3()};
+  Mat3& R = pair.R;
+  Mat3& absR = pair.absR;
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
       R[j][i] = glm::dot(frameA.rotation[i], rotationB[j]);
       absR[j][i] = std::abs(R[j][i]);
     }
   }
-  const Vec3 offset = transformB.position - transformA.position;
-  const Vec3 T(glm::dot(frameA.rotation[0], offset), glm::dot(frameA.rotation[1], offset),
-               glm::dot(frameA.rotation[2], offset));
+  pair.T = Vec3(glm::dot(frameA.rotation[0], offset), glm::dot(frameA.rotation[1], offset),
+                glm::dot(frameA.rotation[2], offset));
+  return pair;
+}
 
-  // 1. A's face axes: e_i. Any axis beyond the margin ends the test (most apart pairs stop here).
-  float faceASeparation = -1e30f;
-  int faceAAxis = 0;
+// The deepest face axis of one box, or the first that separates beyond the margin.
+struct FaceAxis {
+  float separation = -1e30f;
+  int axis = 0;
+};
+
+// 1. A's face axes: e_i. False as soon as an axis separates beyond the margin, since that ends the
+// test (most apart pairs stop here, before anything else is computed).
+bool deepestFaceOfA(const BoxPair& pair, float margin, FaceAxis& face) {
+  const Vec3& hA = pair.hA;
+  const Vec3& hB = pair.hB;
+  const Mat3& absR = pair.absR;
+  const Vec3& T = pair.T;
   for (int i = 0; i < 3; ++i) {
     const float rB = hB.x * absR[0][i] + hB.y * absR[1][i] + hB.z * absR[2][i];
     const float separation = std::abs(T[i]) - hA[i] - rB;
     if (separation > margin) return false;
-    if (separation > faceASeparation) {
-      faceASeparation = separation;
-      faceAAxis = i;
+    if (separation > face.separation) {
+      face.separation = separation;
+      face.axis = i;
     }
   }
-  // 2. B's face axes: R's columns.
-  float faceBSeparation = -1e30f;
-  int faceBAxis = 0;
+  return true;
+}
+
+// 2. B's face axes: R's columns. False as soon as one separates beyond the margin, as for A's.
+bool deepestFaceOfB(const BoxPair& pair, float margin, FaceAxis& face) {
+  const Vec3& hA = pair.hA;
+  const Vec3& hB = pair.hB;
+  const Mat3& R = pair.R;
+  const Mat3& absR = pair.absR;
+  const Vec3& T = pair.T;
   for (int j = 0; j < 3; ++j) {
     const float rA = glm::dot(hA, absR[j]);
     const float separation = std::abs(glm::dot(T, R[j])) - hB[j] - rA;
     if (separation > margin) return false;
-    if (separation > faceBSeparation) {
-      faceBSeparation = separation;
-      faceBAxis = j;
+    if (separation > face.separation) {
+      face.separation = separation;
+      face.axis = j;
     }
   }
-  // The reference face, as in collidePolyhedra: a face over a barely better edge pair, the
-  // larger face between two faces within the tolerance.
-  constexpr float kRelative = 0.98f;
-  const float absolute = 1e-3f * std::min(glm::length(hA), glm::length(hB));
-  const float tolerance =
-      (1.0f - kRelative) * std::max(std::abs(faceASeparation), std::abs(faceBSeparation)) + absolute;
-  bool referenceIsB = faceBSeparation > faceASeparation;
-  if (std::abs(faceASeparation - faceBSeparation) <= tolerance) {
-    const int a1 = (faceAAxis + 1) % 3, a2 = (faceAAxis + 2) % 3;
-    const int b1 = (faceBAxis + 1) % 3, b2 = (faceBAxis + 2) % 3;
-    const float areaA = hA[a1] * hA[a2], areaB = hB[b1] * hB[b2];
-    if (std::abs(areaA - areaB) > 1e-4f * std::max(areaA, areaB)) referenceIsB = areaB > areaA;
-  }
-  const float faceSeparation = referenceIsB ? faceBSeparation : faceASeparation;
+  return true;
+}
 
-  // 3. Edge axes L = e_i × B_j, in closed form from R (Gottschalk et al. 1996, table 1): with b =
-  // B_j in A's frame, L = (…, -b[i2], b[i1]) has length sin(angle) = |(b[i1], b[i2])|, A's radius
-  // along it is hA[i1] |R_i2j| + hA[i2] |R_i1j|, B's is hB[j1] |R_ij2| + hB[j2] |R_ij1| (B's axes are
-  // right-handed: B_j × B_j1 = B_j2) and the centres are T[i2] R_i1j - T[i1] R_i2j apart along it.
-  // (Nearly) parallel edge directions are skipped as the generic routine does: their cross product
-  // has no direction, and the face axes cover that case. An edge axis matters only if it separates
-  // by more than the margin (apart) or is clearly better than the reference face (an edge contact);
-  // the separation stays scaled by |L| for that test (squared, no root) and only an axis that
-  // passes it is normalised.
-  const float edgeThreshold = std::min(margin, kRelative * faceSeparation + absolute);
-  const float thresholdSquared = edgeThreshold * edgeThreshold;
-  float edgeSeparation = -1e30f;
+// The reference face, as in collidePolyhedra: a face over a barely better edge pair, the larger
+// face between two faces within the tolerance, so that collide(B, A) mirrors collide(A, B). True
+// when it is B's.
+bool referenceIsB(const BoxPair& pair, const FaceAxis& faceA, const FaceAxis& faceB, float absolute) {
+  const Vec3& hA = pair.hA;
+  const Vec3& hB = pair.hB;
+  const float tolerance =
+      (1.0f - kRelative) * std::max(std::abs(faceA.separation), std::abs(faceB.separation)) + absolute;
+  bool isB = faceB.separation > faceA.separation;
+  if (std::abs(faceA.separation - faceB.separation) <= tolerance) {
+    const int a1 = (faceA.axis + 1) % 3, a2 = (faceA.axis + 2) % 3;
+    const int b1 = (faceB.axis + 1) % 3, b2 = (faceB.axis + 2) % 3;
+    const float areaA = hA[a1] * hA[a2], areaB = hB[b1] * hB[b2];
+    if (std::abs(areaA - areaB) > 1e-4f * std::max(areaA, areaB)) isB = areaB > areaA;
+  }
+  return isB;
+}
+
+// The best edge axis that matters: e_i × B_j with the directions A's edge i and B's edge j.
+struct EdgeAxis {
+  float separation = -1e30f;  // stays -1e30 when no edge axis passes
   int edgeA = 0, edgeB = 0;
-  Vec3 edgeAxis(0.0f);
+  Vec3 axis{0.0f};  // unit, from A towards B
+};
+
+// 3. Edge axes L = e_i × B_j, in closed form from R (Gottschalk et al. 1996, table 1): with b =
+// B_j in A's frame, L = (…, -b[i2], b[i1]) has length sin(angle) = |(b[i1], b[i2])|, A's radius
+// along it is hA[i1] |R_i2j| + hA[i2] |R_i1j|, B's is hB[j1] |R_ij2| + hB[j2] |R_ij1| (B's axes are
+// right-handed: B_j × B_j1 = B_j2) and the centres are T[i2] R_i1j - T[i1] R_i2j apart along it.
+// (Nearly) parallel edge directions are skipped as the generic routine does: their cross product
+// has no direction, and the face axes cover that case. An edge axis matters only if it separates
+// by more than the margin (apart) or is clearly better than the reference face (an edge contact);
+// the separation stays scaled by |L| for that test (squared, no root) and only an axis that
+// passes it is normalised. False as soon as an axis separates beyond the margin: nothing more to
+// learn.
+bool bestEdgeAxis(const BoxPair& pair, float margin, float edgeThreshold, EdgeAxis& edge) {
+  const Vec3& hA = pair.hA;
+  const Vec3& hB = pair.hB;
+  const Mat3& R = pair.R;
+  const Mat3& absR = pair.absR;
+  const Vec3& T = pair.T;
+  const float thresholdSquared = edgeThreshold * edgeThreshold;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -348,7 +394,7 @@ bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape
       if (below) continue;
       const float length = std::sqrt(lengthSquared);
       const float separation = scaledSeparation / length;
-      if (separation <= edgeSeparation) continue;
+      if (separation <= edge.separation) continue;
       const float scale = (along < 0.0f ? -1.0f : 1.0f) / length;
       Vec3 towardsB;
       towardsB[i] = 0.0f;
@@ -356,59 +402,94 @@ bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape
       towardsB[i2] = bi1 * scale;
       if (!supportingEdgesCross(i, j, towardsB, R)) continue;
       if (separation > margin) return false;  // a separating axis: nothing more to learn
-      edgeSeparation = separation;
-      edgeA = i;
-      edgeB = j;
-      edgeAxis = towardsB;
+      edge.separation = separation;
+      edge.edgeA = i;
+      edge.edgeB = j;
+      edge.axis = towardsB;
     }
   }
+  return true;
+}
 
-  if (edgeSeparation > kRelative * faceSeparation + absolute) {  // -1e30 when no edge axis passed
-    // Edge contact: the closest points of the supporting edges (A's along +axis, B's along -axis).
-    Vec3 centerA(0.0f);
-    int codeA = kPow3[edgeA];
-    for (int k = 0; k < 3; ++k) {
-      if (k == edgeA) continue;
-      const float s = edgeAxis[k] >= 0.0f ? 1.0f : -1.0f;
-      centerA[k] = s * hA[k];
-      codeA += signDigit(s) * kPow3[k];
-    }
-    Vec3 halfA(0.0f);
-    halfA[edgeA] = hA[edgeA];
-    Vec3 centerB = T;
-    int codeB = kPow3[edgeB];
-    for (int m = 0; m < 3; ++m) {
-      if (m == edgeB) continue;
-      const float s = glm::dot(edgeAxis, R[m]) > 0.0f ? -1.0f : 1.0f;
-      centerB += (s * hB[m]) * R[m];
-      codeB += signDigit(s) * kPow3[m];
-    }
-    const Vec3 halfB = hB[edgeB] * R[edgeB];
-    const SegmentPair closest =
-        closestPointsSegmentSegment(centerA - halfA, centerA + halfA, centerB - halfB, centerB + halfB);
-    const float depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edgeAxis);
-    if (depth >= -margin) {
-      ContactPoint& point = out.points[0];
-      point.pointOnA = frameA.position + frameA.rotation * closest.pointOnFirst;
-      point.pointOnB = frameA.position + frameA.rotation * closest.pointOnSecond;
-      point.depth = depth;
-      point.featureId = featurePair(static_cast<std::uint32_t>(codeA), static_cast<std::uint32_t>(codeB));
-      out.normal = frameA.rotation * edgeAxis;
-      out.count = 1;
-      return true;
-    }
+// 4. Edge contact: the closest points of the supporting edges (A's along +axis, B's along -axis).
+// False when they lie beyond the margin, and the face contact answers instead.
+bool edgeContact(const BoxPair& pair, const EdgeAxis& edge, const Frame& frameA, float margin,
+                 Manifold& out) {
+  const Vec3& hA = pair.hA;
+  const Vec3& hB = pair.hB;
+  const Mat3& R = pair.R;
+  const Vec3& edgeAxis = edge.axis;
+  Vec3 centerA(0.0f);
+  int codeA = kPow3[edge.edgeA];
+  for (int k = 0; k < 3; ++k) {
+    if (k == edge.edgeA) continue;
+    const float s = edgeAxis[k] >= 0.0f ? 1.0f : -1.0f;
+    centerA[k] = s * hA[k];
+    codeA += signDigit(s) * kPow3[k];
+  }
+  Vec3 halfA(0.0f);
+  halfA[edge.edgeA] = hA[edge.edgeA];
+  Vec3 centerB = pair.T;
+  int codeB = kPow3[edge.edgeB];
+  for (int m = 0; m < 3; ++m) {
+    if (m == edge.edgeB) continue;
+    const float s = glm::dot(edgeAxis, R[m]) > 0.0f ? -1.0f : 1.0f;
+    centerB += (s * hB[m]) * R[m];
+    codeB += signDigit(s) * kPow3[m];
+  }
+  const Vec3 halfB = hB[edge.edgeB] * R[edge.edgeB];
+  const SegmentPair closest =
+      closestPointsSegmentSegment(centerA - halfA, centerA + halfA, centerB - halfB, centerB + halfB);
+  const float depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edgeAxis);
+  if (!(depth >= -margin)) return false;
+  ContactPoint& point = out.points[0];
+  point.pointOnA = frameA.position + frameA.rotation * closest.pointOnFirst;
+  point.pointOnB = frameA.position + frameA.rotation * closest.pointOnSecond;
+  point.depth = depth;
+  point.featureId = featurePair(static_cast<std::uint32_t>(codeA), static_cast<std::uint32_t>(codeB));
+  out.normal = frameA.rotation * edgeAxis;
+  out.count = 1;
+  return true;
+}
+
+}  // namespace
+
+bool collideBoxBox(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
+                   const Transform& transformB, float margin, Manifold& out) {
+  out.count = 0;
+  const Vec3 hA = shapeA.box().halfExtents * transformA.scale;
+  const Vec3 hB = shapeB.box().halfExtents * transformB.scale;
+  const Frame frameA{glm::mat3_cast(transformA.rotation), transformA.position};
+  const Mat3 rotationB = glm::mat3_cast(transformB.rotation);
+  const BoxPair pair = boxPairInFrameOf(frameA, hA, hB, rotationB, transformB.position - transformA.position);
+  const Mat3& R = pair.R;
+  const Vec3& T = pair.T;
+
+  FaceAxis faceA, faceB;
+  if (!deepestFaceOfA(pair, margin, faceA)) return false;
+  if (!deepestFaceOfB(pair, margin, faceB)) return false;
+  const float absolute = 1e-3f * std::min(glm::length(hA), glm::length(hB));
+  const bool referenceB = referenceIsB(pair, faceA, faceB, absolute);
+  const float faceSeparation = referenceB ? faceB.separation : faceA.separation;
+
+  EdgeAxis edge;
+  const float edgeThreshold = std::min(margin, kRelative * faceSeparation + absolute);
+  if (!bestEdgeAxis(pair, margin, edgeThreshold, edge)) return false;
+  if (edge.separation > kRelative * faceSeparation + absolute &&
+      edgeContact(pair, edge, frameA, margin, out)) {
+    return true;
   }
 
-  if (referenceIsB) {
+  if (referenceB) {
     // A seen from B: axes Rᵀ, centre -Rᵀ T. B's face on the side facing A.
     const Mat3 RT = glm::transpose(R);
     const Relative aInB{RT, -(RT * T)};
-    const float sign = glm::dot(T, R[faceBAxis]) > 0.0f ? -1.0f : 1.0f;
-    return faceContact(hB, hA, aInB, glm::transpose(absR), faceBAxis, sign,
+    const float sign = glm::dot(T, R[faceB.axis]) > 0.0f ? -1.0f : 1.0f;
+    return faceContact(hB, hA, aInB, glm::transpose(pair.absR), faceB.axis, sign,
                        Frame{rotationB, transformB.position}, false, margin, out);
   }
-  const float sign = T[faceAAxis] >= 0.0f ? 1.0f : -1.0f;
-  return faceContact(hA, hB, Relative{R, T}, absR, faceAAxis, sign, frameA, true, margin, out);
+  const float sign = T[faceA.axis] >= 0.0f ? 1.0f : -1.0f;
+  return faceContact(hA, hB, Relative{R, T}, pair.absR, faceA.axis, sign, frameA, true, margin, out);
 }
 
 }  // namespace collide::detail

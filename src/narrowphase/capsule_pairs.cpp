@@ -29,6 +29,54 @@ Vec3 perpendicular(const Vec3& axis) {
   return t1;
 }
 
+// A capsule lying on the box face (axis, sign): its segment, e0 + t segment in the box's frame (h:
+// the box's half extents), clipped to the face's rectangle, both ends kept, so that the capsule
+// rests on two points rather than rocking on one. False when little of the segment is over the face
+// or both ends are beyond the margin: the one point from GJK/EPA answers then.
+bool lyingOnFaceContact(const Vec3& e0, const Vec3& segment, const Vec3& h, int axis, float sign,
+                        float radius, const Transform& transformB, float margin, Manifold& out) {
+  float t0 = 0.0f, t1 = 1.0f;
+  bool inside = true;
+  for (int i = 0; i < 3 && inside; ++i) {
+    if (i == axis) continue;
+    if (std::abs(segment[i]) < 1e-12f) {
+      inside = std::abs(e0[i]) <= h[i];
+      continue;
+    }
+    float enter = (-h[i] - e0[i]) / segment[i];
+    float leave = (h[i] - e0[i]) / segment[i];
+    if (enter > leave) std::swap(enter, leave);
+    t0 = std::max(t0, enter);
+    t1 = std::min(t1, leave);
+    inside = t0 <= t1;
+  }
+  if (!inside || !(t1 - t0 > 1e-3f)) return false;
+  Vec3 faceNormalLocal(0.0f);
+  faceNormalLocal[axis] = sign;
+  const Vec3 faceNormal = transformB.applyToDirection(faceNormalLocal);
+  int digits[3] = {1, 1, 1};
+  digits[axis] = sign > 0.0f ? 2 : 0;
+  const std::uint32_t featureB = boxFeature(digits[0], digits[1], digits[2]);
+  int count = 0;
+  for (const float t : {t0, t1}) {
+    const Vec3 local = e0 + t * segment;
+    const float height = (sign * local[axis] - h[axis]) * transformB.scale;
+    Vec3 onFace = local;
+    onFace[axis] = sign * h[axis];
+    ContactPoint& point = out.points[count];
+    point.pointOnB = transformB.applyToPoint(onFace);
+    point.pointOnA = transformB.applyToPoint(local) - radius * faceNormal;
+    point.depth = radius - height;
+    if (point.depth < -margin) continue;
+    point.featureId = featurePair(capsuleFeature(t), featureB);
+    ++count;
+  }
+  if (count == 0) return false;
+  out.normal = -faceNormal;
+  out.count = count;
+  return true;
+}
+
 }  // namespace
 
 bool collideCapsuleCapsule(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
@@ -119,8 +167,6 @@ bool collideCapsuleBox(const Shape& shapeA, const Transform& transformA, const S
     if (std::abs(towardsA[i]) > std::abs(towardsA[axis])) axis = i;
   }
   const float sign = towardsA[axis] >= 0.0f ? 1.0f : -1.0f;
-  Vec3 faceNormalLocal(0.0f);
-  faceNormalLocal[axis] = sign;
   const Vec3 e0 =
       transformB.inverseApplyToPoint(transformA.applyToPoint(Vec3(0.0f, -capsule.halfHeight, 0.0f)));
   const Vec3 e1 =
@@ -130,47 +176,9 @@ bool collideCapsuleBox(const Shape& shapeA, const Transform& transformA, const S
 
   // Lying on that face (normal within ~2.6 degrees of the face's, axis within ~1.1 degrees of the
   // face's plane): clip the segment to the face's rectangle and keep both ends.
-  if (std::abs(towardsA[axis]) > 0.999f && std::abs(segment[axis]) < kParallelSine * segmentLength) {
-    float t0 = 0.0f, t1 = 1.0f;
-    bool inside = true;
-    for (int i = 0; i < 3 && inside; ++i) {
-      if (i == axis) continue;
-      if (std::abs(segment[i]) < 1e-12f) {
-        inside = std::abs(e0[i]) <= h[i];
-        continue;
-      }
-      float enter = (-h[i] - e0[i]) / segment[i];
-      float leave = (h[i] - e0[i]) / segment[i];
-      if (enter > leave) std::swap(enter, leave);
-      t0 = std::max(t0, enter);
-      t1 = std::min(t1, leave);
-      inside = t0 <= t1;
-    }
-    if (inside && t1 - t0 > 1e-3f) {
-      const Vec3 faceNormal = transformB.applyToDirection(faceNormalLocal);
-      int digits[3] = {1, 1, 1};
-      digits[axis] = sign > 0.0f ? 2 : 0;
-      const std::uint32_t featureB = boxFeature(digits[0], digits[1], digits[2]);
-      int count = 0;
-      for (const float t : {t0, t1}) {
-        const Vec3 local = e0 + t * segment;
-        const float height = (sign * local[axis] - h[axis]) * transformB.scale;
-        Vec3 onFace = local;
-        onFace[axis] = sign * h[axis];
-        ContactPoint& point = out.points[count];
-        point.pointOnB = transformB.applyToPoint(onFace);
-        point.pointOnA = transformB.applyToPoint(local) - radius * faceNormal;
-        point.depth = radius - height;
-        if (point.depth < -margin) continue;
-        point.featureId = featurePair(capsuleFeature(t), featureB);
-        ++count;
-      }
-      if (count > 0) {
-        out.normal = -faceNormal;
-        out.count = count;
-        return true;
-      }
-    }
+  if (std::abs(towardsA[axis]) > 0.999f && std::abs(segment[axis]) < kParallelSine * segmentLength &&
+      lyingOnFaceContact(e0, segment, h, axis, sign, radius, transformB, margin, out)) {
+    return true;
   }
 
   // One point. Name the features from where the points lie: the capsule end nearest the contact,

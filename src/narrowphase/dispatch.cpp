@@ -142,6 +142,8 @@ constexpr ShapeType kAllTypes[] = {
     ShapeType::Sphere,    ShapeType::Capsule,  ShapeType::Plane,      ShapeType::Box,  ShapeType::Kdop,
     ShapeType::Ellipsoid, ShapeType::Cylinder, ShapeType::ConvexHull, ShapeType::Mesh, ShapeType::Compound};
 
+// Kept whole although it is long: the table is data, one registration per cell, and its order is
+// its meaning (the generic entry first, the specialised ones over it), read top to bottom here.
 constexpr PairTable buildPairTable() {
   using T = ShapeType;
   using A = PairAlgorithm;
@@ -175,7 +177,7 @@ constexpr PairTable buildPairTable() {
       T::Plane, T::Cylinder, A::Analytic,
       "lowest rim points: four on a cap standing flat, two lying on the side, else one");
 
-  // 3. Closed forms over the generic entry.
+  // 3. Dedicated routines over the generic entry: closed forms, and capsule × box.
   b.add<collideSphereSphere>(T::Sphere, T::Sphere, A::Analytic, "distance of the centres; one point");
   b.add<collideSphereCapsule>(T::Sphere, T::Capsule, A::Analytic,
                               "centre against the capsule's segment; one point");
@@ -184,7 +186,7 @@ constexpr PairTable buildPairTable() {
   b.add<collideCapsuleCapsule>(T::Capsule, T::Capsule, A::Analytic,
                                "closest points of the two segments (lecture, slide 61); two points when "
                                "parallel and overlapping");
-  b.add<collideCapsuleBox>(T::Capsule, T::Box, A::Analytic,
+  b.add<collideCapsuleBox>(T::Capsule, T::Box, A::GjkEpaClip,
                            "GJK/EPA on the core segment, clipped to the box face when lying on it; up to two "
                            "points");
 
@@ -256,8 +258,8 @@ std::string format(const Vec3& v) {
   throw Error(out.str());
 }
 
-// The same test as isValid() but cheap enough for a 5 ns pair: one NaN/infinity probe (x * 0 is
-// 0 only for finite x), then the unit quaternion and the positive scale.
+// The same test as isValid() but cheap enough for the cheapest pairs: one NaN/infinity probe
+// (x * 0 is 0 only for finite x), then the unit quaternion and the positive scale.
 inline void requireValid(const Transform& t, const char* query, const char* which) {
   const float probe = (t.position.x + t.position.y + t.position.z + t.rotation.x + t.rotation.y +
                        t.rotation.z + t.rotation.w + t.scale) *
@@ -288,6 +290,8 @@ std::string_view toString(PairAlgorithm algorithm) {
       return "SAT";
     case PairAlgorithm::GjkEpa:
       return "GJK/EPA";
+    case PairAlgorithm::GjkEpaClip:
+      return "GJK/EPA + clip";
     case PairAlgorithm::Mesh:
       return "mesh";
     case PairAlgorithm::Compound:

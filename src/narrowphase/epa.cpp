@@ -184,20 +184,13 @@ EpaResult resultFromFace(const Polytope& polytope, const Face& face, int iterati
   return result;
 }
 
-}  // namespace
-
-EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const Simplex& simplex) {
-  // About 100 KB: kept per thread rather than on the stack.
-  static thread_local Polytope polytope;
-  polytope.reset();
-  float scaleSquared = 1e-30f;
-  for (int i = 0; i < simplex.count; ++i) {
-    polytope.vertices[polytope.vertexCount++] = simplex.vertices[i];
-    scaleSquared = std::max(scaleSquared, glm::dot(simplex.vertices[i].w, simplex.vertices[i].w));
-  }
-  // Grow the simplex to a solid tetrahedron. GJK ends with the origin on (or within rounding of)
-  // its simplex, so adding vertices off the simplex's span keeps the origin in the closed polytope;
-  // EPA works with the origin on the boundary, where the nearest face has distance 0.
+// Grows GJK's simplex in `polytope` to a solid tetrahedron, widening `scaleSquared` with each new
+// vertex. GJK ends with the origin on (or within rounding of) its simplex, so adding vertices off the
+// simplex's span keeps the origin in the closed polytope; EPA works with the origin on the boundary,
+// where the nearest face has distance 0. A stage of its own: it runs once, before the expansion
+// loop, and can end the query (false when A - B is flat around the origin; `touching` answers).
+bool growToTetrahedron(const ConvexSupport& a, const ConvexSupport& b, Polytope& polytope,
+                       float& scaleSquared, EpaResult& touching) {
   while (polytope.vertexCount < 4) {
     const Vec3& p0 = polytope.vertices[0].w;
     Vec3 candidates[8];
@@ -239,16 +232,31 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
     }
     if (!(bestHeight > 1e-6f * std::sqrt(scaleSquared))) {
       // A - B is flat around the origin: the shapes only touch (or are themselves flat).
-      EpaResult touching;
       touching.depth = 0.0f;
       touching.normal = candidates[0];
       touching.pointOnA = polytope.vertices[0].a;
       touching.pointOnB = polytope.vertices[0].b;
-      return touching;
+      return false;
     }
     polytope.vertices[polytope.vertexCount++] = best;
     scaleSquared = std::max(scaleSquared, glm::dot(best.w, best.w));
   }
+  return true;
+}
+
+}  // namespace
+
+EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const Simplex& simplex) {
+  // About 100 KB: kept per thread rather than on the stack.
+  static thread_local Polytope polytope;
+  polytope.reset();
+  float scaleSquared = 1e-30f;
+  for (int i = 0; i < simplex.count; ++i) {
+    polytope.vertices[polytope.vertexCount++] = simplex.vertices[i];
+    scaleSquared = std::max(scaleSquared, glm::dot(simplex.vertices[i].w, simplex.vertices[i].w));
+  }
+  EpaResult touching;
+  if (!growToTetrahedron(a, b, polytope, scaleSquared, touching)) return touching;
   polytope.scaleSquared = scaleSquared;
   polytope.visibleEpsilon = 0.5f * kAbsoluteTolerance * std::sqrt(scaleSquared);
   polytope.buildTetrahedron();
@@ -285,10 +293,10 @@ EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const S
     if (polytope.vertexCount == kMaxVertices) break;
     // A support point already in the polytope cannot lie beyond one of its faces unless rounding
     // folded the polytope there: that face is not on the hull of the polytope's vertices, so it
-    // bounds nothing. Adding the point again would only make slivers; instead the face is retired
+    // bounds nothing. Adding the point again would only make slivers, so the face is retired
     // (treated like a sliver: never the nearest, removed by the next expansion that reaches it)
-    // and the search goes on with the next nearest face. Stopping here instead left the depth
-    // short by up to 10 % on cylinder rims (differential test).
+    // and the search goes on with the next nearest face: ending it at a folded face would leave the
+    // depth short, as on cylinder rims.
     bool known = false;
     for (int i = 0; i < polytope.vertexCount && !known; ++i) {
       const Vec3 d = polytope.vertices[i].w - w.w;

@@ -94,7 +94,7 @@ DVec3 pointOf(const Simplex& simplex) {
 // volumes; where one is not positive the origin lies beyond the opposite face, and only those faces
 // can hold the closest point, so only they are searched (Johnson's sub-simplices without the full
 // enumeration). Double precision from single-precision points: the areas subtract nearly equal
-// products (a thin triangle far from the origin), and in single precision that misplaced the
+// products (a thin triangle far from the origin), and in single precision that misplaces the
 // closest point enough for GJK to stall or cycle; on x86-64 a scalar double costs what a float does.
 
 bool sameSign(double a, double b) { return (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0); }
@@ -297,8 +297,8 @@ void saveCache(const PairFrame& frame, const Simplex& simplex, GjkCache* cache) 
 void finishInWorld(const PairFrame& frame, GjkResult& result) {
   result.pointOnA = frame.toWorld(result.pointOnA);
   result.pointOnB = frame.toWorld(result.pointOnB);
-  // Renormalised: a rotation within the accepted 1e-3 of unit length scales what it turns (the
-  // narrow-phase fuzzer found a normal 1.0015 long).
+  // Renormalised: a rotation within the accepted 1e-3 of unit length scales what it turns, so the
+  // normal would be off unit length by as much.
   if (result.status == GjkResult::Status::Separated)
     result.normal = glm::normalize(frame.a.rotation * result.normal);
   for (int i = 0; i < result.simplex.count; ++i) {
@@ -307,6 +307,52 @@ void finishInWorld(const PairFrame& frame, GjkResult& result) {
     vertex.b = frame.toWorld(vertex.b);
     vertex.w = vertex.a - vertex.b;
   }
+}
+
+// The closest points on A and B from the simplex's coordinates, summed in double precision like the
+// closest point; the warm start's early answer and the end of the loop both need them.
+void witnessPoints(GjkResult& result) {
+  const Simplex& simplex = result.simplex;
+  DVec3 pointOnA(0.0), pointOnB(0.0);
+  for (int i = 0; i < simplex.count; ++i) {
+    pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
+    pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
+  }
+  result.pointOnA = Vec3(pointOnA);
+  result.pointOnB = Vec3(pointOnB);
+}
+
+// The first simplex: the cached one placed by the current transforms (a warm start, for shapes
+// without an inflated radius), else one support point towards the origin. Apart from the loop,
+// which starts from either alike. True when the cached tetrahedron still encloses the origin: the
+// pair overlaps, EPA can start from it, and `result` holds the answer in A's frame.
+bool startSimplex(const PairFrame& frame, const GjkCache* cache, GjkResult& result) {
+  Simplex& simplex = result.simplex;
+  if (cache != nullptr && cache->count > 0 && !frame.a.inflated && !frame.b.inflated) {
+    simplex.count = std::min(cache->count, 4);
+    for (int i = 0; i < simplex.count; ++i) {
+      SimplexVertex& vertex = simplex.vertices[i];
+      vertex.a = frame.fromLocalA(cache->localA[i]);
+      vertex.b = frame.fromLocalB(cache->localB[i]);
+      vertex.w = vertex.a - vertex.b;
+    }
+    DVec3 closest;
+    if (!closestPointOfSimplexD(simplex, closest)) {
+      result.status = GjkResult::Status::Overlapping;
+      result.iterations = 0;
+      witnessPoints(result);
+      return true;
+    }
+  } else {
+    // A - B contains a.center() - b.center() (the origins); the origin lies in direction
+    // b.center() - a.center() from it.
+    Vec3 direction = frame.positionB;
+    if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
+    simplex.vertices[0] = frame.support(direction);
+    simplex.lambda[0] = 1.0;
+    simplex.count = 1;
+  }
+  return false;
 }
 
 double largestSquared(const Simplex& simplex) {
@@ -322,39 +368,11 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
   const PairFrame frame(a, b);
   GjkResult result;
   Simplex& simplex = result.simplex;
-  if (cache != nullptr && cache->count > 0 && !a.inflated && !b.inflated) {
-    // Warm start: last query's simplex placed by the current transforms.
-    simplex.count = std::min(cache->count, 4);
-    for (int i = 0; i < simplex.count; ++i) {
-      SimplexVertex& vertex = simplex.vertices[i];
-      vertex.a = frame.fromLocalA(cache->localA[i]);
-      vertex.b = frame.fromLocalB(cache->localB[i]);
-      vertex.w = vertex.a - vertex.b;
-    }
-    DVec3 closest;
-    if (!closestPointOfSimplexD(simplex, closest)) {
-      // The cached tetrahedron still encloses the origin: overlapping, and EPA can start from it.
-      result.status = GjkResult::Status::Overlapping;
-      result.iterations = 0;
-      DVec3 pointOnA(0.0), pointOnB(0.0);
-      for (int i = 0; i < simplex.count; ++i) {
-        pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
-        pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
-      }
-      result.pointOnA = Vec3(pointOnA);
-      result.pointOnB = Vec3(pointOnB);
-      saveCache(frame, simplex, cache);
-      finishInWorld(frame, result);
-      return result;
-    }
-  } else {
-    // A - B contains a.center() - b.center() (the origins); the origin lies in direction
-    // b.center() - a.center() from it.
-    Vec3 direction = frame.positionB;
-    if (glm::dot(direction, direction) < 1e-20f) direction = Vec3(1.0f, 0.0f, 0.0f);
-    simplex.vertices[0] = frame.support(direction);
-    simplex.lambda[0] = 1.0;
-    simplex.count = 1;
+  if (startSimplex(frame, cache, result)) {
+    // The cached tetrahedron still encloses the origin: overlapping, and EPA can start from it.
+    saveCache(frame, simplex, cache);
+    finishInWorld(frame, result);
+    return result;
   }
   DVec3 v = pointOf(simplex);
   double maxVertexSquared = largestSquared(simplex);
@@ -405,13 +423,7 @@ GjkResult gjkDistance(const ConvexSupport& a, const ConvexSupport& b, float boun
     maxVertexSquared = largestSquared(simplex);
   }
 
-  DVec3 pointOnA(0.0), pointOnB(0.0);
-  for (int i = 0; i < simplex.count; ++i) {
-    pointOnA += simplex.lambda[i] * DVec3(simplex.vertices[i].a);
-    pointOnB += simplex.lambda[i] * DVec3(simplex.vertices[i].b);
-  }
-  result.pointOnA = Vec3(pointOnA);
-  result.pointOnB = Vec3(pointOnB);
+  witnessPoints(result);
   saveCache(frame, simplex, cache);
   if (overlapping) {
     result.status = GjkResult::Status::Overlapping;

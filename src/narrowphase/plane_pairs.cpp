@@ -154,8 +154,9 @@ bool collidePlaneMesh(const Shape& shapeA, const Transform& transformA, const Sh
                       const Transform& transformB, float margin, Manifold& out) {
   // Every vertex of the mesh's triangles below the surface, reduced to four; ids are vertex indices.
   // Only the triangles' vertices: a mesh may hold vertices no triangle uses (OBJ files often do),
-  // and those are not on its surface (the narrow-phase fuzzer's mesh had one below a plane that
-  // its only triangle was far above: a phantom contact). Visited in index order, as before.
+  // and those are not on its surface (one below a plane whose triangles are all above it would be a
+  // phantom contact). Visited in index order, not triangle order: each vertex counts once, and the
+  // candidates come in the same order whatever order the triangles are listed in.
   const Plane plane = worldPlane(shapeA.plane(), transformA);
   const TriangleMesh& mesh = shapeB.mesh();
   std::vector<std::uint8_t> onSurface(mesh.vertices().size(), 0);

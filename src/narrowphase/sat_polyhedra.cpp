@@ -21,12 +21,12 @@
 #include <limits>
 #include <vector>
 
-#include "simd/simd.h"
 #include "geometry/clipping.h"
 #include "geometry/closest_points.h"
 #include "geometry/support_scan.h"
 #include "narrowphase/pair_functions.h"
 #include "narrowphase/triangle_features.h"
+#include "simd/simd.h"
 
 namespace collide::detail {
 
@@ -153,8 +153,8 @@ struct Scratch {
 };
 
 // The placed polyhedra of this thread, by hull and pose: within a step each body keeps its pose, so
-// one placed for a pair serves every other pair of that body (R4's hulls meet the terrain and up to
-// a dozen neighbours). Direct-mapped; an entry is the same computation's result, so a hit changes
+// one placed for a pair serves every other pair of that body (a hull meets the terrain and each of
+// its neighbours). Direct-mapped; an entry is the same computation's result, so a hit changes
 // nothing. Slot 0 of a query is placed first; slot 1 never takes slot 0's entry from under it.
 struct PlacementCache {
   static constexpr std::size_t kEntries = 256;
@@ -192,8 +192,9 @@ void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& l
   for (std::size_t f = 0; f < planes.size(); ++f) {
     const ConvexHull::Face& face = hull.faces()[f];
     // A box's faces are axis-aligned, so its non-uniform scale leaves their normals alone. The
-    // face's vertex by its index, not through its half-edge: with a large scene's hulls out of
-    // cache, that chain of dependent loads was most of the placement's time.
+    // face's vertex by its index, not through its half-edge, so that the placement reads only the
+    // face record: with a large scene's hulls out of cache, each link followed is a dependent load
+    // that misses.
     const Vec3 normal = rotation * face.plane.normal;
     planes[f] = {normal, glm::dot(normal, vertices[face.firstVertex])};
   }
@@ -374,6 +375,49 @@ Vec3 farthestVertex(const WorldPolyhedron& poly, const Vec3& direction) {
   return poly.vertices[farthestAlong(poly.vertexBlocks.data(), count, direction)];
 }
 
+// The edges of B whose faces facesBehind does not rule out: made once per query, so that the loop
+// over A's edges reads them without following B's topology.
+void keepEdges(const WorldPolyhedron& b, const std::vector<std::uint32_t>& behindB,
+               std::vector<WorldEdge>& kept) {
+  kept.clear();
+  for (const ConvexHull::Edge& edge : b.hull->edges()) {
+    if (behindB[edge.face1] & behindB[edge.face2]) continue;
+    // Written in place, field by field: a whole struct built on the stack and copied in would be
+    // read back before its parts are stored, a store-forwarding stall per edge.
+    WorldEdge& kept1 = kept.emplace_back();
+    kept1.origin = b.vertices[edge.origin];
+    kept1.direction = b.vertices[edge.end] - kept1.origin;
+    kept1.halfEdge = edge.halfEdge;
+    kept1.face1 = edge.face1;
+    kept1.face2 = edge.face2;
+  }
+}
+
+// The kept edges of B again as blocks: the normals n1 and n2 of each edge's two faces and its arc
+// normal cross(n2, n1) (the arc's ends lie on either side of a plane through the origin exactly
+// when their dot products with it differ in sign, Gregorius 2013), nine rows of `stride` floats
+// (padding lanes zero, which never pass the arc test). The Gauss-map test of an edge of A then runs
+// against a block of B's edges at a time, without a branch per pair (the pairs that pass are few,
+// and which ones is unpredictable); those that pass go on one by one, in the order of B's edges, so
+// the answer is the one the pair-by-pair loop gives. Returns the stride.
+std::size_t blockKeptEdges(const WorldPolyhedron& b, const std::vector<WorldEdge>& kept,
+                           std::vector<float>& blocks) {
+  const std::size_t keptCount = kept.size();
+  const std::size_t stride = blockedLanes(keptCount);
+  blocks.assign(9 * stride, 0.0f);
+  for (std::size_t k = 0; k < keptCount; ++k) {
+    const Vec3& n1 = b.planes[kept[k].face1].normal;
+    const Vec3& n2 = b.planes[kept[k].face2].normal;
+    const Vec3 arcNormal = glm::cross(n2, n1);
+    for (int axis = 0; axis < 3; ++axis) {
+      blocks[axis * stride + k] = n1[axis];
+      blocks[(3 + axis) * stride + k] = n2[axis];
+      blocks[(6 + axis) * stride + k] = arcNormal[axis];
+    }
+  }
+  return stride;
+}
+
 // The edge pairs whose Gauss-map arcs cross, and the largest separation along their cross
 // products. Arc (a, b) is the Gauss image of an edge of A between faces with normals a and b; (c, d)
 // that of an edge of B, negated (the Minkowski difference A - B has -B's normals). Two arcs cross
@@ -403,40 +447,10 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   facesBehind(a, pointsOfB, threshold, behindA);
   facesBehind(b, pointsOfA, threshold, behindB);
   std::vector<WorldEdge>& kept = scratch.edgesB;
-  kept.clear();
-  for (const ConvexHull::Edge& edge : b.hull->edges()) {
-    if (behindB[edge.face1] & behindB[edge.face2]) continue;
-    // Written in place, field by field: a whole struct built on the stack and copied in was read
-    // back before its parts had been stored, a store-forwarding stall per edge.
-    WorldEdge& kept1 = kept.emplace_back();
-    kept1.origin = b.vertices[edge.origin];
-    kept1.direction = b.vertices[edge.end] - kept1.origin;
-    kept1.halfEdge = edge.halfEdge;
-    kept1.face1 = edge.face1;
-    kept1.face2 = edge.face2;
-  }
+  keepEdges(b, behindB, kept);
   if (kept.empty()) return best;
-  // The kept edges of B again as blocks: the normals n1 and n2 of each edge's two faces and its arc
-  // normal cross(n2, n1) (the arc's ends lie on either side of a plane through the origin exactly
-  // when their dot products with it differ in sign, Gregorius 2013), nine rows of `stride` floats
-  // (padding lanes zero, which never pass the arc test). The Gauss-map
-  // test of an edge of A then runs against a block of B's edges at a time, without a branch per
-  // pair (the pairs that pass are few, and which ones is unpredictable); those that pass go on one
-  // by one, in the order of B's edges, so the answer is the one the pair-by-pair loop gave.
-  const std::size_t keptCount = kept.size();
-  const std::size_t stride = blockedLanes(keptCount);
   std::vector<float>& blocks = scratch.keptEdgeBlocks;
-  blocks.assign(9 * stride, 0.0f);
-  for (std::size_t k = 0; k < keptCount; ++k) {
-    const Vec3& n1 = b.planes[kept[k].face1].normal;
-    const Vec3& n2 = b.planes[kept[k].face2].normal;
-    const Vec3 arcNormal = glm::cross(n2, n1);
-    for (int axis = 0; axis < 3; ++axis) {
-      blocks[axis * stride + k] = n1[axis];
-      blocks[(3 + axis) * stride + k] = n2[axis];
-      blocks[(6 + axis) * stride + k] = arcNormal[axis];
-    }
-  }
+  const std::size_t stride = blockKeptEdges(b, kept, blocks);
   const FloatW zero = zeroW();
   for (const ConvexHull::Edge& edge : a.hull->edges()) {
     if (behindA[edge.face1] & behindA[edge.face2]) continue;
@@ -489,8 +503,8 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
 // The incident face for a reference face with outward `normal`: of the faces around `poly`'s
 // deepest vertex along -normal, the one most anti-parallel to the normal. The most anti-parallel face
 // of the whole polyhedron need not hold that vertex (a hull resting on a ridge whose two faces are
-// steep, next to a flatter face at one end of it), and clipping it would lose the deepest point: in
-// R4 a hull sank 5 cm into the terrain at the vertex its manifold left out. Every face around the
+// steep, next to a flatter face at one end of it), and clipping it would lose the deepest point: the
+// hull would sink into the terrain at the vertex its manifold left out. Every face around the
 // deepest vertex holds it, and among them the most anti-parallel one is the face a resting body
 // lies on (for a box: the face the global search finds).
 std::uint32_t incidentFace(const WorldPolyhedron& poly, const Vec3& normal) {
@@ -775,6 +789,127 @@ void polyhedronFaceContact(const TriangleFrame& t, const SatTriangle& triangle, 
   }
 }
 
+// ---- The stages of collideTrianglesPolyhedron, one triangle at a time ----
+
+// 1. The triangle's face, from the side the polyhedron is on (`side` +1: the polyhedron above the
+// front). Every triangle near the shape pays for it, and a triangle the polyhedron is clear of
+// stops here, before anything else is computed.
+float triangleFaceSeparation(const TriangleFrame& t, const WorldPolyhedron& poly, float& side) {
+  float lowest = 1e30f, highest = -1e30f;
+  for (const Vec3& p : poly.vertices) {
+    const float d = glm::dot(t.normal, p);
+    lowest = std::min(lowest, d);
+    highest = std::max(highest, d);
+  }
+  const float planeOffset = glm::dot(t.normal, t.v[0]);
+  const float frontSeparation = lowest - planeOffset, backSeparation = planeOffset - highest;
+  side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
+  return std::max(frontSeparation, backSeparation);
+}
+
+// 2. The polyhedron's faces against the triangle's vertices, all faces at once over the blocked
+// normals so that the loop vectorises; the first of the largest separations wins.
+FaceQuery deepestFaceOverTriangle(const WorldPolyhedron& poly, const TriangleFrame& t, Scratch& scratch) {
+  const std::size_t stride = poly.blockStride;
+  const float* __restrict xs = poly.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const float* __restrict ds = zs + stride;
+  std::vector<float>& lowestOnFace = scratch.lowest;
+  lowestOnFace.resize(stride);
+  float* __restrict low = lowestOnFace.data();
+  const Vec3 v0 = t.v[0], v1 = t.v[1], v2 = t.v[2];
+  for (std::size_t j = 0; j < stride; ++j) {
+    const float d0 = xs[j] * v0.x + ys[j] * v0.y + zs[j] * v0.z;
+    const float d1 = xs[j] * v1.x + ys[j] * v1.y + zs[j] * v1.z;
+    const float d2 = xs[j] * v2.x + ys[j] * v2.y + zs[j] * v2.z;
+    const float d01 = d1 < d0 ? d1 : d0;
+    low[j] = (d2 < d01 ? d2 : d01) - ds[j];
+  }
+  const std::uint32_t face = firstLargest(low, poly.planes.size(), stride);
+  return {low[face], face};
+}
+
+// The best pair of a triangle edge and a polyhedron edge.
+struct TriangleEdgeQuery {
+  float separation = -1e30f;
+  int edgeT = 0;            // triangle edge k, from vertex k
+  std::uint32_t edgeP = 0;  // the polyhedron's half-edge
+  Vec3 axis{0.0f};          // from the triangle to the polyhedron
+};
+
+// 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
+// great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
+// each face normal's dot product with the three edges is computed once (vectorised over the
+// blocked normals) rather than twice per pair. Edges of the polyhedron whose pairs cannot exceed
+// `edgeMatters` are skipped (facesBehind: a point of the triangle lies behind both of their faces).
+TriangleEdgeQuery queryTriangleEdges(const TriangleFrame& t, const WorldPolyhedron& poly, float margin,
+                                     float edgeMatters, Scratch& scratch) {
+  const std::size_t stride = poly.blockStride;
+  const float* __restrict xs = poly.normalBlocks.data();
+  const float* __restrict ys = xs + stride;
+  const float* __restrict zs = ys + stride;
+  const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
+  std::vector<std::uint32_t>& behind = scratch.behind[0];
+  facesBehind(poly, trianglePoints, edgeMatters, behind);
+  std::vector<float>& along = scratch.arcSides;
+  along.resize(3 * stride);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = t.edge[k];
+    float* __restrict out = along.data() + k * stride;
+    for (std::size_t j = 0; j < stride; ++j) out[j] = xs[j] * e.x + ys[j] * e.y + zs[j] * e.z;
+  }
+  TriangleEdgeQuery best;
+  for (const ConvexHull::Edge& edge : poly.hull->edges()) {
+    const std::uint32_t face1 = edge.face1, face2 = edge.face2;
+    if (behind[face1] & behind[face2]) continue;
+    const std::uint32_t h = edge.halfEdge;
+    const Vec3 origin = poly.vertices[edge.origin];
+    const Vec3 direction = poly.vertices[edge.end] - origin;
+    for (int k = 0; k < 3; ++k) {
+      // da = (-n1) · e_k, db = (-n2) · e_k.
+      const float da = -along[k * stride + face1], db = -along[k * stride + face2];
+      if (!(da * db < 0.0f)) continue;
+      const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
+      const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
+      if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
+      Vec3 axis = glm::cross(t.edge[k], direction);
+      const float length = glm::length(axis);
+      if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
+      axis /= length;
+      if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
+      const float separation = glm::dot(axis, origin - t.v[k]);
+      if (separation > best.separation) {
+        best.separation = separation;
+        best.edgeT = k;
+        best.edgeP = h;
+        best.axis = axis;
+      }
+    }
+    if (best.separation > margin) break;  // apart: the rest cannot change that
+  }
+  return best;
+}
+
+// 4. Edge contact: the closest points of the two edges. False when they lie beyond the margin, and
+// a face contact answers instead.
+bool triangleEdgeContact(const TriangleFrame& t, const SatTriangle& triangle, const WorldPolyhedron& poly,
+                         const TriangleEdgeQuery& edge, float margin, std::vector<NormalContact>& contacts) {
+  const auto edges = poly.hull->halfEdges();
+  const SegmentPair closest =
+      closestPointsSegmentSegment(t.v[edge.edgeT], t.v[(edge.edgeT + 1) % 3],
+                                  poly.vertices[edges[edge.edgeP].origin], poly.edgeEnd(edge.edgeP));
+  NormalContact contact;
+  contact.normal = edge.axis;
+  contact.point.pointOnA = closest.pointOnFirst;
+  contact.point.pointOnB = closest.pointOnSecond;
+  contact.point.depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edge.axis);
+  contact.point.featureId = featurePair(triangle.edgeFeature[edge.edgeT], poly.edgeFeature(edge.edgeP));
+  if (!(contact.point.depth >= -margin)) return false;
+  contacts.push_back(contact);
+  return true;
+}
+
 }  // namespace
 
 void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& shape,
@@ -782,41 +917,14 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
                                 std::vector<NormalContact>& contacts) {
   thread_local Scratch scratch;
   const WorldPolyhedron poly = place(shape, transform, 0, scratch);
-  const auto edges = poly.hull->halfEdges();
-  const std::size_t faceCount = poly.planes.size();
-  const std::size_t stride = poly.blockStride;
-  const float* __restrict xs = poly.normalBlocks.data();
-  const float* __restrict ys = xs + stride;
-  const float* __restrict zs = ys + stride;
-  const float* __restrict ds = zs + stride;
   for (const SatTriangle& triangle : triangles) {
     TriangleFrame t = planeFrameOf(triangle.vertices);
-    // 1. The triangle's face, from the side the polyhedron is on.
-    float lowest = 1e30f, highest = -1e30f;
-    for (const Vec3& p : poly.vertices) {
-      const float d = glm::dot(t.normal, p);
-      lowest = std::min(lowest, d);
-      highest = std::max(highest, d);
-    }
-    const float planeOffset = glm::dot(t.normal, t.v[0]);
-    const float frontSeparation = lowest - planeOffset, backSeparation = planeOffset - highest;
-    const float side = frontSeparation >= backSeparation ? 1.0f : -1.0f;
-    const float triangleSeparation = std::max(frontSeparation, backSeparation);
+    float side = 1.0f;
+    const float triangleSeparation = triangleFaceSeparation(t, poly, side);
     if (triangleSeparation > margin) continue;
-    // 2. The polyhedron's faces against the triangle's vertices (all faces at once, vectorised).
-    std::vector<float>& lowestOnFace = scratch.lowest;
-    lowestOnFace.resize(stride);
-    float* __restrict low = lowestOnFace.data();
-    const Vec3 v0 = t.v[0], v1 = t.v[1], v2 = t.v[2];
-    for (std::size_t j = 0; j < stride; ++j) {
-      const float d0 = xs[j] * v0.x + ys[j] * v0.y + zs[j] * v0.z;
-      const float d1 = xs[j] * v1.x + ys[j] * v1.y + zs[j] * v1.z;
-      const float d2 = xs[j] * v2.x + ys[j] * v2.y + zs[j] * v2.z;
-      const float d01 = d1 < d0 ? d1 : d0;
-      low[j] = (d2 < d01 ? d2 : d01) - ds[j];
-    }
-    const std::uint32_t face = firstLargest(low, faceCount, stride);
-    const float faceSeparation = low[face];
+    const FaceQuery deepest = deepestFaceOverTriangle(poly, t, scratch);
+    const std::uint32_t face = deepest.face;
+    const float faceSeparation = deepest.separation;
     if (faceSeparation > margin) continue;
     completeFrame(t);
     // The triangle's face is the reference unless the polyhedron's face is clearly better, and a
@@ -826,73 +934,17 @@ void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Sh
     const float absolute = 1e-3f * std::min(t.size, poly.size);
     const bool polyhedronFace = faceSeparation > kRelative * triangleSeparation + absolute;
     const float bestFace = polyhedronFace ? faceSeparation : triangleSeparation;
-    // 3. Edge pairs crossing on the Gauss map: the polyhedron's negated arc (-n1, -n2) crosses the
-    // great circle perpendicular to triangle edge k where n1 · e_k and n2 · e_k differ in sign, so
-    // each face normal's dot product with the three edges is computed once (vectorised over the
-    // blocked normals) rather than twice per pair.
-    // Edges of the polyhedron whose pairs cannot separate the pair or beat the face are skipped
-    // (facesBehind: a point of the triangle lies behind both of their faces).
+    // Edge pairs matter only if they separate the pair (beyond the margin) or beat the face.
     const float edgeMatters =
         std::min(std::min(margin, kRelative * bestFace + absolute), 0.0f) - 1e-5f * (t.size + poly.size);
-    const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
-    std::vector<std::uint32_t>& behind = scratch.behind[0];
-    facesBehind(poly, trianglePoints, edgeMatters, behind);
-    std::vector<float>& along = scratch.arcSides;
-    along.resize(3 * stride);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 e = t.edge[k];
-      float* __restrict out = along.data() + k * stride;
-      for (std::size_t j = 0; j < stride; ++j) out[j] = xs[j] * e.x + ys[j] * e.y + zs[j] * e.z;
-    }
-    float edgeSeparation = -1e30f;
-    int edgeT = 0;
-    std::uint32_t edgeP = 0;
-    Vec3 edgeAxis(0.0f);
-    for (const ConvexHull::Edge& edge : poly.hull->edges()) {
-      const std::uint32_t face1 = edge.face1, face2 = edge.face2;
-      if (behind[face1] & behind[face2]) continue;
-      const std::uint32_t h = edge.halfEdge;
-      const Vec3 origin = poly.vertices[edge.origin];
-      const Vec3 direction = poly.vertices[edge.end] - origin;
-      for (int k = 0; k < 3; ++k) {
-        // da = (-n1) · e_k, db = (-n2) · e_k.
-        const float da = -along[k * stride + face1], db = -along[k * stride + face2];
-        if (!(da * db < 0.0f)) continue;
-        const Vec3 a = -poly.planes[face1].normal, b = -poly.planes[face2].normal;
-        const Vec3 crossing = (db > 0.0f ? 1.0f : -1.0f) * (db * a - da * b);
-        if (glm::dot(crossing, t.outward[k]) <= 0.0f) continue;
-        Vec3 axis = glm::cross(t.edge[k], direction);
-        const float length = glm::length(axis);
-        if (length < 1e-5f * glm::length(t.edge[k]) * glm::length(direction)) continue;
-        axis /= length;
-        if (glm::dot(axis, crossing) < 0.0f) axis = -axis;
-        const float separation = glm::dot(axis, origin - t.v[k]);
-        if (separation > edgeSeparation) {
-          edgeSeparation = separation;
-          edgeT = k;
-          edgeP = h;
-          edgeAxis = axis;
-        }
-      }
-      if (edgeSeparation > margin) break;  // apart: the rest cannot change that
-    }
-    if (edgeSeparation > margin) continue;
+    const TriangleEdgeQuery edge = queryTriangleEdges(t, poly, margin, edgeMatters, scratch);
+    if (edge.separation > margin) continue;
 
     const std::size_t before = contacts.size();
     Vec3 normal = side * t.normal;
-    if (edgeSeparation > kRelative * bestFace + absolute) {
-      const SegmentPair closest = closestPointsSegmentSegment(
-          t.v[edgeT], t.v[(edgeT + 1) % 3], poly.vertices[edges[edgeP].origin], poly.edgeEnd(edgeP));
-      NormalContact contact;
-      contact.normal = edgeAxis;
-      contact.point.pointOnA = closest.pointOnFirst;
-      contact.point.pointOnB = closest.pointOnSecond;
-      contact.point.depth = glm::dot(closest.pointOnFirst - closest.pointOnSecond, edgeAxis);
-      contact.point.featureId = featurePair(triangle.edgeFeature[edgeT], poly.edgeFeature(edgeP));
-      if (contact.point.depth >= -margin) {
-        contacts.push_back(contact);
-        normal = edgeAxis;
-      }
+    if (edge.separation > kRelative * bestFace + absolute &&
+        triangleEdgeContact(t, triangle, poly, edge, margin, contacts)) {
+      normal = edge.axis;
     }
     if (contacts.size() == before && polyhedronFace) {
       polyhedronFaceContact(t, triangle, poly, face, margin, contacts);

@@ -148,6 +148,71 @@ DVec3 newellNormal(const std::vector<DVec3>& polygon) {
   return normal;
 }
 
+// The half-edges by their directed endpoints: a half-edge's twin is the one from its end to its origin.
+using EdgeMap = std::unordered_map<std::uint64_t, std::uint32_t>;
+std::uint64_t edgeKey(std::uint32_t from, std::uint32_t to) { return (std::uint64_t(from) << 32) | to; }
+
+// Qhull's facets as faces and half-edge loops, each counter-clockwise seen from outside with its
+// plane; only the points Qhull made vertices are kept, numbered in order of first use. Every
+// half-edge goes into `edgeByEndpoints`, where its twin finds it. The one stage that reads Qhull's
+// facets: the rest of the build works on the half-edges alone.
+void addFaces(std::span<const Vec3> points, const std::vector<RawFace>& rawFaces, std::vector<Vec3>& vertices,
+              std::vector<ConvexHull::Face>& faces, std::vector<ConvexHull::HalfEdge>& halfEdges,
+              EdgeMap& edgeByEndpoints) {
+  std::unordered_map<std::uint32_t, std::uint32_t> vertexIndex;
+  auto remap = [&](std::uint32_t input) {
+    const auto [it, inserted] = vertexIndex.try_emplace(input, static_cast<std::uint32_t>(vertices.size()));
+    if (inserted) vertices.push_back(points[input]);
+    return it->second;
+  };
+  for (const RawFace& raw : rawFaces) {
+    std::vector<std::uint32_t> loop;
+    std::vector<DVec3> polygon;
+    for (std::uint32_t input : raw.inputIndices) {
+      loop.push_back(remap(input));
+      polygon.emplace_back(points[input]);
+    }
+    DVec3 normal = newellNormal(polygon);
+    // Qhull's facet normal is outward; make the loop counter-clockwise seen from outside.
+    if (glm::dot(normal, raw.qhullNormal) < 0.0) {
+      std::reverse(loop.begin(), loop.end());
+      std::reverse(polygon.begin(), polygon.end());
+      normal = -normal;
+    }
+    const double length = glm::length(normal);
+    if (!(length > 0.0)) throw Error("convex_hull: Qhull returned a face of zero area");
+    normal /= length;
+    double offset = 0.0;
+    for (const DVec3& p : polygon) offset += glm::dot(normal, p);
+    offset /= double(polygon.size());
+
+    const auto faceIndex = static_cast<std::uint32_t>(faces.size());
+    const auto first = static_cast<std::uint32_t>(halfEdges.size());
+    const auto count = static_cast<std::uint32_t>(loop.size());
+    faces.push_back({Plane{Vec3(normal), float(offset)}, first, count, loop[0]});
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t from = loop[i], to = loop[(i + 1) % count];
+      if (!edgeByEndpoints.try_emplace(edgeKey(from, to), first + i).second) {
+        throw Error("convex_hull: Qhull returned an edge walked twice in the same direction");
+      }
+      halfEdges.push_back({from, 0, first + (i + 1) % count, faceIndex});
+    }
+  }
+}
+
+// The table behind ConvexHull::facesAround. Each half-edge leaves one vertex for one face, and the
+// half-edges go face by face, so filling in their order keeps each vertex's faces in increasing
+// order.
+void fillVertexFaces(std::size_t vertexCount, const std::vector<ConvexHull::HalfEdge>& halfEdges,
+                     std::vector<std::uint32_t>& table) {
+  table.assign(vertexCount + 1 + halfEdges.size(), 0);
+  table[0] = static_cast<std::uint32_t>(vertexCount + 1);
+  for (const ConvexHull::HalfEdge& edge : halfEdges) ++table[edge.origin + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) table[v + 1] += table[v];
+  std::vector<std::uint32_t> filled(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(vertexCount));
+  for (const ConvexHull::HalfEdge& edge : halfEdges) table[filled[edge.origin]++] = edge.face;
+}
+
 }  // namespace
 
 double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) {
@@ -211,54 +276,12 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
   const std::vector<RawFace> rawFaces = runQhull(points, size);
 
   ConvexHull hull;
-  // Keep only the points Qhull made vertices, numbered in order of first use.
-  std::unordered_map<std::uint32_t, std::uint32_t> vertexIndex;
-  auto remap = [&](std::uint32_t input) {
-    const auto [it, inserted] =
-        vertexIndex.try_emplace(input, static_cast<std::uint32_t>(hull.vertices_.size()));
-    if (inserted) hull.vertices_.push_back(points[input]);
-    return it->second;
-  };
-
-  std::unordered_map<std::uint64_t, std::uint32_t> edgeByEndpoints;
-  auto key = [](std::uint32_t from, std::uint32_t to) { return (std::uint64_t(from) << 32) | to; };
-  for (const RawFace& raw : rawFaces) {
-    std::vector<std::uint32_t> loop;
-    std::vector<DVec3> polygon;
-    for (std::uint32_t input : raw.inputIndices) {
-      loop.push_back(remap(input));
-      polygon.emplace_back(points[input]);
-    }
-    DVec3 normal = newellNormal(polygon);
-    // Qhull's facet normal is outward; make the loop counter-clockwise seen from outside.
-    if (glm::dot(normal, raw.qhullNormal) < 0.0) {
-      std::reverse(loop.begin(), loop.end());
-      std::reverse(polygon.begin(), polygon.end());
-      normal = -normal;
-    }
-    const double length = glm::length(normal);
-    if (!(length > 0.0)) throw Error("convex_hull: Qhull returned a face of zero area");
-    normal /= length;
-    double offset = 0.0;
-    for (const DVec3& p : polygon) offset += glm::dot(normal, p);
-    offset /= double(polygon.size());
-
-    const auto faceIndex = static_cast<std::uint32_t>(hull.faces_.size());
-    const auto first = static_cast<std::uint32_t>(hull.halfEdges_.size());
-    const auto count = static_cast<std::uint32_t>(loop.size());
-    hull.faces_.push_back({Plane{Vec3(normal), float(offset)}, first, count, loop[0]});
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const std::uint32_t from = loop[i], to = loop[(i + 1) % count];
-      if (!edgeByEndpoints.try_emplace(key(from, to), first + i).second) {
-        throw Error("convex_hull: Qhull returned an edge walked twice in the same direction");
-      }
-      hull.halfEdges_.push_back({from, 0, first + (i + 1) % count, faceIndex});
-    }
-  }
+  EdgeMap edgeByEndpoints;
+  addFaces(points, rawFaces, hull.vertices_, hull.faces_, hull.halfEdges_, edgeByEndpoints);
   for (std::uint32_t h = 0; h < hull.halfEdges_.size(); ++h) {
     ConvexHull::HalfEdge& edge = hull.halfEdges_[h];
     const std::uint32_t to = hull.halfEdges_[edge.next].origin;
-    const auto twin = edgeByEndpoints.find(key(to, edge.origin));
+    const auto twin = edgeByEndpoints.find(edgeKey(to, edge.origin));
     if (twin == edgeByEndpoints.end()) throw Error("convex_hull: Qhull returned an edge with only one face");
     edge.twin = twin->second;
   }
@@ -269,16 +292,7 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
         {h, edge.origin, hull.halfEdges_[edge.next].origin, edge.face, hull.halfEdges_[edge.twin].face});
   }
 
-  // Each half-edge leaves one vertex for one face, and the half-edges go face by face, so filling
-  // in their order keeps each vertex's faces in increasing order.
-  const std::size_t vertexCount = hull.vertices_.size();
-  std::vector<std::uint32_t>& table = hull.vertexFaces_;
-  table.assign(vertexCount + 1 + hull.halfEdges_.size(), 0);
-  table[0] = static_cast<std::uint32_t>(vertexCount + 1);
-  for (const ConvexHull::HalfEdge& edge : hull.halfEdges_) ++table[edge.origin + 1];
-  for (std::size_t v = 0; v < vertexCount; ++v) table[v + 1] += table[v];
-  std::vector<std::uint32_t> filled(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(vertexCount));
-  for (const ConvexHull::HalfEdge& edge : hull.halfEdges_) table[filled[edge.origin]++] = edge.face;
+  fillVertexFaces(hull.vertices_.size(), hull.halfEdges_, hull.vertexFaces_);
   hull.blockedVertices_ = detail::blockCoordinates(hull.vertices_);
   for (const Vec3& v : hull.vertices_) hull.bounds_.grow(v);
   // Integrate about the box centre: the polyhedron formulas lose precision far from the origin.

@@ -1,8 +1,8 @@
 // Triangle mesh proxy: a surface with its own AABB tree; closed, consistently oriented meshes also
 // have an inside (lecture, slide 51: "triangle mesh").
 #include "geometry/triangle.h"
-#include "shapes/triangle_bvh.h"
 #include "shapes/shape_functions.h"
+#include "shapes/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,6 +66,24 @@ std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t i) {
     i = parent[i];
   }
   return i;
+}
+
+// A vertex is inside a flat patch when every edge at it is flat (then its fan is closed). A stage
+// of its own: it reads only the finished edge kinds.
+void flagFlatVertices(std::size_t vertexCount, std::span<const MeshTriangle> triangles,
+                      const std::vector<TriangleMesh::EdgeKind>& edgeKinds, std::vector<std::uint8_t>& flat) {
+  flat.assign(vertexCount, 0);
+  for (const MeshTriangle& t : triangles) {
+    for (const std::uint32_t v : t.v) flat[v] = 1;
+  }
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (edgeKinds[3 * t + k] != TriangleMesh::EdgeKind::Flat) {
+        flat[triangles[t].v[k]] = 0;
+        flat[triangles[t].v[(k + 1) % 3]] = 0;
+      }
+    }
+  }
 }
 
 Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles) {
@@ -135,19 +153,7 @@ Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTri
     begin = end;
   }
   for (std::uint32_t t = 0; t < count; ++t) result.patches[t] = findRoot(result.patches, t);
-  // A vertex is inside a flat patch when every edge at it is flat (then its fan is closed).
-  result.flatVertices.assign(vertices.size(), 0);
-  for (const MeshTriangle& t : triangles) {
-    for (const std::uint32_t v : t.v) result.flatVertices[v] = 1;
-  }
-  for (std::size_t t = 0; t < count; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      if (result.edgeKinds[3 * t + k] != Kind::Flat) {
-        result.flatVertices[triangles[t].v[k]] = 0;
-        result.flatVertices[triangles[t].v[(k + 1) % 3]] = 0;
-      }
-    }
-  }
+  flagFlatVertices(vertices.size(), triangles, result.edgeKinds, result.flatVertices);
   return result;
 }
 

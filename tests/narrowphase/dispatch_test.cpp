@@ -30,6 +30,7 @@ TEST(PairTable, EveryCellIsFilledAndOnlyPlanePlaneIsUnsupported) {
   EXPECT_EQ(pairInfo(ShapeType::Sphere, ShapeType::Sphere).algorithm, PairAlgorithm::Analytic);
   EXPECT_EQ(pairInfo(ShapeType::Box, ShapeType::Plane).algorithm, PairAlgorithm::Analytic);
   EXPECT_EQ(pairInfo(ShapeType::Ellipsoid, ShapeType::Cylinder).algorithm, PairAlgorithm::GjkEpa);
+  EXPECT_EQ(pairInfo(ShapeType::Box, ShapeType::Capsule).algorithm, PairAlgorithm::GjkEpaClip);
   EXPECT_EQ(pairInfo(ShapeType::Mesh, ShapeType::Box).algorithm, PairAlgorithm::Mesh);
   EXPECT_EQ(pairInfo(ShapeType::Plane, ShapeType::Compound).algorithm, PairAlgorithm::Compound);
   const std::string table = describePairTable();
