@@ -53,11 +53,12 @@ struct BodyDef {
   // radius times scale) but that has no inertia, no angular velocity and a rotation that never
   // changes. Cheap links for chains, ropes and cloth-like meshes of distance constraints.
   bool particle = false;
-  // Continuous collision (docs/ccd.md): when WorldDef::ccd is on and the body moves more than half
-  // its smallest extent in a step, it is stopped at its first time of impact against any other
-  // body (static, kinematic or dynamic) instead of passing through thin or turning obstacles that
-  // the speculative contacts miss. Costs a broad-phase query and a time of impact per candidate
-  // for each such fast body; nothing for a slow one. Ignored for sensors.
+  // A bullet (docs/ccd.md): with WorldDef::ccd on, every dynamic body that moves more than half its
+  // smallest extent in a step is stopped at its first time of impact with static geometry; a body
+  // flagged ccd is stopped at its first impact with anything (static, kinematic or dynamic), so it
+  // does not pass through thin or turning moving bodies that the speculative contacts miss. Costs a
+  // broad-phase query and a time of impact per candidate for each such fast body; nothing for a slow
+  // one. Ignored for sensors.
   bool ccd = false;
   std::uint64_t userData = 0;
   std::string name;

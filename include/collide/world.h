@@ -74,8 +74,9 @@ struct WorldDef {
   PenetrationResponse penetrationResponse = PenetrationResponse::Soft;
   // Resting islands sleep (docs/architecture.md, "Islands and sleeping").
   bool sleeping = false;
-  // Continuous collision: bodies with BodyDef::ccd get a time-of-impact pass after the solve
-  // (docs/ccd.md). Off, every body relies on speculative contacts alone.
+  // Continuous collision after the solve (docs/ccd.md): fast dynamic bodies against static geometry,
+  // and bodies with BodyDef::ccd against everything. Off, every body relies on speculative contacts
+  // alone.
   bool ccd = true;
   // ContactEvent::Type::Persist every step for every contact that goes on touching (lecture: the
   // prolonged contact). Off by default: a resting pile of 4,096 boxes would report 10,000 a step.

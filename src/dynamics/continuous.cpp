@@ -1,6 +1,8 @@
 // The continuous pass (see continuous.h and docs/ccd.md).
 #include "dynamics/continuous.h"
 
+#include "bodies/body_bounds.h"
+
 #include <collide/narrowphase.h>
 
 #include <algorithm>
@@ -15,8 +17,12 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
   const auto count = static_cast<std::uint32_t>(bodies.records.size());
   for (std::uint32_t i = 0; i < count; ++i) {
     const BodyRecord& record = bodies.records[i];
-    if (!record.ccd || !record.alive || !record.awake || record.type != BodyType::Dynamic) continue;
+    if (!record.alive || !record.awake || record.type != BodyType::Dynamic || record.sensor) continue;
     BodyState& state = bodies.states[i];
+    // Most bodies are slow: a bound on their motion, without the sweep's angle, sets them aside.
+    if (pointMotionBound(record, state.centerOfMass0, state.rotation0, state.centerOfMass, state.rotation) <
+        0.5f * record.minExtent)
+      continue;
     const Sweep sweep = bodySweep(record, state);
     const float angle = sweep.angle();
     // Box2D v3's test for a fast body: one that moved less than half its smallest extent cannot
@@ -35,6 +41,8 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
       if (j == i) return true;
       const BodyRecord& other = bodies.records[j];
       if (other.sensor || (other.layer & record.mask) == 0 || (record.layer & other.mask) == 0) return true;
+      // Every body against static geometry; a body flagged ccd (a bullet) against moving ones too.
+      if (!record.ccd && other.type != BodyType::Static) return true;
       ++stats.candidates;
       const Sweep otherSweep = bodySweep(other, bodies.states[j]);
       ToiResult toi = timeOfImpact(record.shape, sweep, other.shape, otherSweep, settings);

@@ -1,6 +1,7 @@
-// The continuous pass (docs/ccd.md): after the solve, each fast body flagged for continuous
-// collision is stopped at its first time of impact with anything its swept box reaches, as Box2D
-// v3's continuous stage does. The time of impact itself is the narrow phase's timeOfImpact.
+// The continuous pass (docs/ccd.md): after the solve, each fast dynamic body is stopped at its first
+// time of impact with the static geometry its swept box reaches, and a body flagged ccd (a bullet)
+// also with moving bodies, as Box2D v3's and Box3D's continuous stage does: nothing tunnels through
+// static geometry by default. The time of impact itself is the narrow phase's timeOfImpact.
 #pragma once
 
 #include <collide/broadphase.h>
@@ -10,14 +11,14 @@
 namespace collide::detail {
 
 struct ContinuousStats {
-  std::uint32_t fastBodies = 0;  // ccd bodies that moved more than half their smallest extent
+  std::uint32_t fastBodies = 0;  // bodies that moved more than half their smallest extent
   std::uint32_t candidates = 0;  // time-of-impact queries run
   std::uint32_t stopped = 0;     // bodies moved back to a time of impact
 };
 
-// Moves each awake, dynamic, ccd-flagged, fast body back along its sweep (centerOfMass0/rotation0
+// Moves each awake, dynamic, fast body (not a sensor) back along its sweep (centerOfMass0/rotation0
 // to the current pose) to the earliest time of impact with another body whose proxy its swept box
-// touches, leaving linearSlop between them. Velocities are kept: the next step's speculative
+// touches — static ones only, unless the body is flagged ccd — leaving linearSlop between them. Velocities are kept: the next step's speculative
 // contact, now touching, takes the impact (so no energy is added and no contact skipped). Bodies
 // are visited in index order; a partner that was already moved back sweeps to its new pose.
 ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, float linearSlop);

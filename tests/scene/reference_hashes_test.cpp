@@ -27,18 +27,19 @@ struct ReferenceRun {
 };
 
 constexpr ReferenceRun kReferenceRuns[] = {
-    {"billiards", 120, 0x4c14d59360bd5eb5},
+    {"billiards", 120, 0xedec91a59c4d6032},
     {"pile", 30, 0x07aec86cc5b6ae08},
     {"rain", 40, 0xdface9156540e385},
     {"rain-jittered", 40, 0x3d58fdf3cd65e3e2},
     {"pyramid", 60, 0x8c49eb4a433140c8},
-    {"terrain", 60, 0x5e764424774abf7e},
-    {"proxies", 120, 0x8cc26232fe3dfbaa},
-    {"revert", 120, 0x88cf9a8fd20b60b9},
-    {"revert-project", 120, 0xc5e079c8f0259847}, {"revert-soft", 120, 0x5d63bd24f098944e},
+    {"terrain", 60, 0x06d69d0f520c7680},
+    {"proxies", 120, 0xf0be6d1859b3909f},
+    {"revert", 120, 0xd2b0688bc49d4bd1},
+    {"revert-project", 120, 0x8e24083d51d719f5},
+    {"revert-soft", 120, 0x4b4e324b31bd5e65},
     {"breakable", 120, 0x6e3f15fe89955261},
-    {"chain", 120, 0x08134ba65e349a46},
-    {"tunneling", 120, 0xf110d638d2854f5d},
+    {"chain", 120, 0xd5a03e7e173f7dd5},
+    {"tunneling", 120, 0x935a5f9071b1f803},
 };
 
 std::string hex(std::uint64_t value) {

@@ -267,25 +267,39 @@ TEST(WorldCcd, HitWithoutBouncinessAddsNoKineticEnergy) {
 TEST(WorldCcd, FlagsDefaultAndWorldSwitch) {
   EXPECT_FALSE(BodyDef{}.ccd);
   EXPECT_TRUE(WorldDef{}.ccd);
-  // The spinning plank is the case only the time of impact catches: with the body flag off, or the
-  // world switch off, it is not applied.
-  for (int variant = 0; variant < 3; ++variant) {
+  // The spinning plank is the case only the time of impact catches. With the world switch on, every
+  // body is stopped by static geometry; only a body flagged ccd is stopped by a moving (here
+  // kinematic, held still) one. With the world switch off, nothing is.
+  struct Variant {
+    bool worldCcd;
+    bool bodyCcd;
+    BodyType obstacle;
+    bool stopped;
+  };
+  const Variant variants[] = {
+      {true, true, BodyType::Static, true},    {false, true, BodyType::Static, false},
+      {true, false, BodyType::Static, true},   {true, false, BodyType::Kinematic, false},
+      {true, true, BodyType::Kinematic, true}, {false, false, BodyType::Static, false},
+  };
+  for (const Variant& v : variants) {
+    SCOPED_TRACE(::testing::Message() << "world " << v.worldCcd << ", body " << v.bodyCcd << ", obstacle "
+                                      << toString(v.obstacle));
     WorldDef worldDef = zeroGravityWorld();
-    worldDef.ccd = variant != 1;
+    worldDef.ccd = v.worldCcd;
     World world(worldDef);
     BodyDef ball;
-    ball.type = BodyType::Static;
+    ball.type = v.obstacle;
     ball.shape = Shape(Sphere{0.1f});
     ball.position = 0.8f * Vec3(std::cos(kPi / 3.0f), std::sin(kPi / 3.0f), 0.0f);
     world.createBody(ball);
     BodyDef plank = boxBody(Vec3(0.0f), Vec3(1.0f, 0.01f, 0.1f), 2.0f);
     plank.angularVelocity = Vec3(0, 0, 150.0f);
-    plank.ccd = variant != 2;
+    plank.ccd = v.bodyCcd;
     const BodyId id = world.createBody(plank);
     world.step(kDt);
     const Quat q = world.transform(id).rotation;
     const bool stopped = 2.0f * std::atan2(q.z, q.w) < kPi / 3.0f;
-    EXPECT_EQ(stopped, variant == 0) << "variant " << variant;
+    EXPECT_EQ(stopped, v.stopped);
   }
 }
 
