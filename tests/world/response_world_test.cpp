@@ -45,6 +45,74 @@ TEST(WorldResponse, InterpolatedInelasticHeadOnLeavesWithTheAverage) {
   expectVecNear(vb, Vec3(1.0f, 0.0f, 0.0f), 0.03f);
 }
 
+// Two equal bodies of radius 0.5 meeting off-centre: A moves along +x at 3 m/s, B rests 0.6 m higher
+// (the line of centres 37 degrees off the motion). Returns both after the impact.
+struct OffCentre {
+  Vec3 va, vb, wa, wb;
+  Vec3 offset;  // pb - pa after the step of the impact
+  Vec3 normal;  // the impact's normal, from the begin event
+};
+OffCentre offCentre(float bounciness, bool particles) {
+  World world(interpolatedWorld());
+  BodyDef a = test::sphereBody(Vec3(-1.5f, 0.0f, 0.0f), 0.5f, 1.0f, Vec3(3.0f, 0.0f, 0.0f));
+  BodyDef b = test::sphereBody(Vec3(0.0f, 0.6f, 0.0f), 0.5f, 1.0f);
+  a.bounciness = b.bounciness = bounciness;
+  a.particle = b.particle = particles;
+  const BodyId ia = world.createBody(a);
+  const BodyId ib = world.createBody(b);
+  int begins = 0;
+  OffCentre out{};
+  for (int i = 0; i < 40; ++i) {
+    world.step(kDt);
+    for (const ContactEvent& e : world.contactEvents()) {
+      if (e.type != ContactEvent::Type::Begin) continue;
+      ++begins;
+      out.normal = e.normal;
+      out.offset = world.centerOfMass(ib) - world.centerOfMass(ia);
+    }
+  }
+  EXPECT_EQ(begins, 1);
+  out.va = world.linearVelocity(ia);
+  out.vb = world.linearVelocity(ib);
+  out.wa = world.angularVelocity(ia);
+  out.wb = world.angularVelocity(ib);
+  return out;
+}
+
+// Slide 32 off the line of centres: fully inelastic particles leave with the average of their
+// velocities, the tangential part included (not only the normal component).
+TEST(WorldResponse, InterpolatedInelasticParticlesOffCentreLeaveWithTheAverage) {
+  const OffCentre out = offCentre(0.0f, true);
+  expectVecNear(out.va, Vec3(1.5f, 0.0f, 0.0f), 0.03f);
+  expectVecNear(out.vb, Vec3(1.5f, 0.0f, 0.0f), 0.03f);
+}
+
+// Rigid spheres (slide 34): glued, the two move as one rigid body: the same angular velocity, their
+// centres' velocities those of one rigid motion, and linear and angular momentum kept.
+TEST(WorldResponse, InterpolatedInelasticRigidSpheresOffCentreMoveAsOneBody) {
+  const OffCentre out = offCentre(0.0f, false);
+  expectVecNear(out.wa, out.wb, 0.03f);
+  // The centres' velocities differ by w x (their offset): one rigid motion.
+  expectVecNear(out.vb - out.va, glm::cross(out.wa, out.offset), 0.05f);
+  expectVecNear(out.va + out.vb, Vec3(3.0f, 0.0f, 0.0f), 1e-3f);  // momentum, unit masses
+  EXPECT_GT(glm::length(out.wa), 0.1f);                           // off-centre: the glued pair turns
+}
+
+// Mixed (slide 20): bounciness b mixes the elastic and the inelastic answers, b of the first.
+TEST(WorldResponse, InterpolatedHalfBouncyParticlesOffCentreMixBothEnds) {
+  const OffCentre elastic = offCentre(1.0f, true);
+  const OffCentre inelastic = offCentre(0.0f, true);
+  const OffCentre half = offCentre(0.5f, true);
+  expectVecNear(half.va, 0.5f * (elastic.va + inelastic.va), 0.05f);
+  expectVecNear(half.vb, 0.5f * (elastic.vb + inelastic.vb), 0.05f);
+  // The elastic end swaps the normal components and keeps the tangential ones (equal masses): B
+  // leaves along the impact normal with A's normal speed, A keeps its tangential velocity.
+  const Vec3 n = elastic.normal;
+  EXPECT_GT(glm::dot(n, glm::normalize(Vec3(0.8f, 0.6f, 0.0f))), 0.99f);  // centres at contact
+  expectVecNear(elastic.vb, glm::dot(Vec3(3.0f, 0.0f, 0.0f), n) * n, 0.03f);
+  expectVecNear(elastic.va, Vec3(3.0f, 0.0f, 0.0f) - glm::dot(Vec3(3.0f, 0.0f, 0.0f), n) * n, 0.03f);
+}
+
 // A static wall whose face is the plane x = 1.5, a sphere of radius 0.5 at the origin.
 BodyDef wall(float bounciness) {
   BodyDef def;
