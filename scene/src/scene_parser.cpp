@@ -142,7 +142,7 @@ Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir) {
 void readSettings(const JsonNode& node, Scene& scene) {
   node.expectObject({"gravity", "dt", "steps", "substeps", "broadphase", "ccd", "sleeping",
                      "bounciness_combine", "friction_combine", "impact_model", "friction_model",
-                     "penetration_response", "persist_events"});
+                     "penetration_response", "persist_events", "restitution_threshold"});
   WorldDef& w = scene.world;
   if (auto n = node.find("gravity")) w.gravity = n->vec3();
   if (auto n = node.find("dt")) scene.dt = n->positive();
@@ -154,6 +154,7 @@ void readSettings(const JsonNode& node, Scene& scene) {
   if (auto n = node.find("ccd")) scene.world.ccd = n->boolean();
   if (auto n = node.find("sleeping")) w.sleeping = n->boolean();
   if (auto n = node.find("persist_events")) w.persistEvents = n->boolean();
+  if (auto n = node.find("restitution_threshold")) w.contact.restitutionThreshold = n->nonNegative();
   if (auto n = node.find("bounciness_combine")) {
     w.bouncinessCombine = withPath(*n, [&] { return parseCombineRule(n->string()); });
   }

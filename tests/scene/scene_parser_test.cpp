@@ -39,6 +39,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_FALSE(s.world.ccd);  // the engine default is true
   EXPECT_FALSE(s.world.sleeping);
   EXPECT_TRUE(s.world.persistEvents);  // the engine default is false
+  EXPECT_FLOAT_EQ(s.world.contact.restitutionThreshold, 0.25f);  // the engine default is 1 m/s
   EXPECT_EQ(s.world.bouncinessCombine, CombineRule::Multiply);
   EXPECT_EQ(s.world.frictionCombine, CombineRule::Min);
   EXPECT_EQ(s.world.impactModel, ImpactModel::Interpolated);
@@ -243,6 +244,8 @@ TEST(SceneParserErrors, OutOfRangeValues) {
               HasSubstr("bodies[0].bounciness: must be in [0, 1], got 1.5"));
   EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 0}})"),
               HasSubstr("settings.substeps: must be >= 1, got 0"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"restitution_threshold": -1}})"),
+              HasSubstr("settings.restitution_threshold: must be"));
   EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "rotation": [0, 0, 0, 2],
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].rotation: must be a unit quaternion"));

@@ -158,6 +158,30 @@ TEST(Impact, EqualSpheresObliqueElasticSwapNormalComponentsKeepTangential) {
   EXPECT_LE(glm::length((nb - along(nb)) - (vb - along(vb))), 1e-4f);
 }
 
+// The restitution threshold is a setting, and 0 is allowed: a ball at 0.5 m/s does not bounce off a
+// wall under the default threshold (1 m/s, so that resting contacts stay quiet), and with 0 it
+// bounces back elastically.
+TEST(Impact, RestitutionThresholdIsASettingAndZeroBouncesSlowImpacts) {
+  for (float threshold : {1.0f, 0.0f}) {
+    SCOPED_TRACE(threshold);
+    WorldDef def = zeroGravityWorld();
+    def.contact.restitutionThreshold = threshold;
+    World world(def);
+    BodyDef wall;
+    wall.type = BodyType::Static;
+    wall.shape = Shape(Plane{Vec3(-1.0f, 0.0f, 0.0f), -1.0f});
+    wall.friction = 0.0f;
+    wall.bounciness = 1.0f;
+    world.createBody(wall);
+    BodyDef ball = sphereBody(Vec3(0.3f, 0.0f, 0.0f), 0.5f, 1.0f, Vec3(0.5f, 0.0f, 0.0f));
+    ball.bounciness = 1.0f;
+    ball.friction = 0.0f;
+    const BodyId id = world.createBody(ball);
+    for (int i = 0; i < 60; ++i) world.step(kDt);
+    EXPECT_NEAR(world.linearVelocity(id).x, threshold > 0.5f ? 0.0f : -0.5f, 0.01f);
+  }
+}
+
 // Slide 33 in a moving frame: a kinematic wall rising at 1 m/s hit by a ball falling at 3 m/s meets
 // it at -4 m/s and sends it off at +4 m/s relative, i.e. 5 m/s upwards; the wall keeps its motion.
 TEST(Impact, ElasticSphereOnKinematicWallReflectsTheRelativeVelocity) {
