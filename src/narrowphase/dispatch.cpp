@@ -189,6 +189,12 @@ constexpr PairTable buildPairTable() {
   b.add<collideCapsuleBox>(T::Capsule, T::Box, A::GjkEpaClip,
                            "GJK/EPA on the core segment, clipped to the box face when lying on it; up to two "
                            "points");
+  for (const ShapeType other : {T::Box, T::Kdop, T::ConvexHull, T::Cylinder}) {
+    b.add<collideCylinderConvex>(
+        T::Cylinder, other, A::GjkEpaClip,
+        "GJK/EPA for the axis; a cap's four rim points or the side line clipped to the "
+        "face (or cap) facing the cylinder, up to four points; else one point");
+  }
 
   // Polyhedra: the separating-axis test with face clipping.
   constexpr ShapeType kPolyhedra[] = {T::Box, T::Kdop, T::ConvexHull};

@@ -64,6 +64,8 @@ bool collideSphereCapsule(const Shape&, const Transform&, const Shape&, const Tr
 bool collideSphereBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collideCapsuleCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collideCapsuleBox(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+// Cylinder (A) against a box, k-DOP, convex hull or cylinder (cylinder_pairs.cpp).
+bool collideCylinderConvex(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 // Box, k-DOP and hull against each other: SAT with face clipping (sat_polyhedra.cpp).
 bool collidePolyhedra(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 // Box against box: the same answer as collidePolyhedra, specialised (box_box.cpp).
