@@ -1,3 +1,4 @@
+// World boxes and broad-phase proxies of the bodies: the step's first stage (body_bounds.h).
 #include "bodies/body_bounds.h"
 
 #include "memory/prefetch.h"

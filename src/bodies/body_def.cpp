@@ -1,3 +1,4 @@
+// Bodies made from their definitions: validation, mass properties, the record and state (body_def.h).
 #include "bodies/body_def.h"
 
 #include <collide/error.h>

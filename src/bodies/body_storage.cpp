@@ -1,3 +1,4 @@
+// The body storage's slots: allocation with generations, freeing, forces cleared (body_storage.h).
 #include "bodies/body_storage.h"
 
 namespace collide::detail {

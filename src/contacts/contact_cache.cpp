@@ -1,3 +1,5 @@
+// Contacts kept across steps: the manifold cache and the matching of new to prolonged points
+// (contact_cache.h).
 #include "contacts/contact_cache.h"
 
 #include <algorithm>

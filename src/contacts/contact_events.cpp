@@ -1,3 +1,4 @@
+// Contact and sensor events and their buffers: the step's events stage (contact_events.h).
 #include "contacts/contact_events.h"
 
 #include <algorithm>

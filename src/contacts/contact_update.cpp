@@ -1,3 +1,5 @@
+// The contacts stage: the narrow phase over the broad phase's pairs, manifold reuse, the
+// separating-axis cache and the pre-solve callback (contact_update.h).
 #include "contacts/contact_update.h"
 
 #include <collide/narrowphase.h>

@@ -1,3 +1,4 @@
+// Sensors a body crossed within one step, found by sweeping the pair (sensor_crossings.h).
 #include "contacts/sensor_crossings.h"
 
 #include <collide/narrowphase.h>

@@ -1,3 +1,4 @@
+// Graph colouring of the constraints for the batched solver (constraint_graph.h).
 #include "dynamics/constraint_graph.h"
 
 namespace collide::detail {

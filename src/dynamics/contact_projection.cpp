@@ -1,3 +1,5 @@
+// The lecture's projection in the solver's position stage, PenetrationResponse::Project
+// (contact_projection.h).
 #include "dynamics/contact_projection.h"
 
 #include "response/penetration.h"

@@ -1,3 +1,4 @@
+// The soft-step contact solver: batches, warm start, solve, restitution, store (contact_solver.h).
 #include "dynamics/contact_solver.h"
 
 #include "dynamics/constraint_graph.h"

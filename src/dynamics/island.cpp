@@ -1,3 +1,4 @@
+// Islands, sleeping and waking (island.h).
 #include "dynamics/island.h"
 
 #include <collide/narrowphase.h>

@@ -1,3 +1,4 @@
+// Distance constraints in the soft step (joint_solver.h).
 #include "dynamics/joint_solver.h"
 
 #include "dynamics/contact_solver.h"

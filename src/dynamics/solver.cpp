@@ -1,3 +1,4 @@
+// The step's solve: solver bodies, the substep loop, the write-back (solver.h).
 #include "dynamics/solver.h"
 
 #include "dynamics/fault_guard.h"

@@ -1,3 +1,4 @@
+// The world's queries over the broad phase: the closest ray hit, the kept pairs (world_queries.h).
 #include "queries/world_queries.h"
 
 #include <collide/error.h>

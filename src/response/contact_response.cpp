@@ -1,3 +1,5 @@
+// The lecture's impact and friction models applied to the step's contacts after the solve
+// (contact_response.h).
 #include "response/contact_response.h"
 
 #include "response/friction.h"

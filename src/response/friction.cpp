@@ -1,3 +1,4 @@
+// Viscous and damping friction at one contact (friction.h).
 #include "response/friction.h"
 
 #include <collide/error.h>

@@ -1,3 +1,4 @@
+// The lecture's interpolated impact at one contact (impact.h).
 #include "response/impact.h"
 
 #include <collide/error.h>

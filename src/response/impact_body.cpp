@@ -1,3 +1,5 @@
+// A body as one contact's response sees it: velocities at a point, impulses, validation
+// (impact_body.h).
 #include "response/impact_body.h"
 
 #include <collide/error.h>

@@ -1,3 +1,4 @@
+// The lecture's projection of two bodies apart, mass-weighted (penetration.h).
 #include "response/penetration.h"
 
 #include <collide/error.h>

@@ -1,3 +1,4 @@
+// Revert to the last valid pose (revert.h).
 #include "response/revert.h"
 
 #include <collide/narrowphase.h>
