@@ -76,7 +76,9 @@ struct ProxyFit {
 
 // Fits every proxy above, plus the 6-, 14-, 18- and 26-DOP and the convex hull, in that order:
 // sphere, aabb, obb, capsule, 6-dop, 14-dop, 18-dop, 26-dop, convex_hull. Throws Error unless the
-// points span a volume.
+// points span a volume, and for points farther apart than kMaxFitExtent along an axis (the proxies'
+// volumes, and the queries around them, would overflow float).
+inline constexpr float kMaxFitExtent = 1e12f;
 std::vector<ProxyFit> fitAllProxies(std::span<const Vec3> points);
 // The same for the vertices of a mesh.
 std::vector<ProxyFit> fitAllProxies(const TriangleMesh& mesh);

@@ -3,11 +3,13 @@
 // convex hull, the tightest convex proxy.
 #include <collide/bounding.h>
 
+#include "bounding/obb_fit.h"
 #include "bounding/point_set.h"
 
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 
 namespace collide {
@@ -23,6 +25,16 @@ std::size_t polytopeBytes(const ConvexHull& hull) {
 
 std::vector<ProxyFit> fitAllProxies(std::span<const Vec3> points) {
   bounding::requireFinitePoints("fit_all_proxies", points);
+  const Aabb bounds = boundingBox(points);
+  const Vec3 extent = bounds.max - bounds.min;
+  const float widest = std::max({extent.x, extent.y, extent.z});
+  if (!(widest <= kMaxFitExtent)) {
+    std::ostringstream message;
+    message << "fit_all_proxies: the points span " << widest
+            << " m along an axis; proxies are fitted to sets up to " << kMaxFitExtent
+            << " m across, whose volumes stay finite in float";
+    throw Error(message.str());
+  }
   auto hull = [&] {
     try {
       return std::make_shared<const ConvexHull>(ConvexHull::fromPoints(points));
@@ -47,7 +59,7 @@ std::vector<ProxyFit> fitAllProxies(std::span<const Vec3> points) {
   add("aabb", Box{box.halfExtents()}, Transform{box.center(), Quat(1, 0, 0, 0), 1.0f}, box.volume(),
       sizeof(Aabb));
 
-  const OrientedBox orientedBox = fitOrientedBox(points);
+  const OrientedBox orientedBox = bounding::fitOrientedBoxOnHull(points, *hull);
   add("obb", orientedBox.box, orientedBox.transform, orientedBox.volume(),
       sizeof(Box) + sizeof(Vec3) + sizeof(Quat));
 

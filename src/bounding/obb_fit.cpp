@@ -5,11 +5,21 @@
 // O'Rourke 1985 showed that the true optimum has two adjacent faces each flush with a hull edge), the
 // principal axes of the points (Gottschalk et al., OBBTree 1996) and the coordinate axes, which make
 // the result never larger than the axis-aligned box.
+//
+// That search costs (faces x vertices) and a hull of many vertices (a scanned asset, a finely
+// tessellated sphere) has as many faces: past kExactHullVertices the directions come from a coarse
+// hull instead, made of the hull's extreme vertices along kCoarseDirections fixed directions, as
+// DiTO does (Larsson & Kallberg 2011, "Fast Computation of Tight-Fitting Oriented Bounding Boxes").
+// Its best frames, the principal axes' and the coordinate axes' are then measured over every hull
+// vertex, so the box stays no larger than the axis-aligned box or the principal axes' box, and the
+// final extents are measured over every point as before.
 #include <collide/bounding.h>
 
 #include "bounding/min_area_rectangle.h"
+#include "bounding/obb_fit.h"
 #include "bounding/point_set.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -25,6 +35,10 @@ struct Candidate {
   glm::dmat3 axes{1.0};  // columns: box axes, right-handed
   double volume = std::numeric_limits<double>::infinity();
 };
+
+constexpr std::size_t kExactHullVertices = 1024;
+constexpr int kCoarseDirections = 256;
+constexpr std::size_t kFinalists = 8;
 
 // The tightest box with one axis along the unit direction n, over the hull vertices.
 Candidate boxAlong(const DVec3& n, std::span<const DVec3> vertices) {
@@ -49,11 +63,64 @@ Candidate boxAlong(const DVec3& n, std::span<const DVec3> vertices) {
   return candidate;
 }
 
+// Every hull face normal, the principal axes and the coordinate axes, each over every hull vertex.
+Candidate bestOverFaces(const ConvexHull& hull, std::span<const DVec3> vertices,
+                        const bounding::PrincipalAxes& pca) {
+  std::vector<DVec3> directions;
+  for (const ConvexHull::Face& face : hull.faces())
+    directions.push_back(glm::normalize(DVec3(face.plane.normal)));
+  for (int i = 0; i < 3; ++i) directions.push_back(pca.axes[i]);
+  for (int i = 0; i < 3; ++i) directions.push_back(glm::dmat3(1.0)[i]);
+  Candidate best;
+  for (const DVec3& n : directions) {
+    const Candidate candidate = boxAlong(n, vertices);
+    if (candidate.volume < best.volume) best = candidate;
+  }
+  return best;
+}
+
+// The volume of the box with these axes around the vertices: the product of their extents.
+double volumeAlong(const glm::dmat3& axes, std::span<const DVec3> vertices) {
+  DVec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+  for (const DVec3& p : vertices) {
+    const DVec3 local = glm::transpose(axes) * p;
+    low = glm::min(low, local);
+    high = glm::max(high, local);
+  }
+  const DVec3 size = high - low;
+  return size.x * size.y * size.z;
+}
+
+// The faces of the coarse hull give candidate frames; the best few, the principal axes and the
+// coordinate axes are measured over every hull vertex.
+Candidate bestOverCoarseHull(std::span<const DVec3> vertices, const bounding::PrincipalAxes& pca) {
+  std::vector<Vec3> extremes;
+  for (const std::size_t k : bounding::extremeIndices(vertices, kCoarseDirections))
+    extremes.push_back(Vec3(vertices[k]));
+  const ConvexHull coarse = ConvexHull::fromPoints(extremes);
+  const std::vector<DVec3> coarseVertices(coarse.vertices().begin(), coarse.vertices().end());
+  std::vector<Candidate> finalists;
+  for (const ConvexHull::Face& face : coarse.faces())
+    finalists.push_back(boxAlong(glm::normalize(DVec3(face.plane.normal)), coarseVertices));
+  const auto byVolume = [](const Candidate& a, const Candidate& b) { return a.volume < b.volume; };
+  const std::size_t kept = std::min(kFinalists, finalists.size());
+  std::partial_sort(finalists.begin(), finalists.begin() + kept, finalists.end(), byVolume);
+  finalists.resize(kept);
+  finalists.push_back(Candidate{pca.axes});
+  finalists.push_back(Candidate{glm::dmat3(1.0)});
+  Candidate best;
+  for (Candidate& candidate : finalists) {
+    candidate.volume = volumeAlong(candidate.axes, vertices);
+    if (candidate.volume < best.volume) best = candidate;
+  }
+  return best;
+}
+
 }  // namespace
 
 OrientedBox fitOrientedBox(std::span<const Vec3> points) {
   bounding::requireFinitePoints("fit_oriented_box", points);
-  ConvexHull hull = [&] {
+  const ConvexHull hull = [&] {
     try {
       return ConvexHull::fromPoints(points);
     } catch (const Error& e) {
@@ -61,7 +128,10 @@ OrientedBox fitOrientedBox(std::span<const Vec3> points) {
                   e.what() + ")");
     }
   }();
+  return bounding::fitOrientedBoxOnHull(points, hull);
+}
 
+OrientedBox bounding::fitOrientedBoxOnHull(std::span<const Vec3> points, const ConvexHull& hull) {
   std::vector<DVec3> vertices(hull.vertices().begin(), hull.vertices().end());
   // Centre the vertices so that projections of a cloud far from the origin keep their precision.
   DVec3 origin(0.0);
@@ -69,18 +139,9 @@ OrientedBox fitOrientedBox(std::span<const Vec3> points) {
   origin /= double(vertices.size());
   for (DVec3& p : vertices) p -= origin;
 
-  std::vector<DVec3> directions;
-  for (const ConvexHull::Face& face : hull.faces())
-    directions.push_back(glm::normalize(DVec3(face.plane.normal)));
   const bounding::PrincipalAxes pca = bounding::principalAxes(points);
-  for (int i = 0; i < 3; ++i) directions.push_back(pca.axes[i]);
-  for (int i = 0; i < 3; ++i) directions.push_back(glm::dmat3(1.0)[i]);
-
-  Candidate best;
-  for (const DVec3& n : directions) {
-    const Candidate candidate = boxAlong(n, vertices);
-    if (candidate.volume < best.volume) best = candidate;
-  }
+  const Candidate best = vertices.size() <= kExactHullVertices ? bestOverFaces(hull, vertices, pca)
+                                                               : bestOverCoarseHull(vertices, pca);
 
   // Store the rotation as a float quaternion, then measure the extents along the axes that
   // quaternion really has, over every input point: the returned box contains them all even though

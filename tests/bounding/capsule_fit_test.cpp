@@ -103,6 +103,24 @@ TEST(FitCapsule, RandomSurfaceSamplesGiveTheCapsuleBackWithinOnePercent) {
   }
 }
 
+TEST(FitCapsule, LargeSamplesSearchOnTheirExtremesAndStillGiveTheCapsule) {
+  // 20,000 samples: past 4,096 points the axis search runs on the extreme points along 256
+  // directions; the radius and segment are measured over every point, so all are inside, and the
+  // capsule is still the true one within a percent.
+  Random random(303);
+  for (int trial = 0; trial < 3; ++trial) {
+    const float radius = random.uniform(0.2f, 1.0f);
+    const Capsule truth{radius, random.uniform(radius, 3.0f * radius)};
+    const Transform pose{random.inCube(5.0f), random.rotation(), 1.0f};
+    const std::vector<Vec3> points = randomSurfaceOfCapsule(random, truth, pose, 20000);
+    const FittedCapsule fit = fitCapsule(points);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    EXPECT_NEAR(fit.capsule.radius, truth.radius, 0.01f * truth.radius);
+    EXPECT_NEAR(fit.capsule.halfHeight, truth.halfHeight, 0.01f * (truth.radius + truth.halfHeight));
+    expectContainsAll(fit, points, 1e-5f * test::cloudScale(points));
+  }
+}
+
 TEST(FitCapsule, EveryPointIsInsideForRandomAndDegenerateClouds) {
   Random random(302);
   for (int trial = 0; trial < 60; ++trial) {

@@ -175,6 +175,15 @@ TEST(FitAllProxies, BadInputIsRejectedWithTheReason) {
   expectError(flat, "coplanar");
   const std::vector<Vec3> line = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
   expectError(line, "collinear");
+  // Finite but too large: a box 2e38 m across, whose volume is no float.
+  const std::vector<Vec3> huge = {{-1e38f, -1e38f, -1e38f},
+                                  {1e38f, -1e38f, -1e38f},
+                                  {-1e38f, 1e38f, -1e38f},
+                                  {-1e38f, -1e38f, 1e38f},
+                                  {1e38f, 1e38f, 1e38f}};
+  expectError(huge, "the points span 2e+38 m along an axis");
+  const std::vector<Vec3> large = {{0, 0, 0}, {2e12f, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  expectError(large, "the points span 2e+12 m along an axis");
   EXPECT_THROW(boundingBox({}), Error);
   const std::vector<Vec3> nanBox = {{NAN, 0, 0}};
   EXPECT_THROW(boundingBox(nanBox), Error);

@@ -4,8 +4,8 @@
 #include <collide/bounding.h>
 #include <gtest/gtest.h>
 
-#include "support/point_clouds.h"
 #include "bounding/point_set.h"
+#include "support/point_clouds.h"
 
 #include <string>
 
@@ -80,6 +80,23 @@ TEST(FitOrientedBox, RandomCloudsAreContainedAndNoLargerThanTheAabbOrThePcaBox) 
     EXPECT_LE(box.volume(), boundingBox(points).volume() * (1.0f + 1e-5f));
     EXPECT_LE(box.volume(), pcaBoxVolume(points) * (1.0f + 1e-4f));
   }
+}
+
+TEST(FitOrientedBox, LargeHullsSearchACoarseHullAndStillHoldEveryPoint) {
+  // Points on a stretched, turned ball's surface: every one is a hull vertex, past the 1,024 of the
+  // exhaustive search. The box from the coarse hull's frames holds every point, is no larger than
+  // the axis-aligned box or the principal axes' box, and is close to the ellipsoid's own box (the
+  // tightest box of an ellipsoid is its axes' box, 8 abc).
+  Random random(103);
+  const Vec3 radii(2.0f, 1.0f, 0.5f);
+  const Transform pose{random.inCube(5.0f), random.rotation(), 1.0f};
+  std::vector<Vec3> points;
+  for (int i = 0; i < 5000; ++i) points.push_back(pose.applyToPoint(random.direction() * radii));
+  const OrientedBox box = fitOrientedBox(points);
+  expectContainsAll(box, points, 1e-5f * test::cloudScale(points));
+  EXPECT_LE(box.volume(), boundingBox(points).volume() * (1.0f + 1e-5f));
+  EXPECT_LE(box.volume(), pcaBoxVolume(points) * (1.0f + 1e-4f));
+  EXPECT_LE(box.volume(), 8.0f * radii.x * radii.y * radii.z * 1.02f);
 }
 
 TEST(FitOrientedBox, FlatOrTooFewPointsAreRejectedWithTheReason) {
