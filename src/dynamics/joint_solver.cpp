@@ -147,4 +147,49 @@ void solveJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints
   }
 }
 
+namespace {
+
+// One rigid joint's projection: whether its length was off by more than the tolerance (a fraction
+// of the length), which is then removed, split by the effective masses.
+bool projectJoint(const JointSolverView& view, DistanceJoint& joint, float tolerance) {
+  const JointBody a = jointBody(view, joint.bodyA);
+  const JointBody b = jointBody(view, joint.bodyB);
+  const JointFrame f = frameOf(a, b, joint);
+  const float c = f.distance - joint.length;
+  const float allowed = tolerance * joint.length;
+  if (!(std::abs(c) > allowed)) return false;
+  const float excess = c > 0.0f ? c - allowed : c + allowed;
+  const Vec3 rnA = glm::cross(f.rA, f.axis);
+  const Vec3 rnB = glm::cross(f.rB, f.axis);
+  const float k = a.inverseMass + b.inverseMass + glm::dot(rnA, a.inverseInertia * rnA) +
+                  glm::dot(rnB, b.inverseInertia * rnB);
+  if (k <= 0.0f) return false;
+  const Vec3 p = (-excess / k) * f.axis;  // a positional impulse on B (kg m), its opposite on A
+  if (a.solver) {
+    a.solver->deltaPosition -= a.inverseMass * p;
+    const Vec3 turn = -(a.inverseInertia * glm::cross(f.rA, p));
+    a.solver->deltaRotation =
+        glm::normalize(a.solver->deltaRotation + 0.5f * Quat(0.0f, turn) * a.solver->deltaRotation);
+  }
+  if (b.solver) {
+    b.solver->deltaPosition += b.inverseMass * p;
+    const Vec3 turn = b.inverseInertia * glm::cross(f.rB, p);
+    b.solver->deltaRotation =
+        glm::normalize(b.solver->deltaRotation + 0.5f * Quat(0.0f, turn) * b.solver->deltaRotation);
+  }
+  return true;
+}
+
+}  // namespace
+
+void projectJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints) {
+  for (int pass = 0; pass < kJointProjectionPasses; ++pass) {
+    bool projected = false;
+    for (DistanceJoint& joint : joints) {
+      if (joint.active && joint.compliance == 0.0f) projected |= projectJoint(view, joint, kJointLengthSlop);
+    }
+    if (!projected) break;
+  }
+}
+
 }  // namespace collide::detail

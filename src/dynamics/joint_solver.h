@@ -50,4 +50,15 @@ void warmStartJoints(const JointSolverView& view, std::vector<DistanceJoint>& jo
 void solveJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints, float h, float rigidHertz,
                  bool useBias);
 
+// Per substep, after the position update: the length a rigid joint lost or gained beyond
+// kJointLengthSlop is removed by moving its bodies (non-linear Gauss-Seidel on positions, Box2D
+// v2's and Jolt's position iterations), over the joints in order, pass after pass while one is
+// still off, at most kJointProjectionPasses times. The soft joint holds a link within the slop on
+// its own; under the load of a whipping chain it gives, and the passes take the give back. Below
+// the slop nothing moves: a projection there would only cost a spinning pair its angular momentum
+// (positions moved without turning the velocities).
+inline constexpr float kJointLengthSlop = 0.005f;  // of the joint's length
+inline constexpr int kJointProjectionPasses = 128;
+void projectJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints);
+
 }  // namespace collide::detail

@@ -119,6 +119,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
     contacts_.solve(bodies_, h, true);
     integratePositions(bodies_, infos_, h);
     if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
+    projectJoints(view, joints);
     solveJoints(view, joints, h, rigidHertz, false);
     for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false);
     guard();

@@ -38,7 +38,7 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"revert-project", 120, 0x8e24083d51d719f5},
     {"revert-soft", 120, 0x4b4e324b31bd5e65},
     {"breakable", 120, 0x6e3f15fe89955261},
-    {"chain", 120, 0xd5a03e7e173f7dd5},
+    {"chain", 120, 0xbc97e1f0772826f9},
     {"tunneling", 120, 0x935a5f9071b1f803},
 };
 
