@@ -1,7 +1,7 @@
 // One step of the world: the lecture's pipeline, one stage a call, each in the folder of its layer.
-//   proxies and bounds -> broad phase -> contacts (narrow phase, manifold reuse, pre-solve) -> solve
-//   (soft step, then the lecture's response models) -> continuous -> revert -> fault guard ->
-//   events -> islands and sleep.
+//   proxies and bounds -> broad phase -> contacts (narrow phase, manifold reuse, pre-solve) ->
+//   impacts -> solve (soft step) -> friction models -> continuous -> revert -> fault guard -> events
+//   -> islands and sleep.
 // docs/architecture.md walks one body through these stages.
 #include "world_impl.h"
 
@@ -46,9 +46,10 @@ void World::Impl::step(float dt) {
   lastStats.narrowPhaseTests = tested.narrowPhaseTests;
   lastStats.reusedManifolds = tested.reusedManifolds;
 
+  impacts.run(bodies, contacts, def.impactModel, tuning, def.gravity, dt);
   stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults);
-  detail::applyResponseModels(bodies, contacts, stepSolver.solvedContacts(), def.impactModel,
-                              def.frictionModel, tuning, dt);
+  impacts.applyTimeShifts(bodies);
+  detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   bodies.clearForces();
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, tuning.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert)

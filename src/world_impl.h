@@ -11,6 +11,7 @@
 #include "dynamics/island.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/solver.h"
+#include "response/impacts.h"
 #include "response/revert.h"
 
 #include <cstddef>
@@ -39,6 +40,7 @@ struct World::Impl {
   detail::StepEvents events;
   detail::Islands islands;
   detail::RevertResponse revert;
+  detail::ImpactStage impacts;
   StepStats lastStats;
   StepStats totalStats;
   PreSolveCallback preSolve;

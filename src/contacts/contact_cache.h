@@ -80,6 +80,8 @@ struct Contact {
   bool touching = false;          // after this step's narrow phase
   bool wasTouching = false;       // after last step's
   int consecutiveSteps = 0;       // steps in a row with points (lecture: friction from the second step)
+  float impactSpeed = 0.0f;       // the approach speed the impact stage resolved this step (events)
+  float impactImpulse = 0.0f;     // the normal impulse it gave (events, and the contact touched)
   // The friction patch (dynamics/contact_solver.h), kept across steps: its impulse as a world vector
   // (the tangent basis is rebuilt every step), the twist about the normal, and the static anchor in
   // each body's frame (from the centre of mass) with whether it holds.

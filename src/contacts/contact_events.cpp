@@ -57,6 +57,8 @@ ContactEvent makeContactEvent(const BodyStorage& bodies, const Contact& c, Conta
     e.impulse += c.points[i].totalNormalImpulse;
     e.speed = std::max(e.speed, -c.points[i].relativeVelocity);
   }
+  e.impulse += c.impactImpulse;
+  e.speed = std::max(e.speed, c.impactSpeed);
   if (c.manifold.count > 0) e.point = c.manifold.points[deepest].midpoint();
   if (type == ContactEvent::Type::End) e.impulse = 0.0f;
   return e;
@@ -66,9 +68,11 @@ std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& c
                               bool persistEvents) {
   std::size_t touchingCount = 0;
   for (Contact& c : contacts) {
-    // A speculative contact that stopped the bodies this step touched them, though it was still
-    // apart before the solve: count it, so the begin event carries the impact speed and impulse.
+    // A speculative contact that stopped the bodies this step (the solver pushed, or the impact
+    // stage gave an impulse) touched them, though it was still apart before: count it, so the begin
+    // event carries the impact speed and impulse.
     if (!c.sensor && c.enabled && !c.touching) {
+      c.touching = c.impactImpulse > 0.0f;
       for (int i = 0; i < c.manifold.count; ++i)
         c.touching = c.touching || c.points[i].maxNormalImpulse > 0.0f;
     }

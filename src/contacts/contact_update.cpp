@@ -128,6 +128,7 @@ class PairPass {
         Contact& kept = contacts_.emplace_back(*previous);
         kept.asleep = true;
         kept.wasTouching = kept.touching;
+        kept.impactSpeed = kept.impactImpulse = 0.0f;
       }
       return;
     }

@@ -27,7 +27,7 @@ struct ReferenceRun {
 };
 
 constexpr ReferenceRun kReferenceRuns[] = {
-    {"billiards", 120, 0xedec91a59c4d6032},
+    {"billiards", 120, 0xfbd51cb8c4b3c78c},
     {"pile", 30, 0x07aec86cc5b6ae08},
     {"rain", 40, 0xdface9156540e385},
     {"rain-jittered", 40, 0x3d58fdf3cd65e3e2},

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace collide {
 namespace {
@@ -235,6 +237,117 @@ TEST(Impact, OffCentreBoxImpactsConserveMomentumAndNeverAddEnergy) {
     EXPECT_TRUE(touched);
     EXPECT_LE(glm::length(world.linearMomentum() - p0), 1e-4f * glm::length(p0) + 1e-4f);
   }
+}
+
+// Newton's cradle (lecture, slide 32, pairwise): a ball at 3 m/s hits the end of a row of five equal
+// balls at rest, each touching the next; fully elastic, no friction. The impact passes through the
+// row: the hitter and the four first balls stop, the last leaves at 3 m/s, and the hitter stops
+// touching the row (the impact happens where the bodies meet, not a gap early).
+TEST(Impact, NewtonsCradlePassesTheImpactThroughTheRow) {
+  World world(zeroGravityWorld());
+  std::vector<BodyId> row;
+  for (int i = 0; i < 5; ++i) {
+    BodyDef ball = sphereBody(Vec3(float(i), 0.0f, 0.0f), 0.5f, 1.0f);
+    ball.bounciness = 1.0f;
+    ball.friction = 0.0f;
+    row.push_back(world.createBody(ball));
+  }
+  BodyDef hitter = sphereBody(Vec3(-2.0f, 0.0f, 0.0f), 0.5f, 1.0f, Vec3(3.0f, 0.0f, 0.0f));
+  hitter.bounciness = 1.0f;
+  hitter.friction = 0.0f;
+  const BodyId id = world.createBody(hitter);
+  for (int i = 0; i < 30; ++i) world.step(kDt);
+  EXPECT_NEAR(world.linearVelocity(id).x, 0.0f, 1e-3f);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(world.linearVelocity(row[i]).x, 0.0f, 1e-3f) << i;
+  EXPECT_NEAR(world.linearVelocity(row[4]).x, 3.0f, 1e-3f);
+  EXPECT_NEAR(world.transform(id).position.x, -1.0f, 0.005f);  // touching ball 0
+  EXPECT_NEAR(world.kineticEnergy(), 4.5f, 1e-3f);
+}
+
+// Slide 20, "elastic means elastic": thirty balls in a closed box, bounciness 1, no friction, no
+// gravity, the restitution threshold at 0 so that every impact is elastic: balls meeting in pairs,
+// in threes and in the box's corners, with several contacts a step, keep the kinetic energy.
+TEST(Impact, ElasticBallsInAClosedBoxKeepTheirEnergy) {
+  WorldDef def = zeroGravityWorld();
+  def.contact.restitutionThreshold = 0.0f;
+  World world(def);
+  const auto wall = [&](const Vec3& position, const Vec3& half) {
+    BodyDef body = test::boxBody(position, half, 1.0f);
+    body.type = BodyType::Static;
+    body.bounciness = 1.0f;
+    body.friction = 0.0f;
+    world.createBody(body);
+  };
+  wall(Vec3(0, -0.5f, 0), Vec3(3, 0.5f, 3));
+  wall(Vec3(0, 4.5f, 0), Vec3(3, 0.5f, 3));
+  wall(Vec3(-2.5f, 2, 0), Vec3(0.5f, 3, 3));
+  wall(Vec3(2.5f, 2, 0), Vec3(0.5f, 3, 3));
+  wall(Vec3(0, 2, -2.5f), Vec3(3, 3, 0.5f));
+  wall(Vec3(0, 2, 2.5f), Vec3(3, 3, 0.5f));
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < 30; ++i) {
+    const Vec3 p(-1.5f + 1.0f * float(i % 4), 0.5f + 1.0f * float((i / 4) % 4), -1.5f + 1.5f * float(i / 16));
+    BodyDef ball = sphereBody(p, 0.2f, 1.0f, 4.0f * Vec3(unit(rng), unit(rng), unit(rng)));
+    ball.bounciness = 1.0f;
+    ball.friction = 0.0f;
+    world.createBody(ball);
+  }
+  const float energy = world.kineticEnergy();
+  int begins = 0;
+  for (int i = 0; i < 600; ++i) {
+    world.step(kDt);
+    for (const ContactEvent& e : world.contactEvents()) begins += e.type == ContactEvent::Type::Begin;
+  }
+  EXPECT_GT(begins, 100);  // a busy box
+  EXPECT_NEAR(world.kineticEnergy(), energy, 0.01f * energy);
+}
+
+// A ball thrown into a corner meets both walls in the same step: each contact gets its own impulse,
+// and the ball leaves with both normal components flipped and its speed kept.
+TEST(Impact, ElasticBallIntoACornerFlipsBothComponents) {
+  World world(zeroGravityWorld());
+  for (const Vec3& normal : {Vec3(-1, 0, 0), Vec3(0, 0, -1)}) {
+    BodyDef wall;
+    wall.type = BodyType::Static;
+    wall.shape = Shape(Plane{normal, -1.0f});
+    wall.bounciness = 1.0f;
+    wall.friction = 0.0f;
+    world.createBody(wall);
+  }
+  BodyDef ball = sphereBody(Vec3(0.0f), 0.5f, 1.0f, Vec3(2.0f, 0.0f, 2.0f));  // meets both at once
+  ball.bounciness = 1.0f;
+  ball.friction = 0.0f;
+  const BodyId id = world.createBody(ball);
+  for (int i = 0; i < 30; ++i) world.step(kDt);
+  EXPECT_NEAR(world.linearVelocity(id).x, -2.0f, 1e-3f);
+  EXPECT_NEAR(world.linearVelocity(id).z, -2.0f, 1e-3f);
+}
+
+// Under gravity an elastic ball bounces back to the height it fell from: the impact acts at the
+// time in the step when the ball meets the floor, on the velocity gravity has given it by then.
+TEST(Impact, ElasticBallBouncesBackToItsHeight) {
+  World world;
+  BodyDef floor = test::groundPlane();
+  floor.bounciness = 1.0f;
+  floor.friction = 0.0f;
+  world.createBody(floor);
+  BodyDef ball = sphereBody(Vec3(0.0f, 2.25f, 0.0f), 0.25f, 1.0f);  // falls 2 m
+  ball.bounciness = 1.0f;
+  ball.friction = 0.0f;
+  const BodyId id = world.createBody(ball);
+  float highestAfterBounce = 0.0f;
+  int bounces = 0;
+  float previousVy = 0.0f;
+  for (int i = 0; i < 300; ++i) {  // 5 s: about four bounces
+    world.step(kDt);
+    const float vy = world.linearVelocity(id).y;
+    if (previousVy < 0.0f && vy > 0.0f) ++bounces;
+    if (bounces > 0) highestAfterBounce = std::max(highestAfterBounce, world.transform(id).position.y);
+    previousVy = vy;
+  }
+  EXPECT_GE(bounces, 3);
+  EXPECT_NEAR(highestAfterBounce, 2.25f, 0.02f);
 }
 
 }  // namespace
