@@ -50,6 +50,7 @@ void World::Impl::step(float dt) {
   stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults);
   impacts.applyTimeShifts(bodies);
   detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
+  detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());
   bodies.clearForces();
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, tuning.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert)

@@ -44,8 +44,12 @@ struct BodyDef {
   // Dynamic bodies: mass > 0 if given (inertia scaled from the shape's), else density > 0.
   std::optional<float> mass;
   float density = 1000.0f;
-  float bounciness = 0.0f;          // [0, 1]
-  float friction = 0.5f;            // >= 0
+  float bounciness = 0.0f;  // [0, 1]
+  float friction = 0.5f;    // >= 0
+  // Rolling resistance (m, >= 0): the lever of the torque that resists rolling (and pivoting) on a
+  // contact, at most this length times the normal force (a ball of radius r on a surface with
+  // rolling coefficient c: c r). 0 rolls freely; a pair takes the larger of its two bodies' values.
+  float rollingResistance = 0.0f;
   std::uint32_t layer = 1;          // the body's bits
   std::uint32_t mask = kAllLayers;  // the layers it collides with; both must agree
   bool sensor = false;              // reports overlap events, takes no response

@@ -107,6 +107,8 @@ void validateBodyDef(const BodyDef& def) {
   }
   if (!isFinite(def.friction) || def.friction < 0.0f)
     fail("friction must be finite and >= 0, got " + formatFloat(def.friction));
+  if (!isFinite(def.rollingResistance) || def.rollingResistance < 0.0f)
+    fail("rollingResistance must be finite and >= 0, got " + formatFloat(def.rollingResistance));
   if (def.shape.type() == ShapeType::Plane && def.type != BodyType::Static) {
     fail("shape: a plane is an infinite half-space and can only be on a static body");
   }
@@ -134,6 +136,7 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   r.scale = def.scale;
   r.bounciness = def.bounciness;
   r.friction = def.friction;
+  r.rollingResistance = def.rollingResistance;
   r.layer = def.layer;
   r.mask = def.mask;
   r.sensor = def.sensor;

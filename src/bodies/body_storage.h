@@ -48,6 +48,7 @@ struct BodyRecord {
   float originRadius = 0.0f;    // around the body origin, every body type (the manifold cache)
   float bounciness = 0.0f;
   float friction = 0.5f;
+  float rollingResistance = 0.0f;  // m
   Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
   ProxyId proxy;
   float mass = 0.0f;

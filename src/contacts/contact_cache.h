@@ -71,6 +71,7 @@ struct Contact {
   Manifold manifold;
   std::array<ContactPointState, Manifold::kMaxPoints> points{};
   float friction = 0.0f;
+  float rollingResistance = 0.0f;  // m: the larger of the two bodies' (contact_response.h)
   float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model
   float impactBounciness = 0.0f;  // the combined bounciness, for the lecture's interpolated impact
   Vec3 surfaceVelocity{0.0f};     // of B relative to A in the contact plane (pre-solve: a belt)

@@ -8,6 +8,7 @@
 #include "memory/prefetch.h"
 #include "shapes/shape_functions.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace collide::detail {
@@ -233,6 +234,7 @@ class PairPass {
     c.generationB = rb.generation;
     c.sensor = ra.sensor || rb.sensor;
     c.friction = combine(settings_.frictionCombine, ra.friction, rb.friction);
+    c.rollingResistance = std::max(ra.rollingResistance, rb.rollingResistance);
     c.restitution = combine(settings_.bouncinessCombine, ra.bounciness, rb.bounciness);
     c.impactBounciness = c.restitution;
     c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;

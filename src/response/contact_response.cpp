@@ -6,6 +6,7 @@
 #include "response/stored_bodies.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace collide::detail {
@@ -43,6 +44,31 @@ void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
     }
     writeBack(bodies.records[c.bodyA], sa, a);
     writeBack(bodies.records[c.bodyB], sb, b);
+  }
+}
+
+void applyRollingResistance(BodyStorage& bodies, std::vector<Contact>& contacts,
+                            const std::vector<std::uint32_t>& solved) {
+  for (const std::uint32_t index : solved) {
+    const Contact& c = contacts[index];
+    if (!(c.rollingResistance > 0.0f)) continue;
+    float normalImpulse = 0.0f;
+    for (int i = 0; i < c.manifold.count; ++i) normalImpulse += c.points[i].totalNormalImpulse;
+    if (!(normalImpulse > 0.0f)) continue;
+    BodyState& sa = bodies.states[c.bodyA];
+    BodyState& sb = bodies.states[c.bodyB];
+    const Mat3 inverseA = sa.inverseMass == 0.0f ? Mat3(0.0f) : sa.inverseInertiaWorld;
+    const Mat3 inverseB = sb.inverseMass == 0.0f ? Mat3(0.0f) : sb.inverseInertiaWorld;
+    const Vec3 rolling = sb.angularVelocity - sa.angularVelocity;
+    const Mat3 k = inverseA + inverseB;
+    if (rolling == Vec3(0.0f) || !(std::abs(glm::determinant(k)) > 0.0f)) continue;
+    Vec3 impulse = -(glm::inverse(k) * rolling);  // the angular impulse on B that stops the rolling
+    const float most = c.rollingResistance * normalImpulse;
+    const float length = glm::length(impulse);
+    if (!std::isfinite(length)) continue;
+    if (length > most) impulse *= most / length;
+    if (bodies.records[c.bodyA].type == BodyType::Dynamic) sa.angularVelocity -= inverseA * impulse;
+    if (bodies.records[c.bodyB].type == BodyType::Dynamic) sb.angularVelocity += inverseB * impulse;
   }
 }
 

@@ -20,4 +20,12 @@ namespace collide::detail {
 void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
                             const std::vector<std::uint32_t>& solved, FrictionModel model, float dt);
 
+// Rolling resistance, once per step per solved contact that touched and has a rolling resistance:
+// the angular impulse that stops the two bodies' relative turning, rolling and pivoting alike (a
+// one-point contact has no twist friction to stop the pivoting), bounded by the contact's rolling
+// resistance (a length) times the step's normal impulse. Box3D's rolling resistance, applied once
+// after the solve.
+void applyRollingResistance(BodyStorage& bodies, std::vector<Contact>& contacts,
+                            const std::vector<std::uint32_t>& solved);
+
 }  // namespace collide::detail
