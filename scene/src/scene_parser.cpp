@@ -390,7 +390,7 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   Scene scene;
   scene.source = sourceName;
   const Json document = parseDocument(text, scene.source);
-  const JsonNode root(document, "", scene.source);
+  const JsonNode root(document, scene.source);
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
   root.expectObject({"format", "settings", "materials", "bodies", "constraints"});
   const JsonNode format = root.at("format");
