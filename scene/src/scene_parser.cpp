@@ -2,11 +2,13 @@
 // and unknown fields are refused, so that a typo is an error rather than a silent default.
 #include "json_node.h"
 
+#include <collide/scene/limits.h>
 #include <collide/scene/obj_file.h>
 #include <collide/scene/scene.h>
 #include <collide/shapes.h>
 
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace collide::scene {
@@ -37,7 +39,7 @@ Transform readPlacement(const JsonNode& node) {
   return t;
 }
 
-Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir);
+Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir, int compoundDepth);
 
 Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
   node.expectObject({"type", "vertices", "triangles", "file"});
@@ -72,7 +74,8 @@ Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
       node, [&] { return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles))); });
 }
 
-Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir) {
+// `compoundDepth`: how many compounds hold this shape.
+Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir, int compoundDepth) {
   if (!node.value().is_object()) node.fail("must be a shape object, got " + node.shown());
   const std::string type = node.at("type").string();
   if (type == "sphere") {
@@ -122,12 +125,15 @@ Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir) {
   if (type == "mesh") return readMesh(node, baseDir);
   if (type == "compound") {
     node.expectObject({"type", "children"});
+    if (compoundDepth >= kMaxCompoundDepth) {
+      node.fail("compounds nest more than " + std::to_string(kMaxCompoundDepth) + " levels deep (the limit)");
+    }
     const JsonNode childrenNode = node.at("children");
     std::vector<Compound::Child> children;
     for (const JsonNode& child : childrenNode.elements()) {
       child.expectObject({"shape", "position", "rotation"});
       const JsonNode shapeNode = child.at("shape");
-      Shape shape = readShape(shapeNode, baseDir);
+      Shape shape = readShape(shapeNode, baseDir, compoundDepth + 1);
       if (shape.type() == ShapeType::Plane) shapeNode.fail("a compound child cannot be a plane");
       children.push_back({std::move(shape), readPlacement(child)});
     }
@@ -198,7 +204,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::p
   if (d.name.empty()) node.at("name").fail("must not be empty");
   d.type = readBodyType(node.at("type"));
   const JsonNode shapeNode = node.at("shape");
-  d.shape = readShape(shapeNode, baseDir);
+  d.shape = readShape(shapeNode, baseDir, 0);
   if (d.shape.type() == ShapeType::Plane && d.type != BodyType::Static) {
     shapeNode.fail("a plane can only be on a static body, got a " + std::string(toString(d.type)) + " body");
   }
@@ -291,7 +297,9 @@ std::pair<std::size_t, std::size_t> lineColumn(std::string_view text, std::size_
 
 // nlohmann's DOM builder behind a SAX handler that remembers where in the document it is, so that
 // a parse error (a syntax error, or a number such as 1e999 that overflows a double) can name its
-// line, column and, for a number, the field path.
+// line, column and, for a number, the field path. It also refuses what nlohmann's parser accepts
+// silently: a key given twice in one object (nlohmann keeps the last), and nesting deeper than
+// kMaxJsonDepth (nlohmann parses any depth, but copying, printing and freeing a value recurse).
 class PathTrackingSax {
  public:
   using DomParser = nlohmann::detail::json_sax_dom_parser<Json>;
@@ -306,11 +314,17 @@ class PathTrackingSax {
   bool binary(Json::binary_t& v) { return value(), dom_.binary(v); }
   bool start_object(std::size_t n) {
     value();
-    frames_.push_back({false, 0, ""});
+    if (!enter()) return false;
+    frames_.push_back({false, 0, "", {}});
     return dom_.start_object(n);
   }
   bool key(std::string& k) {
-    frames_.back().key = k;
+    Frame& frame = frames_.back();
+    frame.key = k;
+    if (!frame.keys.insert(k).second) {
+      refusal_ = "duplicate key: an object holds each key once";
+      return false;
+    }
     return dom_.key(k);
   }
   bool end_object() {
@@ -319,7 +333,8 @@ class PathTrackingSax {
   }
   bool start_array(std::size_t n) {
     value();
-    frames_.push_back({true, 0, ""});
+    if (!enter()) return false;
+    frames_.push_back({true, 0, "", {}});
     return dom_.start_array(n);
   }
   bool end_array() {
@@ -351,27 +366,67 @@ class PathTrackingSax {
   const std::string& token() const { return token_; }
   const std::string& what() const { return what_; }
   bool numberOverflow() const { return numberOverflow_; }
+  // Why the handler stopped the parse (a duplicate key, too deep); empty after a parse error.
+  const std::string& refusal() const { return refusal_; }
 
  private:
   struct Frame {
     bool array;
-    std::size_t count;  // array elements started
-    std::string key;    // object: the last key
+    std::size_t count;           // array elements started
+    std::string key;             // object: the last key
+    std::set<std::string> keys;  // object: every key so far
   };
   void value() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
   }
+  bool enter() {
+    if (frames_.size() < static_cast<std::size_t>(kMaxJsonDepth)) return true;
+    refusal_ =
+        "arrays and objects nest more than " + std::to_string(kMaxJsonDepth) + " levels deep (the limit)";
+    return false;
+  }
   DomParser dom_;
   std::vector<Frame> frames_;
   std::size_t position_ = 0;
-  std::string token_, what_;
+  std::string token_, what_, refusal_;
   bool numberOverflow_ = false;
 };
 
+// The parser's explanation without its prefix ("[json.exception.parse_error.101] parse error at
+// line 1, column 2: "), the line and column being given separately, and with bytes that are not
+// printable ASCII (the input's, quoted in "last read: ...") written as \xNN.
+std::string parseExplanation(const std::string& what) {
+  const std::size_t colon = what.find(": ");
+  const std::string text = colon == std::string::npos ? what : what.substr(colon + 2);
+  std::string out;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f) {
+      out += ch;
+    } else {
+      static const char* const hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
 Json parseDocument(std::string_view text, const std::string& source) {
+  // nlohmann's parser takes a NUL byte for the end of the input and would ignore what follows it.
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const auto [line, column] = lineColumn(text, nul);
+    throw Error(source + ": malformed JSON at line " + std::to_string(line) + ", column " +
+                std::to_string(column) + ": a NUL byte (JSON text has none)");
+  }
   Json document;
   PathTrackingSax sax(document);
   if (Json::sax_parse(text, &sax)) return document;
+  if (!sax.refusal().empty()) {
+    const std::string path = sax.path();
+    throw Error(source + ": " + (path.empty() ? "" : path + ": ") + sax.refusal());
+  }
   // nlohmann's position is one past the offending character.
   const auto [line, column] = lineColumn(text, sax.position() == 0 ? 0 : sax.position() - 1);
   const std::string where = "line " + std::to_string(line) + ", column " + std::to_string(column);
@@ -379,9 +434,7 @@ Json parseDocument(std::string_view text, const std::string& source) {
     throw Error(source + ": " + sax.path() + ": must be a finite number within float range, got " +
                 sax.token() + " (" + where + ")");
   }
-  const auto colon = sax.what().rfind(": ");
-  throw Error(source + ": malformed JSON at " + where +
-              (colon == std::string::npos ? "" : ": " + sax.what().substr(colon + 2)));
+  throw Error(source + ": malformed JSON at " + where + ": " + parseExplanation(sax.what()));
 }
 
 }  // namespace

@@ -1,0 +1,14 @@
+// The loaders' limits, all in one place (docs/scene-format.md, "Limits"). Each bounds the memory or
+// time that one input can take, so that a broken or hostile file is refused with an Error naming the
+// file or field, the value and the limit, instead of exhausting memory or running for ever.
+#pragma once
+
+namespace collide::scene {
+
+// Nesting: arrays and objects inside each other in a scene's JSON, and compounds inside compounds.
+// A compound level takes three JSON levels (shape, children, child), so the JSON limit leaves room
+// for the deepest compound allowed.
+inline constexpr int kMaxJsonDepth = 256;
+inline constexpr int kMaxCompoundDepth = 64;
+
+}  // namespace collide::scene
