@@ -1,7 +1,8 @@
+#include <collide/scene/limits.h>
 #include <collide/scene/obj_file.h>
 
-#include <fstream>
-#include <iterator>
+#include "file_text.h"
+
 #include <string>
 
 #include <tiny_obj_loader.h>
@@ -9,10 +10,8 @@
 namespace collide::scene {
 
 ObjMesh readObjFile(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error("OBJ file " + path.string() + ": cannot be read");
-  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  return parseObj(text, "OBJ file " + path.string());
+  const std::string who = "OBJ file " + path.string();
+  return parseObj(readFileText(path, kMaxObjFileBytes, who), who);
 }
 
 ObjMesh parseObj(std::string_view text, std::string_view name) {

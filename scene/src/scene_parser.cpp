@@ -1,5 +1,6 @@
 // JSON text -> Scene. Every field of docs/scene-format.md is read here, checked for type and range,
 // and unknown fields are refused, so that a typo is an error rather than a silent default.
+#include "file_text.h"
 #include "json_node.h"
 
 #include <collide/scene/limits.h>
@@ -7,7 +8,6 @@
 #include <collide/scene/scene.h>
 #include <collide/shapes.h>
 
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -39,17 +39,57 @@ Transform readPlacement(const JsonNode& node) {
   return t;
 }
 
-Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir, int compoundDepth);
+// What reading a shape needs beyond its JSON: where its OBJ files may be.
+struct LoadContext {
+  std::filesystem::path baseDir;
+  LoadOptions options;
+};
 
-Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
+// The path an OBJ file name of the scene leads to: relative to the scene's folder, and unless the
+// options allow it, inside that folder once normalised and once symbolic links are followed.
+std::filesystem::path objPath(const JsonNode& file, const LoadContext& context) {
+  namespace fs = std::filesystem;
+  const std::string name = file.string();
+  if (name.empty()) file.fail("must name an OBJ file, got \"\"");
+  const fs::path given(name);
+  if (context.options.allowOutsidePaths) return context.baseDir / given;  // an absolute name replaces baseDir
+  const std::string allow =
+      " (OBJ paths are relative to the scene file's folder and stay inside it, unless allowed: "
+      "collide run --allow-outside-paths, LoadOptions::allowOutsidePaths)";
+  if (given.has_root_name() || given.has_root_directory()) {
+    file.fail("must be a relative path, got the absolute path " + file.shown() + allow);
+  }
+  const fs::path normal = given.lexically_normal();
+  if (!normal.empty() && *normal.begin() == "..")
+    file.fail("leads outside the scene's folder, got " + file.shown() + allow);
+  const fs::path path = context.baseDir / normal;
+  std::error_code baseError, pathError;
+  const fs::path realBase = fs::weakly_canonical(context.baseDir, baseError);
+  const fs::path realPath = fs::weakly_canonical(path, pathError);
+  // Fail closed: a path whose links cannot be followed (a loop, a folder that cannot be searched) is
+  // not known to stay inside.
+  if (baseError || pathError) {
+    file.fail("cannot be resolved, got " + file.shown() + ": " +
+              (baseError ? baseError : pathError).message());
+  }
+  const fs::path inside = realPath.lexically_relative(realBase);
+  if (inside.empty() || *inside.begin() == "..") {
+    file.fail("leads outside the scene's folder through a symbolic link, got " + file.shown() + " (it is " +
+              realPath.string() + ")" + allow);
+  }
+  return path;
+}
+
+Shape readShape(const JsonNode& node, const LoadContext& context, int compoundDepth);
+
+Shape readMesh(const JsonNode& node, const LoadContext& context) {
   node.expectObject({"type", "vertices", "triangles", "file"});
   const bool inlineMesh = node.has("vertices") || node.has("triangles");
   if (inlineMesh == node.has("file")) node.fail("a mesh needs either vertices and triangles, or file");
   std::vector<Vec3> vertices;
   std::vector<MeshTriangle> triangles;
   if (auto file = node.find("file")) {
-    const std::string name = file->string();
-    const std::filesystem::path path = baseDir / name;  // an absolute name replaces baseDir
+    const std::filesystem::path path = objPath(*file, context);
     ObjMesh mesh = withPath(*file, [&] { return readObjFile(path); });
     vertices = std::move(mesh.vertices);
     triangles = std::move(mesh.triangles);
@@ -75,7 +115,7 @@ Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
 }
 
 // `compoundDepth`: how many compounds hold this shape.
-Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir, int compoundDepth) {
+Shape readShape(const JsonNode& node, const LoadContext& context, int compoundDepth) {
   if (!node.value().is_object()) node.fail("must be a shape object, got " + node.shown());
   const std::string type = node.at("type").string();
   if (type == "sphere") {
@@ -122,7 +162,7 @@ Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir, int 
     const auto points = readPoints(pointsNode);
     return withPath(pointsNode, [&] { return Shape(Kdop::fromPoints(k, points)); });
   }
-  if (type == "mesh") return readMesh(node, baseDir);
+  if (type == "mesh") return readMesh(node, context);
   if (type == "compound") {
     node.expectObject({"type", "children"});
     if (compoundDepth >= kMaxCompoundDepth) {
@@ -133,7 +173,7 @@ Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir, int 
     for (const JsonNode& child : childrenNode.elements()) {
       child.expectObject({"shape", "position", "rotation"});
       const JsonNode shapeNode = child.at("shape");
-      Shape shape = readShape(shapeNode, baseDir, compoundDepth + 1);
+      Shape shape = readShape(shapeNode, context, compoundDepth + 1);
       if (shape.type() == ShapeType::Plane) shapeNode.fail("a compound child cannot be a plane");
       children.push_back({std::move(shape), readPlacement(child)});
     }
@@ -194,7 +234,7 @@ BodyType readBodyType(const JsonNode& node) {
   node.fail("unknown body type " + node.shown() + " (expected static, kinematic or dynamic)");
 }
 
-Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::path& baseDir) {
+Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
   node.expectObject({"name", "type", "shape", "position", "rotation", "scale", "velocity", "angular_velocity",
                      "mass", "density", "material", "bounciness", "friction", "ccd", "sensor",
                      "break_impulse", "particle"});
@@ -204,7 +244,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::p
   if (d.name.empty()) node.at("name").fail("must not be empty");
   d.type = readBodyType(node.at("type"));
   const JsonNode shapeNode = node.at("shape");
-  d.shape = readShape(shapeNode, baseDir, 0);
+  d.shape = readShape(shapeNode, context, 0);
   if (d.shape.type() == ShapeType::Plane && d.type != BodyType::Static) {
     shapeNode.fail("a plane can only be on a static body, got a " + std::string(toString(d.type)) + " body");
   }
@@ -439,11 +479,13 @@ Json parseDocument(std::string_view text, const std::string& source) {
 
 }  // namespace
 
-Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir) {
+Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir,
+                 const LoadOptions& options) {
   Scene scene;
   scene.source = sourceName;
   const Json document = parseDocument(text, scene.source);
   const JsonNode root(document, scene.source);
+  const LoadContext context{baseDir, options};
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
   root.expectObject({"format", "settings", "materials", "bodies", "constraints"});
   const JsonNode format = root.at("format");
@@ -459,7 +501,7 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   std::map<std::string, std::size_t> names;
   if (auto n = root.find("bodies")) {
     for (const JsonNode& b : n->elements()) {
-      Body body = readBody(b, scene, baseDir);
+      Body body = readBody(b, scene, context);
       const auto [it, inserted] = names.emplace(body.def.name, scene.bodies.size());
       if (!inserted) {
         b.at("name").fail("duplicate name " + b.at("name").shown() + " (also bodies[" +
@@ -476,12 +518,9 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   return scene;
 }
 
-Scene loadSceneFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("scene file " + path.string() + ": cannot be opened");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScene(text.str(), path.string(), path.parent_path().empty() ? "." : path.parent_path());
+Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
+  const std::string text = readFileText(path, kMaxSceneFileBytes, "scene file " + path.string());
+  return parseScene(text, path.string(), path.parent_path().empty() ? "." : path.parent_path(), options);
 }
 
 }  // namespace collide::scene

@@ -3,7 +3,14 @@
 // file or field, the value and the limit, instead of exhausting memory or running for ever.
 #pragma once
 
+#include <cstdint>
+
 namespace collide::scene {
+
+// Files, checked before they are read: a scene file, and an OBJ file (a mesh shape's "file" or
+// `collide fit`'s argument).
+inline constexpr std::uintmax_t kMaxSceneFileBytes = 64ull << 20;  // 64 MiB
+inline constexpr std::uintmax_t kMaxObjFileBytes = 256ull << 20;   // 256 MiB
 
 // Nesting: arrays and objects inside each other in a scene's JSON, and compounds inside compounds.
 // A compound level takes three JSON levels (shape, children, child), so the JSON limit leaves room

@@ -15,7 +15,9 @@ struct ObjMesh {
   std::vector<MeshTriangle> triangles;
 };
 
-// Throws collide::Error when the file cannot be read or parsed, or holds no triangles.
+// Throws collide::Error when the file cannot be read or parsed, or holds no triangles; when it is not
+// a regular file (a directory, a device, a FIFO) or is larger than kMaxObjFileBytes
+// (collide/scene/limits.h).
 ObjMesh readObjFile(const std::filesystem::path& path);
 
 // The same for the text of an OBJ file; `name` names it in error messages. Only geometry is read:
