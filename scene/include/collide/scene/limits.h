@@ -3,6 +3,7 @@
 // file or field, the value and the limit, instead of exhausting memory or running for ever.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace collide::scene {
@@ -17,5 +18,9 @@ inline constexpr std::uintmax_t kMaxObjFileBytes = 256ull << 20;   // 256 MiB
 // for the deepest compound allowed.
 inline constexpr int kMaxJsonDepth = 256;
 inline constexpr int kMaxCompoundDepth = 64;
+
+// Sizes.
+inline constexpr std::size_t kMaxMeshTriangles = 4'000'000;  // inline or from an OBJ file, triangulated
+inline constexpr std::size_t kMaxObjFaceVertices = 256;      // one polygon ("f" line) of an OBJ file
 
 }  // namespace collide::scene
