@@ -128,11 +128,20 @@ float JsonNode::unitInterval() const {
   return v;
 }
 
-int JsonNode::integer(int minimum) const {
+int JsonNode::integer(int minimum, int maximum) const {
   if (!value_->is_number_integer()) fail("must be an integer, got " + shown());
+  if (value_->is_number_unsigned() && value_->get<std::uint64_t>() > std::uint64_t(maximum)) {
+    fail((maximum == std::numeric_limits<int>::max() ? "is too large"
+                                                     : "must be <= " + std::to_string(maximum)) +
+         ", got " + shown());
+  }
   const auto v = value_->get<std::int64_t>();
   if (v < minimum) fail("must be >= " + std::to_string(minimum) + ", got " + shown());
-  if (v > std::numeric_limits<int>::max()) fail("is too large, got " + shown());
+  if (v > maximum) {
+    fail((maximum == std::numeric_limits<int>::max() ? "is too large"
+                                                     : "must be <= " + std::to_string(maximum)) +
+         ", got " + shown());
+  }
   return static_cast<int>(v);
 }
 

@@ -51,11 +51,11 @@ class JsonNode {
   // ---- Scalars, each checked for type and range. ----
   bool boolean() const;
   std::string string() const;
-  float number() const;            // a finite float
-  float positive() const;          // > 0
-  float nonNegative() const;       // >= 0
-  float unitInterval() const;      // in [0, 1]
-  int integer(int minimum) const;  // an integer >= minimum
+  float number() const;                                                           // a finite float
+  float positive() const;                                                         // > 0
+  float nonNegative() const;                                                      // >= 0
+  float unitInterval() const;                                                     // in [0, 1]
+  int integer(int minimum, int maximum = std::numeric_limits<int>::max()) const;  // in [minimum, maximum]
   Vec3 vec3() const;
   Vec3 positiveVec3() const;  // every component > 0
   Quat quaternion() const;    // [x, y, z, w], unit length (within 1e-3), returned normalised

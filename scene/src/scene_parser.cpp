@@ -15,6 +15,12 @@ namespace collide::scene {
 
 namespace {
 
+std::string shortNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 // Runs `parse` and re-throws a library Error (an enum name, a hull that Qhull refuses) with the
 // field's path in front.
 template <class F>
@@ -95,7 +101,12 @@ Shape readMesh(const JsonNode& node, const LoadContext& context) {
     triangles = std::move(mesh.triangles);
   } else {
     vertices = readPoints(node.at("vertices"));
-    for (const JsonNode& t : node.at("triangles").elements()) {
+    const JsonNode trianglesNode = node.at("triangles");
+    if (trianglesNode.value().is_array() && trianglesNode.value().size() > kMaxMeshTriangles) {
+      trianglesNode.fail("holds " + std::to_string(trianglesNode.value().size()) +
+                         " triangles, more than the limit of " + std::to_string(kMaxMeshTriangles));
+    }
+    for (const JsonNode& t : trianglesNode.elements()) {
       const auto corners = t.elements();
       if (corners.size() != 3) t.fail("must be a triangle [i, j, k], got " + t.shown());
       MeshTriangle triangle;
@@ -191,9 +202,12 @@ void readSettings(const JsonNode& node, Scene& scene) {
                      "penetration_response", "persist_events", "restitution_threshold"});
   WorldDef& w = scene.world;
   if (auto n = node.find("gravity")) w.gravity = n->vec3();
-  if (auto n = node.find("dt")) scene.dt = n->positive();
-  if (auto n = node.find("steps")) scene.steps = n->integer(0);
-  if (auto n = node.find("substeps")) w.substeps = n->integer(1);
+  if (auto n = node.find("dt")) {
+    scene.dt = n->positive();
+    if (scene.dt > kMaxDt) n->fail("must be at most " + shortNumber(kMaxDt) + " s, got " + n->shown());
+  }
+  if (auto n = node.find("steps")) scene.steps = n->integer(0, kMaxSteps);
+  if (auto n = node.find("substeps")) w.substeps = n->integer(1, kMaxSubsteps);
   if (auto n = node.find("broadphase")) {
     w.broadPhase.type = withPath(*n, [&] { return parseBroadPhaseType(n->string()); });
   }
@@ -500,6 +514,10 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   }
   std::map<std::string, std::size_t> names;
   if (auto n = root.find("bodies")) {
+    if (n->value().is_array() && n->value().size() > kMaxBodies) {
+      n->fail("holds " + std::to_string(n->value().size()) + " bodies, more than the limit of " +
+              std::to_string(kMaxBodies));
+    }
     for (const JsonNode& b : n->elements()) {
       Body body = readBody(b, scene, context);
       const auto [it, inserted] = names.emplace(body.def.name, scene.bodies.size());

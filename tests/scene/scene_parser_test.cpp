@@ -390,5 +390,62 @@ TEST(SceneParser, CompoundsNestUpToTheLimit) {
               HasSubstr("test.json: " + path + ": compounds nest more than 64 levels deep (the limit)"));
 }
 
+TEST(SceneParserErrors, SettingsWithinTheirLimits) {
+  // One step of a billion substeps would not end; a step of 1e30 s overflows every position.
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 1000000000}})"),
+              HasSubstr("test.json: settings.substeps: must be <= 64, got 1000000000"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 18446744073709551615}})"),
+              HasSubstr("settings.substeps: must be <= 64, got 18446744073709551615"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": 1e30}})"),
+              HasSubstr("test.json: settings.dt: must be at most 1 s, got 1e+30"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": 1.5}})"),
+              HasSubstr("settings.dt: must be at most 1 s, got 1.5"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"steps": 10000001}})"),
+              HasSubstr("test.json: settings.steps: must be <= 10000000, got 10000001"));
+  const Scene s = parseScene(
+      R"({"format": "collide-scene/1", "settings": {"substeps": 64, "dt": 1, "steps": 10000000}})");
+  EXPECT_EQ(s.world.substeps, 64);
+  EXPECT_EQ(s.dt, 1.0f);
+  EXPECT_EQ(s.steps, 10'000'000);
+}
+
+TEST(SceneParserErrors, BodiesAndTrianglesWithinTheirLimits) {
+  // Counted before any is read.
+  std::string bodies = "0";
+  for (int i = 0; i < 100'000; ++i) bodies += ",0";
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [)" + bodies + "]}"),
+              HasSubstr("test.json: bodies: holds 100001 bodies, more than the limit of 100000"));
+  std::string triangles = "0";
+  for (int i = 0; i < 4'000'000; ++i) triangles += ",0";
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "m", "type": "static", "shape": {"type": "mesh",
+      "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]], "triangles": [)" +
+                          triangles + "]}}")),
+      HasSubstr(
+          "test.json: bodies[0].shape.triangles: holds 4000001 triangles, more than the limit of 4000000"));
+}
+
+TEST(SceneParserErrors, MassOutsideFloatRangeNamesTheMass) {
+  const auto massBody = [](const std::string& mass) {
+    return withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}, "mass": )" +
+                    mass + "}");
+  };
+  EXPECT_THAT(parseError(massBody("1e39")),
+              HasSubstr("test.json: bodies[0].mass: must be a finite number within float range, got 1e+39"));
+  EXPECT_THAT(parseError(massBody("1e999")),
+              HasSubstr("test.json: bodies[0].mass: must be a finite number within float range, got 1e999"));
+  EXPECT_THAT(parseError(massBody("1e-50")), HasSubstr("test.json: bodies[0].mass: must be > 0, got 1e-50"));
+  // Within float range but more than a 1 m sphere's inertia can carry in float: the World refuses
+  // it, naming the mass.
+  try {
+    buildWorld(parseScene(massBody("3e38"), "test.json"));
+    ADD_FAILURE() << "3e38 kg on a 1 m sphere must be refused";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(),
+                HasSubstr("test.json: bodies[0]: body \"b\": mass: mass properties not representable in "
+                          "float with mass 3e+38"));
+  }
+}
+
 }  // namespace
 }  // namespace collide::scene

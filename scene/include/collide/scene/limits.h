@@ -19,7 +19,13 @@ inline constexpr std::uintmax_t kMaxObjFileBytes = 256ull << 20;   // 256 MiB
 inline constexpr int kMaxJsonDepth = 256;
 inline constexpr int kMaxCompoundDepth = 64;
 
+// Settings.
+inline constexpr int kMaxSubsteps = 64;
+inline constexpr float kMaxDt = 1.0f;  // s
+inline constexpr int kMaxSteps = 10'000'000;
+
 // Sizes.
+inline constexpr std::size_t kMaxBodies = 100'000;
 inline constexpr std::size_t kMaxMeshTriangles = 4'000'000;  // inline or from an OBJ file, triangulated
 inline constexpr std::size_t kMaxObjFaceVertices = 256;      // one polygon ("f" line) of an OBJ file
 
