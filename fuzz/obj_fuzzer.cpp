@@ -4,11 +4,13 @@
 //
 // Allowed: a mesh, or collide::Error with a message (unparsable text, an index out of range, no
 // triangles, a non-finite coordinate, a zero-area triangle, a flat point set). A finding: a crash,
-// a sanitizer report, another exception, an error without a message, or a mesh whose triangles
-// name vertices that do not exist.
+// a sanitizer report, another exception, an error without a message, a mesh whose triangles name
+// vertices that do not exist, or a mesh with a vertex that is not finite (what tinyobjloader makes
+// of "nan" or "inf" must be refused, not passed on).
 #include <collide/bounding.h>
 #include <collide/scene/obj_file.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -20,6 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     scene::ObjMesh obj = scene::parseObj(text, "fuzz.obj");
     if (obj.triangles.empty()) std::abort();  // documented: "no triangles" is an Error
+    for (const Vec3& v : obj.vertices) {
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) std::abort();
+    }
     for (const MeshTriangle& t : obj.triangles) {
       for (const std::uint32_t v : t.v) {
         if (v >= obj.vertices.size()) std::abort();

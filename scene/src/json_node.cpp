@@ -18,8 +18,35 @@ std::string typeName(const Json& v) {
 
 }  // namespace
 
+std::string JsonNode::path() const {
+  std::vector<const Step*> steps;
+  for (const Step* s = step_.get(); s != nullptr; s = s->parent.get()) steps.push_back(s);
+  std::string out;
+  for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
+    const Step& s = **it;
+    if (s.element) {
+      out += '[';
+      out += std::to_string(s.index);
+      out += ']';
+    } else {
+      if (!out.empty()) out += '.';
+      out += s.key;
+    }
+  }
+  return out;
+}
+
+std::string JsonNode::childPath(std::string_view key) const {
+  const std::string here = path();
+  return (here.empty() ? "" : here + ".") + std::string(key);
+}
+
+JsonNode JsonNode::child(const Json& value, std::string key) const {
+  return JsonNode(value, std::make_shared<const Step>(Step{step_, false, 0, std::move(key)}), source_);
+}
+
 void JsonNode::fail(const std::string& message) const {
-  throw Error(*source_ + ": " + path_ + ": " + message);
+  throw Error(*source_ + ": " + path() + ": " + message);
 }
 
 std::string JsonNode::shown() const {
@@ -37,8 +64,7 @@ void JsonNode::expectObject(std::initializer_list<std::string_view> known) const
     if (ok) continue;
     std::string list;
     for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-    throw Error(*source_ + ": " + (path_.empty() ? "" : path_ + ".") + key + ": unknown field (expected " +
-                list + ")");
+    throw Error(*source_ + ": " + childPath(key) + ": unknown field (expected " + list + ")");
   }
 }
 
@@ -46,14 +72,12 @@ bool JsonNode::has(std::string_view key) const { return value_->is_object() && v
 
 std::optional<JsonNode> JsonNode::find(std::string_view key) const {
   if (!has(key)) return std::nullopt;
-  return JsonNode(value_->at(std::string(key)), (path_.empty() ? "" : path_ + ".") + std::string(key),
-                  *source_);
+  return child(value_->at(std::string(key)), std::string(key));
 }
 
 JsonNode JsonNode::at(std::string_view key) const {
   if (auto node = find(key)) return *node;
-  throw Error(*source_ + ": " + (path_.empty() ? "" : path_ + ".") + std::string(key) +
-              ": missing required field");
+  throw Error(*source_ + ": " + childPath(key) + ": missing required field");
 }
 
 std::vector<JsonNode> JsonNode::elements() const {
@@ -61,7 +85,7 @@ std::vector<JsonNode> JsonNode::elements() const {
   std::vector<JsonNode> out;
   out.reserve(value_->size());
   for (std::size_t i = 0; i < value_->size(); ++i) {
-    out.emplace_back((*value_)[i], path_ + "[" + std::to_string(i) + "]", *source_);
+    out.push_back(JsonNode((*value_)[i], std::make_shared<const Step>(Step{step_, true, i, {}}), source_));
   }
   return out;
 }
@@ -104,11 +128,20 @@ float JsonNode::unitInterval() const {
   return v;
 }
 
-int JsonNode::integer(int minimum) const {
+int JsonNode::integer(int minimum, int maximum) const {
   if (!value_->is_number_integer()) fail("must be an integer, got " + shown());
+  if (value_->is_number_unsigned() && value_->get<std::uint64_t>() > std::uint64_t(maximum)) {
+    fail((maximum == std::numeric_limits<int>::max() ? "is too large"
+                                                     : "must be <= " + std::to_string(maximum)) +
+         ", got " + shown());
+  }
   const auto v = value_->get<std::int64_t>();
   if (v < minimum) fail("must be >= " + std::to_string(minimum) + ", got " + shown());
-  if (v > std::numeric_limits<int>::max()) fail("is too large, got " + shown());
+  if (v > maximum) {
+    fail((maximum == std::numeric_limits<int>::max() ? "is too large"
+                                                     : "must be <= " + std::to_string(maximum)) +
+         ", got " + shown());
+  }
   return static_cast<int>(v);
 }
 

@@ -1,6 +1,10 @@
 // A JSON value together with its path in the document ("bodies[3].shape.radius"), so that every
 // check can say which field is wrong and what it holds. Jolt-style validation: bad input becomes a
 // collide::Error with a message, never a crash or a silently defaulted value.
+//
+// The path is a chain of steps shared with the parent node and spelled out only for a message, so a
+// node costs the same at any depth: reading a document nested d levels deep takes memory and time
+// linear in d (a copied path string per node would make both quadratic).
 #pragma once
 
 #include <collide/error.h>
@@ -9,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -20,11 +26,12 @@ using Json = nlohmann::json;
 
 class JsonNode {
  public:
-  JsonNode(const Json& value, std::string path, const std::string& source)
-      : value_(&value), path_(std::move(path)), source_(&source) {}
+  // The document's root (its path is empty); `source` prefixes every message and must outlive the
+  // node.
+  JsonNode(const Json& value, const std::string& source) : value_(&value), source_(&source) {}
 
   const Json& value() const { return *value_; }
-  const std::string& path() const { return path_; }
+  std::string path() const;  // "bodies[3].shape.radius"; empty for the root
 
   // Throws Error("SOURCE: PATH: message").
   [[noreturn]] void fail(const std::string& message) const;
@@ -44,18 +51,29 @@ class JsonNode {
   // ---- Scalars, each checked for type and range. ----
   bool boolean() const;
   std::string string() const;
-  float number() const;            // a finite float
-  float positive() const;          // > 0
-  float nonNegative() const;       // >= 0
-  float unitInterval() const;      // in [0, 1]
-  int integer(int minimum) const;  // an integer >= minimum
+  float number() const;                                                           // a finite float
+  float positive() const;                                                         // > 0
+  float nonNegative() const;                                                      // >= 0
+  float unitInterval() const;                                                     // in [0, 1]
+  int integer(int minimum, int maximum = std::numeric_limits<int>::max()) const;  // in [minimum, maximum]
   Vec3 vec3() const;
   Vec3 positiveVec3() const;  // every component > 0
   Quat quaternion() const;    // [x, y, z, w], unit length (within 1e-3), returned normalised
 
  private:
+  struct Step {
+    std::shared_ptr<const Step> parent;  // null: a field of the root
+    bool element = false;                // an array element, else an object's field
+    std::size_t index = 0;               // the element's index
+    std::string key;                     // the field's key
+  };
+  JsonNode(const Json& value, std::shared_ptr<const Step> step, const std::string* source)
+      : value_(&value), step_(std::move(step)), source_(source) {}
+  JsonNode child(const Json& value, std::string key) const;
+  std::string childPath(std::string_view key) const;  // the path of a field of this object
+
   const Json* value_;
-  std::string path_;
+  std::shared_ptr<const Step> step_;  // null for the root
   const std::string* source_;
 };
 

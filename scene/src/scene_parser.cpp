@@ -1,17 +1,25 @@
 // JSON text -> Scene. Every field of docs/scene-format.md is read here, checked for type and range,
 // and unknown fields are refused, so that a typo is an error rather than a silent default.
+#include "file_text.h"
 #include "json_node.h"
 
+#include <collide/scene/limits.h>
 #include <collide/scene/obj_file.h>
 #include <collide/scene/scene.h>
 #include <collide/shapes.h>
 
-#include <fstream>
+#include <set>
 #include <sstream>
 
 namespace collide::scene {
 
 namespace {
+
+std::string shortNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 // Runs `parse` and re-throws a library Error (an enum name, a hull that Qhull refuses) with the
 // field's path in front.
@@ -37,23 +45,68 @@ Transform readPlacement(const JsonNode& node) {
   return t;
 }
 
-Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir);
+// What reading a shape needs beyond its JSON: where its OBJ files may be.
+struct LoadContext {
+  std::filesystem::path baseDir;
+  LoadOptions options;
+};
 
-Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
+// The path an OBJ file name of the scene leads to: relative to the scene's folder, and unless the
+// options allow it, inside that folder once normalised and once symbolic links are followed.
+std::filesystem::path objPath(const JsonNode& file, const LoadContext& context) {
+  namespace fs = std::filesystem;
+  const std::string name = file.string();
+  if (name.empty()) file.fail("must name an OBJ file, got \"\"");
+  const fs::path given(name);
+  if (context.options.allowOutsidePaths) return context.baseDir / given;  // an absolute name replaces baseDir
+  const std::string allow =
+      " (OBJ paths are relative to the scene file's folder and stay inside it, unless allowed: "
+      "collide run --allow-outside-paths, LoadOptions::allowOutsidePaths)";
+  if (given.has_root_name() || given.has_root_directory()) {
+    file.fail("must be a relative path, got the absolute path " + file.shown() + allow);
+  }
+  const fs::path normal = given.lexically_normal();
+  if (!normal.empty() && *normal.begin() == "..")
+    file.fail("leads outside the scene's folder, got " + file.shown() + allow);
+  const fs::path path = context.baseDir / normal;
+  std::error_code baseError, pathError;
+  const fs::path realBase = fs::weakly_canonical(context.baseDir, baseError);
+  const fs::path realPath = fs::weakly_canonical(path, pathError);
+  // Fail closed: a path whose links cannot be followed (a loop, a folder that cannot be searched) is
+  // not known to stay inside.
+  if (baseError || pathError) {
+    file.fail("cannot be resolved, got " + file.shown() + ": " +
+              (baseError ? baseError : pathError).message());
+  }
+  const fs::path inside = realPath.lexically_relative(realBase);
+  if (inside.empty() || *inside.begin() == "..") {
+    file.fail("leads outside the scene's folder through a symbolic link, got " + file.shown() + " (it is " +
+              realPath.string() + ")" + allow);
+  }
+  return path;
+}
+
+Shape readShape(const JsonNode& node, const LoadContext& context, int compoundDepth);
+
+Shape readMesh(const JsonNode& node, const LoadContext& context) {
   node.expectObject({"type", "vertices", "triangles", "file"});
   const bool inlineMesh = node.has("vertices") || node.has("triangles");
   if (inlineMesh == node.has("file")) node.fail("a mesh needs either vertices and triangles, or file");
   std::vector<Vec3> vertices;
   std::vector<MeshTriangle> triangles;
   if (auto file = node.find("file")) {
-    const std::string name = file->string();
-    const std::filesystem::path path = baseDir / name;  // an absolute name replaces baseDir
+    const std::filesystem::path path = objPath(*file, context);
     ObjMesh mesh = withPath(*file, [&] { return readObjFile(path); });
     vertices = std::move(mesh.vertices);
     triangles = std::move(mesh.triangles);
   } else {
     vertices = readPoints(node.at("vertices"));
-    for (const JsonNode& t : node.at("triangles").elements()) {
+    const JsonNode trianglesNode = node.at("triangles");
+    if (trianglesNode.value().is_array() && trianglesNode.value().size() > kMaxMeshTriangles) {
+      trianglesNode.fail("holds " + std::to_string(trianglesNode.value().size()) +
+                         " triangles, more than the limit of " + std::to_string(kMaxMeshTriangles));
+    }
+    for (const JsonNode& t : trianglesNode.elements()) {
       const auto corners = t.elements();
       if (corners.size() != 3) t.fail("must be a triangle [i, j, k], got " + t.shown());
       MeshTriangle triangle;
@@ -72,7 +125,8 @@ Shape readMesh(const JsonNode& node, const std::filesystem::path& baseDir) {
       node, [&] { return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles))); });
 }
 
-Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir) {
+// `compoundDepth`: how many compounds hold this shape.
+Shape readShape(const JsonNode& node, const LoadContext& context, int compoundDepth) {
   if (!node.value().is_object()) node.fail("must be a shape object, got " + node.shown());
   const std::string type = node.at("type").string();
   if (type == "sphere") {
@@ -119,15 +173,18 @@ Shape readShape(const JsonNode& node, const std::filesystem::path& baseDir) {
     const auto points = readPoints(pointsNode);
     return withPath(pointsNode, [&] { return Shape(Kdop::fromPoints(k, points)); });
   }
-  if (type == "mesh") return readMesh(node, baseDir);
+  if (type == "mesh") return readMesh(node, context);
   if (type == "compound") {
     node.expectObject({"type", "children"});
+    if (compoundDepth >= kMaxCompoundDepth) {
+      node.fail("compounds nest more than " + std::to_string(kMaxCompoundDepth) + " levels deep (the limit)");
+    }
     const JsonNode childrenNode = node.at("children");
     std::vector<Compound::Child> children;
     for (const JsonNode& child : childrenNode.elements()) {
       child.expectObject({"shape", "position", "rotation"});
       const JsonNode shapeNode = child.at("shape");
-      Shape shape = readShape(shapeNode, baseDir);
+      Shape shape = readShape(shapeNode, context, compoundDepth + 1);
       if (shape.type() == ShapeType::Plane) shapeNode.fail("a compound child cannot be a plane");
       children.push_back({std::move(shape), readPlacement(child)});
     }
@@ -145,9 +202,12 @@ void readSettings(const JsonNode& node, Scene& scene) {
                      "penetration_response", "persist_events", "restitution_threshold"});
   WorldDef& w = scene.world;
   if (auto n = node.find("gravity")) w.gravity = n->vec3();
-  if (auto n = node.find("dt")) scene.dt = n->positive();
-  if (auto n = node.find("steps")) scene.steps = n->integer(0);
-  if (auto n = node.find("substeps")) w.substeps = n->integer(1);
+  if (auto n = node.find("dt")) {
+    scene.dt = n->positive();
+    if (scene.dt > kMaxDt) n->fail("must be at most " + shortNumber(kMaxDt) + " s, got " + n->shown());
+  }
+  if (auto n = node.find("steps")) scene.steps = n->integer(0, kMaxSteps);
+  if (auto n = node.find("substeps")) w.substeps = n->integer(1, kMaxSubsteps);
   if (auto n = node.find("broadphase")) {
     w.broadPhase.type = withPath(*n, [&] { return parseBroadPhaseType(n->string()); });
   }
@@ -188,7 +248,7 @@ BodyType readBodyType(const JsonNode& node) {
   node.fail("unknown body type " + node.shown() + " (expected static, kinematic or dynamic)");
 }
 
-Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::path& baseDir) {
+Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
   node.expectObject({"name", "type", "shape", "position", "rotation", "scale", "velocity", "angular_velocity",
                      "mass", "density", "material", "bounciness", "friction", "ccd", "sensor",
                      "break_impulse", "particle"});
@@ -198,7 +258,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const std::filesystem::p
   if (d.name.empty()) node.at("name").fail("must not be empty");
   d.type = readBodyType(node.at("type"));
   const JsonNode shapeNode = node.at("shape");
-  d.shape = readShape(shapeNode, baseDir);
+  d.shape = readShape(shapeNode, context, 0);
   if (d.shape.type() == ShapeType::Plane && d.type != BodyType::Static) {
     shapeNode.fail("a plane can only be on a static body, got a " + std::string(toString(d.type)) + " body");
   }
@@ -291,7 +351,9 @@ std::pair<std::size_t, std::size_t> lineColumn(std::string_view text, std::size_
 
 // nlohmann's DOM builder behind a SAX handler that remembers where in the document it is, so that
 // a parse error (a syntax error, or a number such as 1e999 that overflows a double) can name its
-// line, column and, for a number, the field path.
+// line, column and, for a number, the field path. It also refuses what nlohmann's parser accepts
+// silently: a key given twice in one object (nlohmann keeps the last), and nesting deeper than
+// kMaxJsonDepth (nlohmann parses any depth, but copying, printing and freeing a value recurse).
 class PathTrackingSax {
  public:
   using DomParser = nlohmann::detail::json_sax_dom_parser<Json>;
@@ -306,11 +368,17 @@ class PathTrackingSax {
   bool binary(Json::binary_t& v) { return value(), dom_.binary(v); }
   bool start_object(std::size_t n) {
     value();
-    frames_.push_back({false, 0, ""});
+    if (!enter()) return false;
+    frames_.push_back({false, 0, "", {}});
     return dom_.start_object(n);
   }
   bool key(std::string& k) {
-    frames_.back().key = k;
+    Frame& frame = frames_.back();
+    frame.key = k;
+    if (!frame.keys.insert(k).second) {
+      refusal_ = "duplicate key: an object holds each key once";
+      return false;
+    }
     return dom_.key(k);
   }
   bool end_object() {
@@ -319,7 +387,8 @@ class PathTrackingSax {
   }
   bool start_array(std::size_t n) {
     value();
-    frames_.push_back({true, 0, ""});
+    if (!enter()) return false;
+    frames_.push_back({true, 0, "", {}});
     return dom_.start_array(n);
   }
   bool end_array() {
@@ -351,27 +420,67 @@ class PathTrackingSax {
   const std::string& token() const { return token_; }
   const std::string& what() const { return what_; }
   bool numberOverflow() const { return numberOverflow_; }
+  // Why the handler stopped the parse (a duplicate key, too deep); empty after a parse error.
+  const std::string& refusal() const { return refusal_; }
 
  private:
   struct Frame {
     bool array;
-    std::size_t count;  // array elements started
-    std::string key;    // object: the last key
+    std::size_t count;           // array elements started
+    std::string key;             // object: the last key
+    std::set<std::string> keys;  // object: every key so far
   };
   void value() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
   }
+  bool enter() {
+    if (frames_.size() < static_cast<std::size_t>(kMaxJsonDepth)) return true;
+    refusal_ =
+        "arrays and objects nest more than " + std::to_string(kMaxJsonDepth) + " levels deep (the limit)";
+    return false;
+  }
   DomParser dom_;
   std::vector<Frame> frames_;
   std::size_t position_ = 0;
-  std::string token_, what_;
+  std::string token_, what_, refusal_;
   bool numberOverflow_ = false;
 };
 
+// The parser's explanation without its prefix ("[json.exception.parse_error.101] parse error at
+// line 1, column 2: "), the line and column being given separately, and with bytes that are not
+// printable ASCII (the input's, quoted in "last read: ...") written as \xNN.
+std::string parseExplanation(const std::string& what) {
+  const std::size_t colon = what.find(": ");
+  const std::string text = colon == std::string::npos ? what : what.substr(colon + 2);
+  std::string out;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f) {
+      out += ch;
+    } else {
+      static const char* const hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
 Json parseDocument(std::string_view text, const std::string& source) {
+  // nlohmann's parser takes a NUL byte for the end of the input and would ignore what follows it.
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const auto [line, column] = lineColumn(text, nul);
+    throw Error(source + ": malformed JSON at line " + std::to_string(line) + ", column " +
+                std::to_string(column) + ": a NUL byte (JSON text has none)");
+  }
   Json document;
   PathTrackingSax sax(document);
   if (Json::sax_parse(text, &sax)) return document;
+  if (!sax.refusal().empty()) {
+    const std::string path = sax.path();
+    throw Error(source + ": " + (path.empty() ? "" : path + ": ") + sax.refusal());
+  }
   // nlohmann's position is one past the offending character.
   const auto [line, column] = lineColumn(text, sax.position() == 0 ? 0 : sax.position() - 1);
   const std::string where = "line " + std::to_string(line) + ", column " + std::to_string(column);
@@ -379,18 +488,18 @@ Json parseDocument(std::string_view text, const std::string& source) {
     throw Error(source + ": " + sax.path() + ": must be a finite number within float range, got " +
                 sax.token() + " (" + where + ")");
   }
-  const auto colon = sax.what().rfind(": ");
-  throw Error(source + ": malformed JSON at " + where +
-              (colon == std::string::npos ? "" : ": " + sax.what().substr(colon + 2)));
+  throw Error(source + ": malformed JSON at " + where + ": " + parseExplanation(sax.what()));
 }
 
 }  // namespace
 
-Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir) {
+Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir,
+                 const LoadOptions& options) {
   Scene scene;
   scene.source = sourceName;
   const Json document = parseDocument(text, scene.source);
-  const JsonNode root(document, "", scene.source);
+  const JsonNode root(document, scene.source);
+  const LoadContext context{baseDir, options};
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
   root.expectObject({"format", "settings", "materials", "bodies", "constraints"});
   const JsonNode format = root.at("format");
@@ -405,8 +514,12 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   }
   std::map<std::string, std::size_t> names;
   if (auto n = root.find("bodies")) {
+    if (n->value().is_array() && n->value().size() > kMaxBodies) {
+      n->fail("holds " + std::to_string(n->value().size()) + " bodies, more than the limit of " +
+              std::to_string(kMaxBodies));
+    }
     for (const JsonNode& b : n->elements()) {
-      Body body = readBody(b, scene, baseDir);
+      Body body = readBody(b, scene, context);
       const auto [it, inserted] = names.emplace(body.def.name, scene.bodies.size());
       if (!inserted) {
         b.at("name").fail("duplicate name " + b.at("name").shown() + " (also bodies[" +
@@ -423,12 +536,9 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   return scene;
 }
 
-Scene loadSceneFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("scene file " + path.string() + ": cannot be opened");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScene(text.str(), path.string(), path.parent_path().empty() ? "." : path.parent_path());
+Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
+  const std::string text = readFileText(path, kMaxSceneFileBytes, "scene file " + path.string());
+  return parseScene(text, path.string(), path.parent_path().empty() ? "." : path.parent_path(), options);
 }
 
 }  // namespace collide::scene

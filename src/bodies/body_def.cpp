@@ -33,9 +33,15 @@ void validateParticle(const BodyDef& def, const std::string& who) {
 }
 
 // Mass, centre of mass and inertia of a dynamic body; a particle is a point mass (zero inverse
-// inertia, so no impulse ever turns it).
+// inertia, so no impulse ever turns it). Errors start with the field to blame: "shape: " or, for a
+// given mass that the shape's inertia cannot carry in float, "mass: ".
 void initMass(const BodyDef& def, BodyRecord& r, BodyState& s) {
-  MassProperties props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
+  MassProperties props;
+  try {
+    props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
+  } catch (const Error& e) {
+    throw Error(std::string("shape: ") + e.what());
+  }
   float massScale = 1.0f;
   if (def.mass) massScale = *def.mass / props.mass;
   r.mass = props.mass * massScale;
@@ -47,18 +53,24 @@ void initMass(const BodyDef& def, BodyRecord& r, BodyState& s) {
   }
   s.inverseMass = 1.0f / r.mass;
   // Every number of the shape was valid, yet its mass may not be representable: a 1e30 m box
-  // weighs infinitely much, a 1e-20 m one nothing (an infinite inverse mass).
+  // weighs infinitely much, a 1e-20 m one nothing (an infinite inverse mass). A given mass can be
+  // too large or too small for the shape in the same way (3e38 kg on a 1 m sphere: its inertia
+  // matrix cannot be inverted in float).
   if (!(std::isfinite(r.mass) && r.mass > 0.0f && std::isfinite(s.inverseMass) &&
         isFinite(r.localCenterOfMass) && isFiniteMatrix(r.inverseInertiaLocal))) {
-    throw Error("mass properties not representable in float (mass " + formatFloat(r.mass) +
+    const bool shapeFits = std::isfinite(props.mass) && props.mass > 0.0f && isFinite(props.centerOfMass);
+    if (def.mass && shapeFits) {
+      throw Error("mass: mass properties not representable in float with mass " + formatFloat(*def.mass) +
+                  ": the mass is too large or too small for this shape at this scale");
+    }
+    throw Error("shape: mass properties not representable in float (mass " + formatFloat(r.mass) +
                 "): the shape is too large or too small at this scale");
   }
 }
 
-// What the shape's size gives the record: mass (dynamic bodies), and the radii and extent the
-// speculative margin, the manifold cache and continuous collision read.
-void initShapeMeasures(const BodyDef& def, BodyRecord& r, BodyState& s) {
-  if (def.type == BodyType::Dynamic) initMass(def, r, s);
+// The radii and extent that the speculative margin, the manifold cache and continuous collision
+// read.
+void initShapeExtents(const BodyDef& def, BodyRecord& r) {
   if (def.type != BodyType::Static) {
     const Vec3 half = localBounds(def.shape).halfExtents() * def.scale;
     r.minExtent = std::min({half.x, half.y, half.z});
@@ -68,6 +80,16 @@ void initShapeMeasures(const BodyDef& def, BodyRecord& r, BodyState& s) {
   }
   const BoundingSphere sphere = localBoundingSphere(def.shape);
   r.originRadius = (glm::length(sphere.center) + sphere.radius) * def.scale;
+}
+
+// What the shape's size gives the record: mass (dynamic bodies), radii and extent.
+void initShapeMeasures(const BodyDef& def, BodyRecord& r, BodyState& s) {
+  if (def.type == BodyType::Dynamic) initMass(def, r, s);  // its errors name their field
+  try {
+    initShapeExtents(def, r);
+  } catch (const Error& e) {
+    throw Error(std::string("shape: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -145,7 +167,7 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   try {
     initShapeMeasures(def, r, s);
   } catch (const Error& e) {
-    throw Error(who + ": shape: " + e.what());
+    throw Error(who + ": " + e.what());  // "shape: ..." or "mass: ..."
   }
   s.rotation = glm::normalize(def.rotation);
   s.centerOfMass = def.position + s.rotation * r.localCenterOfMass;

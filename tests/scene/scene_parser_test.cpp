@@ -38,7 +38,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.world.broadPhase.type, BroadPhaseType::SweepAndPrune);
   EXPECT_FALSE(s.world.ccd);  // the engine default is true
   EXPECT_FALSE(s.world.sleeping);
-  EXPECT_TRUE(s.world.persistEvents);  // the engine default is false
+  EXPECT_TRUE(s.world.persistEvents);                            // the engine default is false
   EXPECT_FLOAT_EQ(s.world.contact.restitutionThreshold, 0.25f);  // the engine default is 1 m/s
   EXPECT_EQ(s.world.bouncinessCombine, CombineRule::Multiply);
   EXPECT_EQ(s.world.frictionCombine, CombineRule::Min);
@@ -311,6 +311,140 @@ TEST(SceneParser, ParticleReachesTheWorld) {
   const SceneWorld sw = buildWorld(s);
   EXPECT_TRUE(sw.world.isParticle(sw.bodies[0]));
   EXPECT_FLOAT_EQ(sw.world.mass(sw.bodies[0]), 0.5f);
+}
+
+// The JSON parser's whole explanation, after the line and column: "NaN", random bytes or a
+// truncated file each say what is wrong, bytes that do not print escaped.
+TEST(SceneParserErrors, MalformedJsonKeepsTheParsersExplanation) {
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": NaN}})"),
+              HasSubstr("test.json: malformed JSON at line 1, column 50: syntax error while parsing value - "
+                        "invalid literal; last read: '\"dt\": N'"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [{"name": "a")"),
+              HasSubstr("test.json: malformed JSON at line 1, column 54: syntax error while parsing object - "
+                        "unexpected end of input; expected '}'"));
+  EXPECT_THAT(parseError("\x89PNG\r\n\x1a\n"),
+              HasSubstr("test.json: malformed JSON at line 1, column 1: syntax error while parsing value - "
+                        "invalid literal; last read: '\\x89'"));
+  EXPECT_THAT(parseError(""),
+              HasSubstr("test.json: malformed JSON at line 1, column 1: syntax error while parsing "
+                        "value - unexpected end of input; expected '[', '{', or a literal"));
+  // nlohmann's parser takes a NUL byte for the end of the text, which would hide what follows it.
+  EXPECT_THAT(parseError(std::string(R"({"format": "collide-scene/1"})") + '\0' + R"(, "bodies": 7})"),
+              HasSubstr("test.json: malformed JSON at line 1, column 30: a NUL byte (JSON text has none)"));
+}
+
+// nlohmann's parser keeps the last of two equal keys; the scene loader refuses them.
+TEST(SceneParserErrors, DuplicateKeysAreRefused) {
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "shape": {"type": "sphere", "radius": 1, "radius": 2}})")),
+              HasSubstr("test.json: bodies[0].shape.radius: duplicate key: an object holds each key once"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "format": "collide-scene/1"})"),
+              HasSubstr("test.json: format: duplicate key"));
+  EXPECT_THAT(
+      parseError(R"({"format": "collide-scene/1", "materials": {"felt": {}, "wood": {}, "felt": {}}})"),
+      HasSubstr("test.json: materials.felt: duplicate key"));
+  // The same key in different objects is no duplicate.
+  EXPECT_EQ(parseScene(withBody(R"({"name": "b", "type": "dynamic", "position": [0, 1, 0],
+      "shape": {"type": "compound", "children": [{"shape": {"type": "sphere", "radius": 1}, "position": [0, 0, 0]},
+                                                  {"shape": {"type": "sphere", "radius": 1}, "position": [1, 0, 0]}]}})"))
+                .bodies.size(),
+            1u);
+}
+
+// nlohmann parses any depth, but copying, printing and freeing a value recurse: [[[...]]] a hundred
+// thousand deep would overflow the stack when an error message prints it.
+TEST(SceneParserErrors, JsonNestingIsLimited) {
+  const std::string deep = std::string(100'000, '[') + std::string(100'000, ']');
+  const std::string message =
+      parseError(R"({"format": "collide-scene/1", "bodies": [{"name": "b", "type": "dynamic", "position": )" +
+                 deep + R"(, "shape": {"type": "sphere", "radius": 1}}]})");
+  EXPECT_THAT(message, HasSubstr("test.json: bodies[0].position[0][0][0]"));
+  EXPECT_THAT(message, HasSubstr(": arrays and objects nest more than 256 levels deep (the limit)"));
+  // 256 levels are parsed (then refused for what they hold).
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "x": )" + std::string(255, '[') +
+                         std::string(255, ']') + "}"),
+              HasSubstr("test.json: x: unknown field"));
+}
+
+// `levels` compounds around a sphere, each the only child of the one above.
+std::string nestedCompounds(int levels) {
+  std::string shape = R"({"type": "sphere", "radius": 0.5})";
+  for (int i = 0; i < levels; ++i) shape = R"({"type": "compound", "children": [{"shape": )" + shape + "}]}";
+  return withBody(R"({"name": "b", "type": "dynamic", "shape": )" + shape + "}");
+}
+
+TEST(SceneParser, CompoundsNestUpToTheLimit) {
+  const Scene s = parseScene(nestedCompounds(64));
+  const Shape* shape = &s.bodies.at(0).def.shape;
+  for (int i = 0; i < 64; ++i) {
+    ASSERT_EQ(shape->type(), ShapeType::Compound) << "level " << i;
+    shape = &shape->compound().children()[0].shape;
+  }
+  EXPECT_FLOAT_EQ(shape->sphere().radius, 0.5f);
+  const SceneWorld sw = buildWorld(s);
+  EXPECT_NEAR(sw.world.mass(sw.bodies[0]), 1000.0f * 4.0f / 3.0f * 3.14159265f * 0.125f, 0.1f);
+
+  std::string path = "bodies[0].shape";
+  for (int i = 0; i < 64; ++i) path += ".children[0].shape";
+  EXPECT_THAT(parseError(nestedCompounds(65)),
+              HasSubstr("test.json: " + path + ": compounds nest more than 64 levels deep (the limit)"));
+}
+
+TEST(SceneParserErrors, SettingsWithinTheirLimits) {
+  // One step of a billion substeps would not end; a step of 1e30 s overflows every position.
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 1000000000}})"),
+              HasSubstr("test.json: settings.substeps: must be <= 64, got 1000000000"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 18446744073709551615}})"),
+              HasSubstr("settings.substeps: must be <= 64, got 18446744073709551615"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": 1e30}})"),
+              HasSubstr("test.json: settings.dt: must be at most 1 s, got 1e+30"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": 1.5}})"),
+              HasSubstr("settings.dt: must be at most 1 s, got 1.5"));
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"steps": 10000001}})"),
+              HasSubstr("test.json: settings.steps: must be <= 10000000, got 10000001"));
+  const Scene s = parseScene(
+      R"({"format": "collide-scene/1", "settings": {"substeps": 64, "dt": 1, "steps": 10000000}})");
+  EXPECT_EQ(s.world.substeps, 64);
+  EXPECT_EQ(s.dt, 1.0f);
+  EXPECT_EQ(s.steps, 10'000'000);
+}
+
+TEST(SceneParserErrors, BodiesAndTrianglesWithinTheirLimits) {
+  // Counted before any is read.
+  std::string bodies = "0";
+  for (int i = 0; i < 100'000; ++i) bodies += ",0";
+  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [)" + bodies + "]}"),
+              HasSubstr("test.json: bodies: holds 100001 bodies, more than the limit of 100000"));
+  std::string triangles = "0";
+  for (int i = 0; i < 4'000'000; ++i) triangles += ",0";
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "m", "type": "static", "shape": {"type": "mesh",
+      "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]], "triangles": [)" +
+                          triangles + "]}}")),
+      HasSubstr(
+          "test.json: bodies[0].shape.triangles: holds 4000001 triangles, more than the limit of 4000000"));
+}
+
+TEST(SceneParserErrors, MassOutsideFloatRangeNamesTheMass) {
+  const auto massBody = [](const std::string& mass) {
+    return withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}, "mass": )" +
+                    mass + "}");
+  };
+  EXPECT_THAT(parseError(massBody("1e39")),
+              HasSubstr("test.json: bodies[0].mass: must be a finite number within float range, got 1e+39"));
+  EXPECT_THAT(parseError(massBody("1e999")),
+              HasSubstr("test.json: bodies[0].mass: must be a finite number within float range, got 1e999"));
+  EXPECT_THAT(parseError(massBody("1e-50")), HasSubstr("test.json: bodies[0].mass: must be > 0, got 1e-50"));
+  // Within float range but more than a 1 m sphere's inertia can carry in float: the World refuses
+  // it, naming the mass.
+  try {
+    buildWorld(parseScene(massBody("3e38"), "test.json"));
+    ADD_FAILURE() << "3e38 kg on a 1 m sphere must be refused";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(),
+                HasSubstr("test.json: bodies[0]: body \"b\": mass: mass properties not representable in "
+                          "float with mass 3e+38"));
+  }
 }
 
 }  // namespace

@@ -120,6 +120,27 @@ TEST(WorldFuzzFindings, ShapeTooLargeOrTooSmallIsRefusedAndTheWorldStillSteps) {
   EXPECT_LT(world.transform(ball).position.y, 2.0f);
 }
 
+// A given mass can be too large or too small for a shape of sane size: 3e38 kg on a 1 m sphere
+// overflows the inertia matrix's inverse, 1e-30 kg underflows it. The message blames the mass, not
+// the shape; the same shape by density, or with a sane mass, is fine.
+TEST(WorldFuzzFindings, GivenMassTheShapeCannotCarryNamesTheMass) {
+  World world;
+  for (const float mass : {3e38f, 1e-30f}) {
+    BodyDef def = sphere(BodyType::Dynamic, 1.0f, Vec3(0.0f));
+    def.name = "ball";
+    def.mass = mass;
+    EXPECT_THAT(
+        [&] { world.createBody(def); },
+        ::testing::ThrowsMessage<Error>(HasSubstr("body \"ball\": mass: mass properties not representable in "
+                                                  "float with mass")))
+        << mass;
+  }
+  EXPECT_EQ(world.bodyCount(), 0u);
+  BodyDef def = sphere(BodyType::Dynamic, 1.0f, Vec3(0.0f));
+  def.mass = 2.0f;
+  EXPECT_FLOAT_EQ(world.mass(world.createBody(def)), 2.0f);
+}
+
 // A body created with a spin whose length overflows: the proxy box grew by 0 * infinity (NaN) at
 // creation, and by infinity in the step, and the broad phase refused both.
 TEST(WorldFuzzFindings, HugeOrFastSpinningBodyKeepsTheBroadPhaseWorking) {

@@ -53,13 +53,24 @@ struct Scene {
   std::vector<DistanceConstraint> constraints;
 };
 
-// Parses a scene document. `baseDir` resolves relative OBJ paths; `source` prefixes error messages.
-// Throws collide::Error: malformed JSON (with line and column), a wrong type, a missing required
-// field, an unknown field or name, an out-of-range value.
+struct LoadOptions {
+  // OBJ files ("file" of a mesh shape) are paths relative to the scene's folder and must stay inside
+  // it: an absolute path, a ".." that climbs out or a symbolic link that leads out is refused, so
+  // that a scene cannot read files elsewhere. True lifts that (`collide run --allow-outside-paths`).
+  bool allowOutsidePaths = false;
+};
+
+// Parses a scene document. `baseDir` is the scene's folder, which resolves (and holds) its OBJ
+// paths; `source` prefixes error messages. Throws collide::Error: malformed JSON (with line and
+// column and the JSON parser's explanation), a key given twice in one object, nesting deeper than
+// the limits, a wrong type, a missing required field, an unknown field or name, an out-of-range
+// value, an OBJ file outside `baseDir` or one that readObjFile refuses. The limits are in
+// collide/scene/limits.h.
 Scene parseScene(std::string_view text, std::string_view source = "scene",
-                 const std::filesystem::path& baseDir = ".");
-// Reads and parses a scene file (OBJ paths relative to the file's folder).
-Scene loadSceneFile(const std::filesystem::path& path);
+                 const std::filesystem::path& baseDir = ".", const LoadOptions& options = {});
+// Reads and parses a scene file (OBJ paths relative to the file's folder). Also throws when the path
+// is not a regular file (a directory, a device, a FIFO) or is larger than kMaxSceneFileBytes.
+Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options = {});
 
 // A World built from a scene; bodies[i] is the id of scene.bodies[i], constraints[i] of
 // scene.constraints[i].
