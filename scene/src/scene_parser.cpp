@@ -232,10 +232,11 @@ void readSettings(const JsonNode& node, Scene& scene) {
 }
 
 Material readMaterial(const JsonNode& node) {
-  node.expectObject({"bounciness", "friction", "density"});
+  node.expectObject({"bounciness", "friction", "rolling_resistance", "density"});
   Material m;
   if (auto n = node.find("bounciness")) m.bounciness = n->unitInterval();
   if (auto n = node.find("friction")) m.friction = n->nonNegative();
+  if (auto n = node.find("rolling_resistance")) m.rollingResistance = n->nonNegative();
   if (auto n = node.find("density")) m.density = n->positive();
   return m;
 }
@@ -250,8 +251,8 @@ BodyType readBodyType(const JsonNode& node) {
 
 Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
   node.expectObject({"name", "type", "shape", "position", "rotation", "scale", "velocity", "angular_velocity",
-                     "mass", "density", "material", "bounciness", "friction", "ccd", "sensor",
-                     "break_impulse", "particle"});
+                     "mass", "density", "material", "bounciness", "friction", "rolling_resistance", "ccd",
+                     "sensor", "break_impulse", "particle"});
   Body body;
   BodyDef& d = body.def;
   d.name = node.at("name").string();
@@ -279,6 +280,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
     const Material& m = it->second;
     if (m.bounciness) d.bounciness = *m.bounciness;
     if (m.friction) d.friction = *m.friction;
+    if (m.rollingResistance) d.rollingResistance = *m.rollingResistance;
     if (m.density) d.density = *m.density;
   }
   if (node.has("mass") && node.has("density")) node.at("density").fail("give mass or density, not both");
@@ -286,6 +288,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   if (auto n = node.find("density")) d.density = n->positive();
   if (auto n = node.find("bounciness")) d.bounciness = n->unitInterval();
   if (auto n = node.find("friction")) d.friction = n->nonNegative();
+  if (auto n = node.find("rolling_resistance")) d.rollingResistance = n->nonNegative();
   if (auto n = node.find("ccd")) body.def.ccd = n->boolean();
   if (auto n = node.find("sensor")) d.sensor = n->boolean();
   if (auto n = node.find("break_impulse")) body.breakImpulse = n->positive();

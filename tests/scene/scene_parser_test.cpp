@@ -47,7 +47,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.world.penetrationResponse, PenetrationResponse::Revert);
 
   ASSERT_EQ(s.materials.size(), 2u);
-  EXPECT_EQ(s.materials.at("felt"), (Material{0.1f, 0.4f, 800.0f}));
+  EXPECT_EQ(s.materials.at("felt"), (Material{0.1f, 0.4f, 800.0f, 0.02f}));
   EXPECT_EQ(s.materials.at("steel"), (Material{std::nullopt, 0.3f, std::nullopt}));
 
   ASSERT_EQ(s.bodies.size(), 11u);
@@ -71,8 +71,9 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   ASSERT_TRUE(ball.def.mass.has_value());
   EXPECT_FLOAT_EQ(*ball.def.mass, 1.5f);
   EXPECT_EQ(ball.material, "felt");
-  EXPECT_FLOAT_EQ(ball.def.bounciness, 0.9f);  // its own value over the material's 0.1
-  EXPECT_FLOAT_EQ(ball.def.friction, 0.4f);    // the material's
+  EXPECT_FLOAT_EQ(ball.def.bounciness, 0.9f);          // its own value over the material's 0.1
+  EXPECT_FLOAT_EQ(ball.def.friction, 0.4f);            // the material's
+  EXPECT_FLOAT_EQ(ball.def.rollingResistance, 0.02f);  // the material's
   EXPECT_TRUE(ball.def.ccd);
   EXPECT_FALSE(ball.def.sensor);
   EXPECT_EQ(ball.def.userData, 1u);
@@ -90,6 +91,8 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_FALSE(pill.def.mass.has_value());
   EXPECT_FLOAT_EQ(pill.def.density, 2000.0f);
   EXPECT_FLOAT_EQ(pill.def.friction, 0.7f);
+  EXPECT_FLOAT_EQ(pill.def.rollingResistance, 0.005f);
+  EXPECT_FLOAT_EQ(crate.def.rollingResistance, 0.0f);  // neither the body nor steel says
   ASSERT_TRUE(pill.breakImpulse.has_value());
   EXPECT_FLOAT_EQ(*pill.breakImpulse, 12.5f);
 
@@ -166,6 +169,9 @@ TEST(SceneParserErrors, NegativeSizeNamesThePathAndValue) {
   EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "box",
       "half_extents": [1, 0, 1]}})")),
               HasSubstr("bodies[0].shape.half_extents[1]: must be > 0, got 0"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "rolling_resistance": -0.01,
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].rolling_resistance: must be >= 0, got -0.01"));
 }
 
 TEST(SceneParserErrors, WrongTypeNamesTheField) {

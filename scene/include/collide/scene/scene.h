@@ -21,6 +21,7 @@ struct Material {
   std::optional<float> bounciness;
   std::optional<float> friction;
   std::optional<float> density;
+  std::optional<float> rollingResistance;  // m
   friend bool operator==(const Material&, const Material&) = default;
 };
 
