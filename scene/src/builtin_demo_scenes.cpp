@@ -76,6 +76,9 @@ Json proxies() {
                     vec(x, 1.0 + 1.1 * layer, z));
       b["rotation"] = turn(0.4 + 0.7 * layer + 0.3 * double(s), 0.6, 0.0, 0.8);
       b["density"] = 500;
+      // Round shapes roll and rock on a point contact, which passes no friction torque: the
+      // resistance brings them to rest, as real ones do.
+      b["rolling_resistance"] = 0.02;
       bodies.push_back(b);
     }
   }

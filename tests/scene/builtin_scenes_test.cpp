@@ -192,6 +192,22 @@ TEST(BuiltinScenes, ChainLinksHoldTheirLength) {
   }
 }
 
+// Every proxy type comes to rest on the ground, the ramp or each other: the boxes, hulls and k-DOPs
+// on their faces, the round shapes (spheres, cylinders on their side, ellipsoids) by their rolling
+// resistance. At 10 s no body moves faster than 1 cm/s or turns faster than 0.05 rad/s.
+TEST(BuiltinScenes, EveryProxyInTheProxiesSceneComesToRest) {
+  const Scene scene = loadBuiltinScene("proxies");
+  SceneWorld sw = buildWorld(scene);
+  for (int step = 0; step < 600; ++step) sw.world.step(scene.dt);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].def.type != BodyType::Dynamic) continue;
+    SCOPED_TRACE(scene.bodies[i].def.name);
+    EXPECT_LT(glm::length(sw.world.linearVelocity(sw.bodies[i])), 0.01f);
+    EXPECT_LT(glm::length(sw.world.angularVelocity(sw.bodies[i])), 0.05f);
+    EXPECT_GT(sw.world.transform(sw.bodies[i]).position.y, 0.0f);  // above the ground
+  }
+}
+
 // The tunneling scene shows what continuous detection covers: a shot tunnels when, between two
 // steps, it crosses its plate's plane (x = 0; the plates are 0.02 thick) inside the plate's face.
 // Nothing tunnels through a static plate, flagged ccd or not (lanes 0 and 1); through a kinematic
