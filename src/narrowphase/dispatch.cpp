@@ -4,6 +4,7 @@
 // pair first, then the specialised entries over it (as Jolt's CollisionDispatch lets shapes
 // override the generic one). A pair is written once, for one order; the mirroring wrapper serves
 // the other order by swapping A and B and flipping the normal.
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <sstream>
@@ -41,6 +42,23 @@ bool collideMirrored(const Shape& shapeA, const Transform& transformA, const Sha
     point.featureId = swapFeatures(point.featureId);
   }
   return true;
+}
+
+// A pair of the same type whose function is not symmetric in its arguments (a reference face
+// chosen by order, a clip against the first shape's cap) answers (B, A) as the mirror of (A, B) for
+// one order of the two, the same whichever way it is asked: collide(b, a) is then exactly the mirror
+// of collide(a, b), and a world's contacts do not depend on which body was created first.
+template <CollideFunction F>
+bool collideInCanonicalOrder(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
+                             const Transform& transformB, float margin, Manifold& out) {
+  const auto key = [](const Shape& shape, const Transform& t) {
+    const Cylinder& c = shape.cylinder();
+    return std::array<float, 10>{t.position.x, t.position.y, t.position.z, t.rotation.w, t.rotation.x,
+                                 t.rotation.y, t.rotation.z, t.scale,      c.radius,     c.halfHeight};
+  };
+  if (key(shapeB, transformB) < key(shapeA, transformA))
+    return collideMirrored<F>(shapeA, transformA, shapeB, transformB, margin, out);
+  return F(shapeA, transformA, shapeB, transformB, margin, out);
 }
 
 template <OverlapFunction F>
@@ -189,12 +207,16 @@ constexpr PairTable buildPairTable() {
   b.add<collideCapsuleBox>(T::Capsule, T::Box, A::GjkEpaClip,
                            "GJK/EPA on the core segment, clipped to the box face when lying on it; up to two "
                            "points");
-  for (const ShapeType other : {T::Box, T::Kdop, T::ConvexHull, T::Cylinder}) {
+  for (const ShapeType other : {T::Box, T::Kdop, T::ConvexHull}) {
     b.add<collideCylinderConvex>(
         T::Cylinder, other, A::GjkEpaClip,
         "GJK/EPA for the axis; a cap's four rim points or the side line clipped to the "
         "face (or cap) facing the cylinder, up to four points; else one point");
   }
+  b.add<collideInCanonicalOrder<collideCylinderConvex>>(
+      T::Cylinder, T::Cylinder, A::GjkEpaClip,
+      "GJK/EPA for the axis; a cap's four rim points or the side line clipped to the "
+      "face (or cap) facing the cylinder, up to four points; else one point");
 
   // Polyhedra: the separating-axis test with face clipping.
   constexpr ShapeType kPolyhedra[] = {T::Box, T::Kdop, T::ConvexHull};

@@ -39,9 +39,16 @@ float newtonImpact(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& 
   return normalImpulse;
 }
 
+// Whether a contact whose deepest point is at `depth` (negative: a gap) closes it within the step at
+// the approach speed, with the slop a contact may keep.
+bool meetsThisStep(float depth, float approach, const ContactTuning& tuning, float dt) {
+  return -depth <= tuning.linearSlop - approach * dt;
+}
+
 }  // namespace
 
-// The contacts that can meet this step: touching, or closing their gap within the step.
+// Every contact that can act this step is an entry, for an impact elsewhere may set its bodies
+// approaching; those that meet this step at their present velocities, fast enough, start the queue.
 void ImpactStage::collect(const BodyStorage& bodies, const std::vector<Contact>& contacts, ImpactModel model,
                           const ContactTuning& tuning, float dt) {
   entries_.clear();
@@ -57,9 +64,7 @@ void ImpactStage::collect(const BodyStorage& bodies, const std::vector<Contact>&
     const ImpactBody a = impactBodyOf(bodies.states[c.bodyA]);
     const ImpactBody b = impactBodyOf(bodies.states[c.bodyB]);
     const float approach = normalVelocity(a, b, entry.point, c.manifold.normal);
-    // Apart all step: the gap is more than the approach closes, with the slop a contact may keep.
-    if (-deepest > tuning.linearSlop - approach * dt) continue;
-    if (approach < -tuning.restitutionThreshold) {
+    if (approach < -tuning.restitutionThreshold && meetsThisStep(deepest, approach, tuning, dt)) {
       entry.queued = true;
       queue_.push_back(static_cast<std::uint32_t>(entries_.size()));
     }
@@ -103,6 +108,9 @@ bool ImpactStage::resolve(BodyStorage& bodies, Contact& c, const Entry& entry, I
   const Vec3& n = c.manifold.normal;
   const float approach = normalVelocity(a, b, entry.point, n);
   if (!(approach < -tuning.restitutionThreshold)) return false;
+  // Apart all step even at the speed an impact elsewhere gave them: the solver's speculative contact
+  // keeps them from closing more than the gap, and the impact, if any, is a later step's.
+  if (!meetsThisStep(c.manifold.maxDepth(), approach, tuning, dt)) return false;
   // When in the step: once the gap closes at the approach speed, and not before either body's last
   // impact (an impact passed on through bodies at rest happens when it arrives).
   const float gap = std::max(0.0f, -c.manifold.maxDepth());

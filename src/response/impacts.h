@@ -9,9 +9,11 @@
 // each get their own impulse, so an elastic impact in a corner keeps the energy too.
 //
 // A contact meets this step when it touches or its gap closes within the step at the approach
-// speed; its impulse acts at the average of its deepest points (within the linear slop). The impacts
-// are resolved in contact order, then in the order their bodies were hit, at most kImpactVisits per
-// contact, so a body squeezed between two bouncing walls ends the stage.
+// speed it has when its turn comes (an impact elsewhere may set a resting or separating contact
+// approaching, and it then gets its own impact, not the solver's inelastic stop); its impulse acts at the
+// average of its deepest points (within the linear slop). The impacts are resolved in contact order, then in
+// the order their bodies were hit, at most kImpactVisits per contact, so a body squeezed between two bouncing
+// walls ends the stage.
 #pragma once
 
 #include <collide/settings.h>

@@ -102,7 +102,8 @@ TEST(PairTable, CollideOfBAndAMirrorsCollideOfAAndB) {
         EXPECT_NEAR(glm::dot(ab.normal, ba.normal), -1.0f, 1e-4f) << toString(ta) << " x " << toString(tb);
         const std::vector<float> da = sortedDepths(ab), db = sortedDepths(ba);
         for (std::size_t k = 0; k < da.size(); ++k)
-          EXPECT_NEAR(da[k], db[k], 1e-4f + 1e-3f * std::abs(da[k]));
+          EXPECT_NEAR(da[k], db[k], 1e-4f + 1e-3f * std::abs(da[k]))
+              << toString(ta) << " x " << toString(tb) << " #" << i;
       }
     }
   }
