@@ -33,7 +33,7 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"rain-jittered", 40, 0x3d58fdf3cd65e3e2},
     {"pyramid", 60, 0x8c49eb4a433140c8},
     {"terrain", 60, 0x06d69d0f520c7680},
-    {"proxies", 120, 0xc169afad995ed81e},
+    {"proxies", 120, 0x0777a11e944140a8},
     {"revert", 120, 0xd2b0688bc49d4bd1},
     {"revert-project", 120, 0x8e24083d51d719f5},
     {"revert-soft", 120, 0x4b4e324b31bd5e65},
