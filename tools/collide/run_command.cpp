@@ -9,7 +9,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 using namespace collide;
 
@@ -29,14 +28,10 @@ int runCommand(const RunArguments& arguments) {
   options.recordPath = arguments.record;
   options.recordEvery = arguments.every;
   options.eventsPath = arguments.events;
+  options.summaryPath = arguments.json;
   options.progress = isatty(STDERR_FILENO) != 0;
   const scene::RunSummary summary = scene::runScene(loaded, options);
   std::printf("%s", scene::formatSummary(summary).c_str());
-  if (!arguments.json.empty()) {
-    std::ofstream out(arguments.json, std::ios::binary);
-    if (!out) throw Error("summary file " + arguments.json + ": cannot be written");
-    out << scene::summaryJson(summary);
-  }
   return 0;
 }
 

@@ -19,8 +19,9 @@ struct RunOptions {
   std::optional<int> steps;  // default: the scene's settings.steps
   std::string recordPath;    // empty: no recording
   int recordEvery = 1;
-  std::string eventsPath;  // empty: no events file
-  bool progress = false;   // a progress bar on stderr
+  std::string eventsPath;   // empty: no events file
+  std::string summaryPath;  // empty: no summary file (summaryJson)
+  bool progress = false;    // a progress bar on stderr
 };
 
 struct RunSummary {
@@ -45,7 +46,10 @@ struct RunSummary {
 };
 
 // Builds the scene's World and runs it. Throws collide::Error for a scene the World refuses, a
-// negative step count, recordEvery < 1, or an output file that cannot be written.
+// negative step count, recordEvery < 1, or an output file that cannot be written. The output paths
+// are checked (checkOutputPaths) and opened before the first step; each output is written through a
+// temporary file (OutputFile) and replaces its target only when every output is complete, so a run
+// that fails leaves the files at the targets as they were.
 RunSummary runScene(const Scene& scene, const RunOptions& options = {});
 
 // FNV-1a over the bit patterns of every live body's position, rotation and velocities, in scene
