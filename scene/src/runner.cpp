@@ -92,6 +92,15 @@ std::uint64_t stateHash(const SceneWorld& sw) {
   return hash;
 }
 
+std::vector<std::string> faultFieldNames(std::uint8_t fields) {
+  std::vector<std::string> out;
+  if (fields & FaultEvent::kPosition) out.emplace_back("position");
+  if (fields & FaultEvent::kRotation) out.emplace_back("rotation");
+  if (fields & FaultEvent::kLinearVelocity) out.emplace_back("linear_velocity");
+  if (fields & FaultEvent::kAngularVelocity) out.emplace_back("angular_velocity");
+  return out;
+}
+
 RunSummary runScene(const Scene& scene, const RunOptions& options) {
   const int steps = options.steps.value_or(scene.steps);
   if (steps < 0) throw Error("run: steps must be >= 0, got " + std::to_string(steps));
@@ -178,8 +187,14 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
                                      {"sensor", true}};
         events->write(line.dump() + '\n');
       }
-      for (const FaultEvent& e : sw.world.faultEvents()) {
-        const nlohmann::json line = {{"step", step}, {"type", "fault"}, {"a", names[e.body.index]}};
+    }
+    for (const FaultEvent& e : sw.world.faultEvents()) {
+      summary.faults.push_back({names[e.body.index], step, e.fields});
+      if (events) {
+        const nlohmann::json line = {{"step", step},
+                                     {"type", "fault"},
+                                     {"a", names[e.body.index]},
+                                     {"fields", faultFieldNames(e.fields)}};
         events->write(line.dump() + '\n');
       }
     }

@@ -1,5 +1,5 @@
 # Runs the collide command and checks its exit code and output, both (ctest's PASS_REGULAR_EXPRESSION
-# alone ignores the exit code). Arguments: CLI (the program), ARGS (a ;-list), EXPECT (pass or fail),
+# alone ignores the exit code). Arguments: CLI (the program), ARGS (a ;-list), EXPECT (pass, fail or an exit code),
 # REGEX (must match stdout + stderr), TWICE (if ON: run twice, the "state hash" lines must be equal).
 # Optional: ABSENT (text that must not appear in the output); WORK, COPY_FROM and COPY_FILES (a
 # comma-separated list): the files are copied from COPY_FROM into a fresh folder WORK before the run,
@@ -32,6 +32,8 @@ if(EXPECT STREQUAL "fail" AND code EQUAL 0)
   message(FATAL_ERROR "expected a non-zero exit, got 0:\n${all}")
 elseif(EXPECT STREQUAL "pass" AND NOT code EQUAL 0)
   message(FATAL_ERROR "expected exit 0, got ${code}:\n${all}")
+elseif(EXPECT MATCHES "^[0-9]+$" AND NOT code EQUAL EXPECT)
+  message(FATAL_ERROR "expected exit ${EXPECT}, got ${code}:\n${all}")
 endif()
 string(FIND "${all}" "${REGEX}" found)
 if(found EQUAL -1)

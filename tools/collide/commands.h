@@ -20,7 +20,9 @@ struct RunArguments {
   std::string events;
   std::string json;
 };
-// `collide run`: runs a scene and prints the summary.
+// `collide run`: runs a scene and prints the summary. Returns 0, or kExitFaults when the world's
+// fault guard froze a body during the run (the summary and every output are written all the same).
+inline constexpr int kExitFaults = 2;
 int runCommand(const RunArguments& arguments);
 
 struct BenchArguments {

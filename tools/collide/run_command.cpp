@@ -32,6 +32,14 @@ int runCommand(const RunArguments& arguments) {
   options.progress = isatty(STDERR_FILENO) != 0;
   const scene::RunSummary summary = scene::runScene(loaded, options);
   std::printf("%s", scene::formatSummary(summary).c_str());
+  if (!summary.faults.empty()) {
+    // The outputs are written, but the run did not simulate every body to the end: a script that
+    // only reads the exit code must not take it for a clean run.
+    std::fprintf(stderr,
+                 "collide: %zu %s frozen by the fault guard (state no longer finite); see the summary\n",
+                 summary.faults.size(), summary.faults.size() == 1 ? "body was" : "bodies were");
+    return kExitFaults;
+  }
   return 0;
 }
 

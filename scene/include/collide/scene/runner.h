@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace collide::scene {
 
@@ -40,6 +41,14 @@ struct RunSummary {
   StepStats lastStep{};
   StepStats total{};
   std::uint64_t contactEvents = 0;
+  // Bodies the world's fault guard froze because their state stopped being finite (FaultEvent), in
+  // the order reported: the body's name, the step, and which parts of its state were bad.
+  struct Fault {
+    std::string body;
+    int step = 0;
+    std::uint8_t fields = 0;  // FaultEvent's bits
+  };
+  std::vector<Fault> faults;
   Vec3 momentum{0.0f};
   float kineticEnergy = 0.0f;
   std::uint64_t stateHash = 0;
@@ -55,6 +64,10 @@ RunSummary runScene(const Scene& scene, const RunOptions& options = {});
 // FNV-1a over the bit patterns of every live body's position, rotation and velocities, in scene
 // order: equal hashes mean bit-identical final states.
 std::uint64_t stateHash(const SceneWorld& world);
+
+// The parts of a state a FaultEvent names: "position", "rotation", "linear_velocity",
+// "angular_velocity".
+std::vector<std::string> faultFieldNames(std::uint8_t fields);
 
 std::string formatSummary(const RunSummary& summary);  // the table printed on stdout
 std::string summaryJson(const RunSummary& summary);    // the same as a JSON document
