@@ -12,17 +12,18 @@
 
 using namespace collide;
 
-scene::Scene loadSceneArgument(const std::string& argument) {
+scene::Scene loadSceneArgument(const std::string& argument, const scene::LoadOptions& options) {
   // A file wins over a built-in of the same name; something path-like that does not exist is a
   // missing file, anything else an unknown built-in (whose message lists the built-ins).
   const std::filesystem::path path(argument);
   const bool pathLike = path.has_parent_path() || path.has_extension();
-  return std::filesystem::exists(path) || pathLike ? scene::loadSceneFile(path)
+  return std::filesystem::exists(path) || pathLike ? scene::loadSceneFile(path, options)
                                                    : scene::loadBuiltinScene(argument);
 }
 
 int runCommand(const RunArguments& arguments) {
-  const scene::Scene loaded = loadSceneArgument(arguments.scene);
+  const scene::Scene loaded = loadSceneArgument(
+      arguments.scene, scene::LoadOptions{.allowOutsidePaths = arguments.allowOutsidePaths});
   scene::RunOptions options;
   options.steps = arguments.steps;
   options.recordPath = arguments.record;
