@@ -2,6 +2,7 @@
 // damage to breakable bodies from contact begin events, and gather the summary.
 #include "json_output.h"
 
+#include <collide/scene/output_file.h>
 #include <collide/scene/runner.h>
 
 #include <unistd.h>
@@ -9,26 +10,18 @@
 #include <bit>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <map>
 
 namespace collide::scene {
 
 namespace {
 
-std::ofstream openOutput(const std::string& path, const char* what) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error(std::string(what) + " file " + path + ": cannot be written");
-  return out;
-}
-
 // Streams the recording: {"dt": ..., "frames": [ ... ]}, one frame at a time.
 class Recorder {
  public:
   // With sleeping on, each body also carries "awake" (static bodies: false).
-  Recorder(const std::string& path, float dt, bool sleeping)
-      : out_(openOutput(path, "recording")), sleeping_(sleeping) {
-    out_ << "{\"dt\": " << jsonNumber(dt).dump() << ", \"frames\": [\n";
+  Recorder(const std::string& path, float dt, bool sleeping) : out_(path, "recording"), sleeping_(sleeping) {
+    out_.write("{\"dt\": " + jsonNumber(dt).dump() + ", \"frames\": [\n");
   }
   void frame(int step, double time, const SceneWorld& sw) {
     nlohmann::json bodies = nlohmann::json::array();
@@ -44,13 +37,18 @@ class Recorder {
       bodies.push_back(std::move(body));
     }
     const nlohmann::json f = {{"step", step}, {"time", time}, {"bodies", std::move(bodies)}};
-    out_ << (first_ ? "" : ",\n") << f.dump();
+    out_.write(first_ ? "" : ",\n");
+    out_.write(f.dump());
     first_ = false;
   }
-  ~Recorder() { out_ << "\n]}\n"; }
+  void close() {
+    out_.write("\n]}\n");
+    out_.close();
+  }
+  void commit() { out_.commit(); }
 
  private:
-  std::ofstream out_;
+  OutputFile out_;
   bool sleeping_;
   bool first_ = true;
 };
@@ -94,11 +92,23 @@ std::uint64_t stateHash(const SceneWorld& sw) {
   return hash;
 }
 
+std::vector<std::string> faultFieldNames(std::uint8_t fields) {
+  std::vector<std::string> out;
+  if (fields & FaultEvent::kPosition) out.emplace_back("position");
+  if (fields & FaultEvent::kRotation) out.emplace_back("rotation");
+  if (fields & FaultEvent::kLinearVelocity) out.emplace_back("linear_velocity");
+  if (fields & FaultEvent::kAngularVelocity) out.emplace_back("angular_velocity");
+  return out;
+}
+
 RunSummary runScene(const Scene& scene, const RunOptions& options) {
   const int steps = options.steps.value_or(scene.steps);
   if (steps < 0) throw Error("run: steps must be >= 0, got " + std::to_string(steps));
   if (options.recordEvery < 1)
     throw Error("run: --every must be >= 1, got " + std::to_string(options.recordEvery));
+  checkOutputPaths(
+      scene,
+      {{"recording", options.recordPath}, {"events", options.eventsPath}, {"summary", options.summaryPath}});
 
   SceneWorld sw = buildWorld(scene);
   RunSummary summary;
@@ -113,8 +123,10 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
 
   std::optional<Recorder> recorder;
   if (!options.recordPath.empty()) recorder.emplace(options.recordPath, scene.dt, scene.world.sleeping);
-  std::optional<std::ofstream> events;
-  if (!options.eventsPath.empty()) events.emplace(openOutput(options.eventsPath, "events"));
+  std::optional<OutputFile> events;
+  if (!options.eventsPath.empty()) events.emplace(options.eventsPath, "events");
+  std::optional<OutputFile> summaryFile;
+  if (!options.summaryPath.empty()) summaryFile.emplace(options.summaryPath, "summary");
 
   // Breakable bodies by slot index: their threshold and the damage so far.
   struct Breakable {
@@ -153,7 +165,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
                                      {"normal", jsonVec3(e.normal)},
                                      {"impulse", jsonNumber(e.impulse)},
                                      {"speed", jsonNumber(e.speed)}};
-        *events << line.dump() << '\n';
+        events->write(line.dump() + '\n');
       }
       if (e.type != ContactEvent::Type::Begin) continue;
       for (BodyId id : {e.a, e.b}) {
@@ -173,11 +185,17 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
                                      {"a", names[e.sensor.index]},
                                      {"b", names[e.visitor.index]},
                                      {"sensor", true}};
-        *events << line.dump() << '\n';
+        events->write(line.dump() + '\n');
       }
-      for (const FaultEvent& e : sw.world.faultEvents()) {
-        const nlohmann::json line = {{"step", step}, {"type", "fault"}, {"a", names[e.body.index]}};
-        *events << line.dump() << '\n';
+    }
+    for (const FaultEvent& e : sw.world.faultEvents()) {
+      summary.faults.push_back({names[e.body.index], step, e.fields});
+      if (events) {
+        const nlohmann::json line = {{"step", step},
+                                     {"type", "fault"},
+                                     {"a", names[e.body.index]},
+                                     {"fields", faultFieldNames(e.fields)}};
+        events->write(line.dump() + '\n');
       }
     }
     for (std::size_t body : broken) {
@@ -199,6 +217,16 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
     if (!sw.world.isValid(id) || sw.world.type(id) != BodyType::Dynamic) continue;
     ++(sw.world.isAwake(id) ? summary.awakeBodies : summary.asleepBodies);
   }
+  // Every output complete and closed before any replaces its target.
+  if (recorder) recorder->close();
+  if (events) events->close();
+  if (summaryFile) {
+    summaryFile->write(summaryJson(summary));
+    summaryFile->close();
+  }
+  if (recorder) recorder->commit();
+  if (events) events->commit();
+  if (summaryFile) summaryFile->commit();
   return summary;
 }
 

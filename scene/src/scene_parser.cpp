@@ -49,6 +49,7 @@ Transform readPlacement(const JsonNode& node) {
 struct LoadContext {
   std::filesystem::path baseDir;
   LoadOptions options;
+  std::vector<std::filesystem::path>* objFiles;  // every OBJ file read, in the order read
 };
 
 // The path an OBJ file name of the scene leads to: relative to the scene's folder, and unless the
@@ -97,6 +98,7 @@ Shape readMesh(const JsonNode& node, const LoadContext& context) {
   if (auto file = node.find("file")) {
     const std::filesystem::path path = objPath(*file, context);
     ObjMesh mesh = withPath(*file, [&] { return readObjFile(path); });
+    context.objFiles->push_back(path);
     vertices = std::move(mesh.vertices);
     triangles = std::move(mesh.triangles);
   } else {
@@ -502,7 +504,7 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   scene.source = sourceName;
   const Json document = parseDocument(text, scene.source);
   const JsonNode root(document, scene.source);
-  const LoadContext context{baseDir, options};
+  const LoadContext context{baseDir, options, &scene.objFiles};
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
   root.expectObject({"format", "settings", "materials", "bodies", "constraints"});
   const JsonNode format = root.at("format");
@@ -541,7 +543,10 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
 
 Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
   const std::string text = readFileText(path, kMaxSceneFileBytes, "scene file " + path.string());
-  return parseScene(text, path.string(), path.parent_path().empty() ? "." : path.parent_path(), options);
+  Scene scene =
+      parseScene(text, path.string(), path.parent_path().empty() ? "." : path.parent_path(), options);
+  scene.file = path;
+  return scene;
 }
 
 }  // namespace collide::scene

@@ -3,6 +3,7 @@
 
 #include <collide/scene/runner.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace collide::scene {
@@ -44,6 +45,20 @@ std::string formatSummary(const RunSummary& s) {
     add("sleeping        %d awake, %d asleep (dynamic bodies at the end)\n", s.awakeBodies, s.asleepBodies);
   if (s.brokenBodies > 0) add("broken          %d bodies removed\n", s.brokenBodies);
   add("contact events  %llu\n", static_cast<unsigned long long>(s.contactEvents));
+  if (!s.faults.empty()) {
+    // The figures below count the frozen bodies as they were left (stopped where the faulted step
+    // began), so the summary says first that the run did not simulate them to the end.
+    add("faults          %zu %s frozen by the fault guard (state no longer finite; docs/reliability.md)\n",
+        s.faults.size(), s.faults.size() == 1 ? "body" : "bodies");
+    constexpr std::size_t kListed = 8;
+    for (std::size_t i = 0; i < std::min(s.faults.size(), kListed); ++i) {
+      const RunSummary::Fault& f = s.faults[i];
+      std::string fields;
+      for (const std::string& name : faultFieldNames(f.fields)) fields += (fields.empty() ? "" : ", ") + name;
+      out += "                " + f.body + " at step " + std::to_string(f.step) + ": " + fields + "\n";
+    }
+    if (s.faults.size() > kListed) add("                and %zu more\n", s.faults.size() - kListed);
+  }
   add("\n%-24s %14s %16s\n", "pairs", "last step", "total");
   const auto row = [&](const char* name, std::uint64_t last, std::uint64_t total) {
     add("%-24s %14llu %16llu\n", name, static_cast<unsigned long long>(last),
@@ -65,6 +80,9 @@ std::string formatSummary(const RunSummary& s) {
 }
 
 std::string summaryJson(const RunSummary& s) {
+  nlohmann::json faults = nlohmann::json::array();
+  for (const RunSummary::Fault& f : s.faults)
+    faults.push_back({{"body", f.body}, {"step", f.step}, {"fields", faultFieldNames(f.fields)}});
   const nlohmann::json j = {
       {"scene", s.scene},
       {"steps", s.steps},
@@ -77,6 +95,7 @@ std::string summaryJson(const RunSummary& s) {
       {"broken_bodies", s.brokenBodies},
       {"sleeping", {{"enabled", s.sleeping}, {"awake", s.awakeBodies}, {"asleep", s.asleepBodies}}},
       {"contact_events", s.contactEvents},
+      {"faults", faults},
       {"last_step", statsJson(s.lastStep)},
       {"total", statsJson(s.total)},
       {"momentum", jsonVec3(s.momentum)},

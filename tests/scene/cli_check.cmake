@@ -1,13 +1,39 @@
 # Runs the collide command and checks its exit code and output, both (ctest's PASS_REGULAR_EXPRESSION
-# alone ignores the exit code). Arguments: CLI (the program), ARGS (a ;-list), EXPECT (pass or fail),
+# alone ignores the exit code). Arguments: CLI (the program), ARGS (a ;-list), EXPECT (pass, fail or an exit code),
 # REGEX (must match stdout + stderr), TWICE (if ON: run twice, the "state hash" lines must be equal).
+# Optional: ABSENT (text that must not appear in the output); WORK, COPY_FROM and COPY_FILES (a
+# comma-separated list): the files are copied from COPY_FROM into a fresh folder WORK before the run,
+# and must be unchanged after it (a run never overwrites its inputs).
+if(WORK)
+  file(REMOVE_RECURSE "${WORK}")
+  file(MAKE_DIRECTORY "${WORK}")
+  string(REPLACE "," ";" copies "${COPY_FILES}")
+  foreach(name IN LISTS copies)
+    file(COPY_FILE "${COPY_FROM}/${name}" "${WORK}/${name}")
+  endforeach()
+endif()
 separate_arguments(args UNIX_COMMAND "${ARGS}")
 execute_process(COMMAND ${CLI} ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
+foreach(name IN LISTS copies)
+  file(SHA256 "${COPY_FROM}/${name}" before)
+  file(SHA256 "${WORK}/${name}" after)
+  if(NOT before STREQUAL after)
+    message(FATAL_ERROR "the run changed its input ${name}:\n${all}")
+  endif()
+endforeach()
+if(NOT "${ABSENT}" STREQUAL "")
+  string(FIND "${all}" "${ABSENT}" present)
+  if(NOT present EQUAL -1)
+    message(FATAL_ERROR "output has \"${ABSENT}\", which it must not:\n${all}")
+  endif()
+endif()
 if(EXPECT STREQUAL "fail" AND code EQUAL 0)
   message(FATAL_ERROR "expected a non-zero exit, got 0:\n${all}")
 elseif(EXPECT STREQUAL "pass" AND NOT code EQUAL 0)
   message(FATAL_ERROR "expected exit 0, got ${code}:\n${all}")
+elseif(EXPECT MATCHES "^[0-9]+$" AND NOT code EQUAL EXPECT)
+  message(FATAL_ERROR "expected exit ${EXPECT}, got ${code}:\n${all}")
 endif()
 string(FIND "${all}" "${REGEX}" found)
 if(found EQUAL -1)

@@ -167,9 +167,37 @@ TEST(Runner, EventsFileHasFaults) {
     ++faults;
     EXPECT_EQ(e["a"], "ball");
     EXPECT_GT(e["step"].get<int>(), 1);
+    EXPECT_THAT(e["fields"].get<std::vector<std::string>>(), ::testing::Contains("linear_velocity"));
   }
   EXPECT_EQ(faults, 1);
   std::filesystem::remove(events);
+}
+
+// A run whose bodies the fault guard froze says so: a kinetic energy of 0 J at the end is not a
+// pile at rest. overflow_fault.json flings two boxes at each other at 3e38 m/s.
+TEST(Runner, FaultsAreInTheSummaryAndItsJson) {
+  const RunSummary s = runScene(loadSceneFile(kData + "/overflow_fault.json"));
+  ASSERT_EQ(s.faults.size(), 2u);
+  EXPECT_EQ(s.faults[0].step, 1);
+  EXPECT_TRUE(s.faults[0].fields & FaultEvent::kLinearVelocity);
+  EXPECT_THAT((std::vector<std::string>{s.faults[0].body, s.faults[1].body}),
+              ::testing::UnorderedElementsAre("a", "b"));
+  const std::string table = formatSummary(s);
+  EXPECT_THAT(table, ::testing::HasSubstr("faults          2 bodies frozen by the fault guard"));
+  EXPECT_THAT(table, ::testing::HasSubstr(s.faults[0].body + " at step 1: "));
+  const auto j = nlohmann::json::parse(summaryJson(s));
+  ASSERT_EQ(j["faults"].size(), 2u);
+  EXPECT_EQ(j["faults"][0]["body"], s.faults[0].body);
+  EXPECT_EQ(j["faults"][0]["step"], 1);
+  EXPECT_THAT(j["faults"][0]["fields"].get<std::vector<std::string>>(),
+              ::testing::Contains("linear_velocity"));
+
+  // A run without faults says nothing of them, and its JSON has an empty list.
+  RunOptions options;
+  options.steps = 5;
+  const RunSummary clean = runScene(loadBuiltinScene("billiards"), options);
+  EXPECT_THAT(formatSummary(clean), ::testing::Not(::testing::HasSubstr("fault")));
+  EXPECT_TRUE(nlohmann::json::parse(summaryJson(clean))["faults"].empty());
 }
 
 TEST(Runner, SummaryJsonHasTheTablesNumbers) {

@@ -29,7 +29,8 @@ double median(std::vector<double> v) {
 
 int benchCommand(const BenchArguments& arguments) {
   using Clock = std::chrono::steady_clock;
-  const scene::Scene loaded = loadSceneArgument(arguments.scene);
+  const scene::Scene loaded = loadSceneArgument(
+      arguments.scene, scene::LoadOptions{.allowOutsidePaths = arguments.allowOutsidePaths});
   const int steps = arguments.steps.value_or(loaded.steps);
   std::printf("scene %s: %zu bodies, %d steps of %.6g s, %d run(s)\n", loaded.source.c_str(),
               loaded.bodies.size(), steps, static_cast<double>(loaded.dt), arguments.runs);

@@ -7,7 +7,8 @@
 #include <string>
 
 // A scene file, or else a built-in scene of that name (`collide run` and `collide bench`).
-collide::scene::Scene loadSceneArgument(const std::string& argument);
+collide::scene::Scene loadSceneArgument(const std::string& argument,
+                                        const collide::scene::LoadOptions& options);
 
 // `collide`: one proxy of every type and what it answers.
 int printProxyTable();
@@ -19,14 +20,18 @@ struct RunArguments {
   int every = 1;
   std::string events;
   std::string json;
+  bool allowOutsidePaths = false;  // LoadOptions::allowOutsidePaths
 };
-// `collide run`: runs a scene and prints the summary.
+// `collide run`: runs a scene and prints the summary. Returns 0, or kExitFaults when the world's
+// fault guard froze a body during the run (the summary and every output are written all the same).
+inline constexpr int kExitFaults = 2;
 int runCommand(const RunArguments& arguments);
 
 struct BenchArguments {
   std::string scene = "pyramid";  // a file or a built-in name
   int runs = 3;
   std::optional<int> steps;
+  bool allowOutsidePaths = false;
 };
 // `collide bench`: times collide alone on a scene, ms per step, median over runs.
 int benchCommand(const BenchArguments& arguments);

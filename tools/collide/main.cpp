@@ -3,11 +3,37 @@
 #include "commands.h"
 
 #include <collide/collide.h>
+#include <collide/scene/limits.h>
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cstdio>
 #include <exception>
+#include <string>
+
+namespace {
+
+// Runs of `collide bench`: each rebuilds the world, so a thousand is already hours on a big scene.
+constexpr int kMaxRuns = 1000;
+
+// A whole number within [low, high], checked before CLI11 converts it, so that a wrong value gets one
+// short line: "--steps: must be a whole number from 0 to 10000000, got abc".
+CLI::Validator wholeNumber(long long low, long long high) {
+  const std::string range = std::to_string(low) + " to " + std::to_string(high);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        long long value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (text.empty() || error != std::errc() || stop != end || value < low || value > high)
+          return "must be a whole number from " + range + ", got " + text;
+        return "";
+      },
+      "from " + range);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) try {
   CLI::App app{"collide: collision detection and response for 3D games"};
@@ -21,14 +47,16 @@ int main(int argc, char** argv) try {
   runApp->add_option("scene", run.scene, "scene file (collide-scene/1 JSON) or built-in name")
       ->capture_default_str();
   runApp->add_option("--steps", run.steps, "steps to take (default: the scene's settings.steps)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(wholeNumber(0, collide::scene::kMaxSteps));
   CLI::Option* record = runApp->add_option("--record", run.record, "write the frames to this JSON file");
   runApp->add_option("--every", run.every, "record a frame every K steps (and the last)")
-      ->check(CLI::PositiveNumber)
+      ->check(wholeNumber(1, collide::scene::kMaxSteps))
       ->needs(record)
       ->capture_default_str();
   runApp->add_option("--events", run.events, "write contact events to this JSON Lines file");
   runApp->add_option("--json", run.json, "write the summary to this JSON file");
+  runApp->add_flag("--allow-outside-paths", run.allowOutsidePaths,
+                   "let the scene read OBJ files outside its folder (absolute, \"..\", links leading out)");
 
   BenchArguments bench;
   CLI::App* benchApp =
@@ -36,10 +64,12 @@ int main(int argc, char** argv) try {
   benchApp->add_option("scene", bench.scene, "scene file (collide-scene/1 JSON) or built-in name")
       ->capture_default_str();
   benchApp->add_option("--runs", bench.runs, "runs, each on a freshly built world")
-      ->check(CLI::PositiveNumber)
+      ->check(wholeNumber(1, kMaxRuns))
       ->capture_default_str();
   benchApp->add_option("--steps", bench.steps, "steps per run (default: the scene's settings.steps)")
-      ->check(CLI::PositiveNumber);
+      ->check(wholeNumber(1, collide::scene::kMaxSteps));
+  benchApp->add_flag("--allow-outside-paths", bench.allowOutsidePaths,
+                     "let the scene read OBJ files outside its folder (absolute, \"..\", links leading out)");
 
   std::string exportName;
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, or export one as JSON");

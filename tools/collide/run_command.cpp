@@ -9,33 +9,37 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 using namespace collide;
 
-scene::Scene loadSceneArgument(const std::string& argument) {
+scene::Scene loadSceneArgument(const std::string& argument, const scene::LoadOptions& options) {
   // A file wins over a built-in of the same name; something path-like that does not exist is a
   // missing file, anything else an unknown built-in (whose message lists the built-ins).
   const std::filesystem::path path(argument);
   const bool pathLike = path.has_parent_path() || path.has_extension();
-  return std::filesystem::exists(path) || pathLike ? scene::loadSceneFile(path)
+  return std::filesystem::exists(path) || pathLike ? scene::loadSceneFile(path, options)
                                                    : scene::loadBuiltinScene(argument);
 }
 
 int runCommand(const RunArguments& arguments) {
-  const scene::Scene loaded = loadSceneArgument(arguments.scene);
+  const scene::Scene loaded = loadSceneArgument(
+      arguments.scene, scene::LoadOptions{.allowOutsidePaths = arguments.allowOutsidePaths});
   scene::RunOptions options;
   options.steps = arguments.steps;
   options.recordPath = arguments.record;
   options.recordEvery = arguments.every;
   options.eventsPath = arguments.events;
+  options.summaryPath = arguments.json;
   options.progress = isatty(STDERR_FILENO) != 0;
   const scene::RunSummary summary = scene::runScene(loaded, options);
   std::printf("%s", scene::formatSummary(summary).c_str());
-  if (!arguments.json.empty()) {
-    std::ofstream out(arguments.json, std::ios::binary);
-    if (!out) throw Error("summary file " + arguments.json + ": cannot be written");
-    out << scene::summaryJson(summary);
+  if (!summary.faults.empty()) {
+    // The outputs are written, but the run did not simulate every body to the end: a script that
+    // only reads the exit code must not take it for a clean run.
+    std::fprintf(stderr,
+                 "collide: %zu %s frozen by the fault guard (state no longer finite); see the summary\n",
+                 summary.faults.size(), summary.faults.size() == 1 ? "body was" : "bodies were");
+    return kExitFaults;
   }
   return 0;
 }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace collide::scene {
 
@@ -19,8 +20,9 @@ struct RunOptions {
   std::optional<int> steps;  // default: the scene's settings.steps
   std::string recordPath;    // empty: no recording
   int recordEvery = 1;
-  std::string eventsPath;  // empty: no events file
-  bool progress = false;   // a progress bar on stderr
+  std::string eventsPath;   // empty: no events file
+  std::string summaryPath;  // empty: no summary file (summaryJson)
+  bool progress = false;    // a progress bar on stderr
 };
 
 struct RunSummary {
@@ -39,18 +41,33 @@ struct RunSummary {
   StepStats lastStep{};
   StepStats total{};
   std::uint64_t contactEvents = 0;
+  // Bodies the world's fault guard froze because their state stopped being finite (FaultEvent), in
+  // the order reported: the body's name, the step, and which parts of its state were bad.
+  struct Fault {
+    std::string body;
+    int step = 0;
+    std::uint8_t fields = 0;  // FaultEvent's bits
+  };
+  std::vector<Fault> faults;
   Vec3 momentum{0.0f};
   float kineticEnergy = 0.0f;
   std::uint64_t stateHash = 0;
 };
 
 // Builds the scene's World and runs it. Throws collide::Error for a scene the World refuses, a
-// negative step count, recordEvery < 1, or an output file that cannot be written.
+// negative step count, recordEvery < 1, or an output file that cannot be written. The output paths
+// are checked (checkOutputPaths) and opened before the first step; each output is written through a
+// temporary file (OutputFile) and replaces its target only when every output is complete, so a run
+// that fails leaves the files at the targets as they were.
 RunSummary runScene(const Scene& scene, const RunOptions& options = {});
 
 // FNV-1a over the bit patterns of every live body's position, rotation and velocities, in scene
 // order: equal hashes mean bit-identical final states.
 std::uint64_t stateHash(const SceneWorld& world);
+
+// The parts of a state a FaultEvent names: "position", "rotation", "linear_velocity",
+// "angular_velocity".
+std::vector<std::string> faultFieldNames(std::uint8_t fields);
 
 std::string formatSummary(const RunSummary& summary);  // the table printed on stdout
 std::string summaryJson(const RunSummary& summary);    // the same as a JSON document

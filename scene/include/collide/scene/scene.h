@@ -46,7 +46,12 @@ struct DistanceConstraint {
 
 struct Scene {
   std::string source;  // the file name or "builtin:NAME", prefixed to error messages
-  WorldDef world;      // gravity, substeps, broad phase, combine rules, models
+  // The files the scene was read from: the scene file (empty for a built-in or a parsed text) and
+  // the OBJ files its meshes read, as the paths that were opened. `collide run` refuses to write an
+  // output over any of them.
+  std::filesystem::path file;
+  std::vector<std::filesystem::path> objFiles;
+  WorldDef world;  // gravity, substeps, broad phase, combine rules, models
   float dt = 1.0f / 60.0f;
   int steps = 600;
   std::map<std::string, Material> materials;
