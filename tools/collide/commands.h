@@ -1,4 +1,4 @@
-// The commands of the `collide` tool, one file each; main.cpp wires them to the command line.
+// The commands of the `collide` tool, one file each; command_line.cpp wires them to the command line.
 #pragma once
 
 #include <collide/scene/scene.h>
