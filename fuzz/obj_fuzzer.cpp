@@ -5,8 +5,9 @@
 // Allowed: a mesh, or collide::Error with a message (unparsable text, an index out of range, no
 // triangles, a non-finite coordinate, a zero-area triangle, a flat point set). A finding: a crash,
 // a sanitizer report, another exception, an error without a message, a mesh whose triangles name
-// vertices that do not exist, or a mesh with a vertex that is not finite (what tinyobjloader makes
-// of "nan" or "inf" must be refused, not passed on).
+// vertices that do not exist, or a vertex that is not finite, in the parsed OBJ or in the
+// TriangleMesh built from it (what tinyobjloader makes of "nan" or "inf" must be refused, not
+// passed on).
 #include <collide/bounding.h>
 #include <collide/scene/obj_file.h>
 
@@ -34,6 +35,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (obj.vertices.size() > 256) return 0;
     const std::vector<Vec3> vertices = obj.vertices;
     const TriangleMesh mesh = TriangleMesh::fromTriangles(std::move(obj.vertices), std::move(obj.triangles));
+    // The mesh the loader's output becomes, as a scene's mesh body gets it: finite too.
+    for (const Vec3& v : mesh.vertices()) {
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) __builtin_trap();
+    }
     if (mesh.isClosed()) {
       try {
         (void)massProperties(Shape(mesh), 1000.0f);
