@@ -13,8 +13,19 @@
 namespace collide::detail {
 
 Plane worldPlane(const Plane& plane, const Transform& transform) {
-  const Vec3 normal = transform.applyToDirection(plane.normal);
-  return {normal, plane.distance * transform.scale + glm::dot(normal, transform.position)};
+  Vec3 normal = transform.applyToDirection(plane.normal);
+  float distance = plane.distance;
+  // A normal and a rotation each within the validation's tolerance of unit (1e-3) give a world
+  // normal up to 2e-3 off; normals and depths are promised unit and metric, so such a plane is made
+  // unit here. A unit normal by a unit rotation (length within float rounding, far below 1e-6) is
+  // kept bit for bit.
+  const float lengthSquared = glm::dot(normal, normal);
+  if (std::abs(lengthSquared - 1.0f) > 1e-6f) {
+    const float length = std::sqrt(lengthSquared);
+    normal /= length;
+    distance /= glm::length(plane.normal);
+  }
+  return {normal, distance * transform.scale + glm::dot(normal, transform.position)};
 }
 
 namespace {

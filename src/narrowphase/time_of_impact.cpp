@@ -562,9 +562,11 @@ void requireValidSweep(const Sweep& sweep, const char* which) {
   };
   if (!isFinite(sweep.localCenter) || !isFinite(sweep.center0) || !isFinite(sweep.center1))
     bad("centres must be finite");
-  if (!isFinite(sweep.rotation0) || std::abs(glm::length(sweep.rotation0) - 1.0f) > 1e-3f)
+  // The same test as a Transform's (isValid): |q|^2 within 1e-3 of 1.
+  const auto unit = [](const Quat& q) { return isFinite(q) && std::abs(glm::dot(q, q) - 1.0f) < 1e-3f; };
+  if (!unit(sweep.rotation0))
     bad("rotation0 must be a finite unit quaternion, got length " + describe(glm::length(sweep.rotation0)));
-  if (!isFinite(sweep.rotation1) || std::abs(glm::length(sweep.rotation1) - 1.0f) > 1e-3f)
+  if (!unit(sweep.rotation1))
     bad("rotation1 must be a finite unit quaternion, got length " + describe(glm::length(sweep.rotation1)));
   if (!isFinite(sweep.scale) || sweep.scale <= 0.0f)
     bad("scale must be finite and > 0, got " + describe(sweep.scale));

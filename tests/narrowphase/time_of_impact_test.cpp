@@ -65,6 +65,37 @@ TEST(TimeOfImpact, SphereFallingOnPlaneAtKnownSpeed) {
   EXPECT_NEAR(mirrored.normal.y, 1.0f, 1e-6f);
 }
 
+// Fuzzing found it: a plane whose rotation is within the validation's tolerance of unit (|q|^2
+// 0.9991), against a flat ellipsoid it overlaps. The normal of the time of impact and of the
+// contact is unit all the same. (timeOfImpact also accepted a rotation just outside that tolerance,
+// which collide refuses: both now take the same.)
+TEST(TimeOfImpact, NearlyUnitPlaneRotationGivesAUnitNormal) {
+  const Shape plane(Plane{Vec3(1.53181591e-05f, 1.0f, 1.53181591e-05f), 3.05175818e-05f});
+  Transform planeAt;
+  planeAt.position = Vec3(4.57763672e-05f, 4.57763672e-05f, -3.0f);
+  planeAt.rotation =
+      std::sqrt(0.9991f) * glm::normalize(Quat(1.52587891e-05f, -0.999328613f, 0.01673913f, 1.52587891e-05f));
+  ASSERT_TRUE(isValid(planeAt));
+  Transform outside = planeAt;
+  outside.rotation = Quat(1.52587891e-05f, -0.999328613f, 0.01673913f, 1.52587891e-05f);  // |q|^2 0.99894
+  ASSERT_FALSE(isValid(outside));
+  const Shape flat(Ellipsoid{Vec3(1.63467324f, 0.0100910962f, 1.01275837f)});
+  Transform from;
+  from.position = Vec3(-2.98828101f, 4.57763672e-05f, -2.97070265f);
+  from.rotation = Quat(8.84407928e-06f, -0.577341437f, -0.575095057f, -0.579605579f);
+  Transform to;
+  to.position = Vec3(-6.97265577f, -3.97663856f, -6.96289015f);
+  to.rotation = Quat(-0.579972565f, 8.84967903e-06f, -0.576591969f, 0.575476885f);
+  const ToiResult r = timeOfImpact(plane, Sweep::fixed(planeAt), flat, Sweep::between(from, to));
+  ASSERT_NE(r.state, ToiResult::State::Separated);
+  EXPECT_NEAR(glm::length(r.normal), 1.0f, 1e-5f);
+  Manifold m;
+  if (collide::collide(plane, planeAt, flat, from, m)) {
+    EXPECT_NEAR(glm::length(m.normal), 1.0f, 1e-5f);
+  }
+  EXPECT_THROW(timeOfImpact(plane, Sweep::fixed(outside), flat, Sweep::between(from, to)), Error);
+}
+
 TEST(TimeOfImpact, MissesAndStartsOverlapping) {
   const Shape sphere(Sphere{0.5f});
   const Shape box(Box{Vec3(1.0f)});

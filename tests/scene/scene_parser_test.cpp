@@ -48,7 +48,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
 
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_EQ(s.materials.at("felt"), (Material{0.1f, 0.4f, 800.0f, 0.02f}));
-  EXPECT_EQ(s.materials.at("steel"), (Material{std::nullopt, 0.3f, std::nullopt}));
+  EXPECT_EQ(s.materials.at("steel"), (Material{std::nullopt, 0.3f, std::nullopt, std::nullopt}));
 
   ASSERT_EQ(s.bodies.size(), 11u);
   const BodyDef& ground = s.bodies[0].def;
