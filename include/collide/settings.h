@@ -63,6 +63,11 @@ struct ContactTuning {
   // Passes without the position bias after each substep's position update (Box2D v3's relax), so
   // that push-out does not turn into bounce.
   int relaxPasses = 1;
+  // In a stack that holds a heavier body on a lighter one, each body at rest appears to the contacts
+  // that carry weight as heavy as itself plus its load (src/dynamics/support_masses.h): a heavy box
+  // on a light one, and a stack of any mass ratio, rest instead of sinking into themselves. Other
+  // stacks are solved as they are. Off: the true masses everywhere (momentum kept in every contact).
+  bool supportMasses = true;
   // A sticking friction patch holds its place (a point fixed in each body); when the two points
   // drift apart farther than this (m) along the surface, the anchor is taken again where the patch is.
   float frictionAnchorReach = 0.02f;

@@ -491,20 +491,27 @@ class LaneContactSolver final : public ContactLanes {
   // One lane's bodies: which of them the batch writes back, their masses, inertias, velocities and
   // centres. Apart from the rest of fillLane because it reads the body arrays, the rest the contact.
   static COLLIDE_INLINE LaneMasses fillBodies(const ContactBatchInput& in, Batch& c, LaneInputs& inputs,
-                                              int lane, const Contact& contact, const BodyState& stateA,
-                                              const BodyState& stateB) {
+                                              int lane, std::uint32_t contactIndex, const Contact& contact,
+                                              const BodyState& stateA, const BodyState& stateB) {
     const std::int32_t ia = in.solverOf[contact.bodyA];
     const std::int32_t ib = in.solverOf[contact.bodyB];
     c.bodyA[lane] = ia;
     c.bodyB[lane] = ib;
     c.writeA[lane] = ia >= 0 && in.infos[ia].dynamic;
     c.writeB[lane] = ib >= 0 && in.infos[ib].dynamic;
-    const float mA = c.writeA[lane] ? in.infos[ia].inverseMass : 0.0f;
-    const float mB = c.writeB[lane] ? in.infos[ib].inverseMass : 0.0f;
+    // In a stack with a heavier body on a lighter one, each body appears to the contacts that carry
+    // weight as heavy as its load (support_masses.h), along the normal and the friction patch alike:
+    // one mass per body and contact keeps Gauss-Seidel's iteration that of one consistent system.
+    const float scaleA = in.supportMasses != nullptr ? in.supportMasses->scaleA(contactIndex) : 1.0f;
+    const float scaleB = in.supportMasses != nullptr ? in.supportMasses->scaleB(contactIndex) : 1.0f;
+    const float mA = c.writeA[lane] ? scaleA * in.infos[ia].inverseMass : 0.0f;
+    const float mB = c.writeB[lane] ? scaleB * in.infos[ib].inverseMass : 0.0f;
     // A side the solver does not move (static, kinematic) keeps the zeros of the cleared inputs.
     for (int column = 0; column < 3; ++column) {
-      if (c.writeA[lane]) setLane(inputs.inertiaA[column], lane, in.infos[ia].inverseInertiaWorld[column]);
-      if (c.writeB[lane]) setLane(inputs.inertiaB[column], lane, in.infos[ib].inverseInertiaWorld[column]);
+      if (c.writeA[lane])
+        setLane(inputs.inertiaA[column], lane, scaleA * in.infos[ia].inverseInertiaWorld[column]);
+      if (c.writeB[lane])
+        setLane(inputs.inertiaB[column], lane, scaleB * in.infos[ib].inverseInertiaWorld[column]);
     }
     if (ia >= 0) {
       setLane(inputs.linearA, lane, in.bodies[ia].linearVelocity);
@@ -530,7 +537,7 @@ class LaneContactSolver final : public ContactLanes {
     const BodyState& stateA = in.storage.states[contact.bodyA];
     const BodyState& stateB = in.storage.states[contact.bodyB];
     c.contact[lane] = static_cast<std::int32_t>(contactIndex);
-    const LaneMasses masses = fillBodies(in, c, inputs, lane, contact, stateA, stateB);
+    const LaneMasses masses = fillBodies(in, c, inputs, lane, contactIndex, contact, stateA, stateB);
     const float mA = masses.a, mB = masses.b;
 
     const Vec3 n = contact.manifold.normal;

@@ -83,6 +83,12 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
         {a >= 0 && infos[a].dynamic ? a : kNoSolverBody, b >= 0 && infos[b].dynamic ? b : kNoSolverBody});
   }
   colorConstraints(writtenBodies_, bodies.size(), colorOf_, colorBits_);
+  if (settings.tuning.supportMasses) {
+    supportMasses_.compute(contacts, solvedContacts_, solverOf, infos, bodies, storage, settings.gravity,
+                           settings.tuning.restitutionThreshold);
+  } else {
+    supportMasses_.clear();
+  }
 
   // By colour, then the overflow. Within a colour the contacts share no body that moves, so their
   // order changes no result: they go by point count, most first, so that a batch's lanes have as
@@ -114,7 +120,8 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
       makeSoftness(std::min(tuning.hertz, maxHertz), tuning.dampingRatio, h),
       // A one-way pair has half the effective mass to move: Box2D v3 doubles its stiffness, within the cap.
       makeSoftness(std::min(2.0f * tuning.hertz, maxHertz), tuning.dampingRatio, h), settings.friction,
-      tuning.frictionAnchorReach, tuning.pushOutSpeed, tuning.restitutionThreshold};
+      tuning.frictionAnchorReach, tuning.pushOutSpeed, tuning.restitutionThreshold,
+      supportMasses_.empty() ? nullptr : &supportMasses_};
   lanes_->build(input);
 }
 

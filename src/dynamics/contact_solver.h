@@ -21,10 +21,11 @@
 //     contact when the patch slides (the friction bound is reached) or drifts beyond the reach.
 #pragma once
 
-#include "contacts/contact_cache.h"
 #include "bodies/body_storage.h"
+#include "contacts/contact_cache.h"
 #include "dynamics/constraint_graph.h"
 #include "dynamics/solver_body.h"
+#include "dynamics/support_masses.h"
 
 #include <collide/settings.h>
 
@@ -57,6 +58,7 @@ inline constexpr float kTwistRadiusScale = 0.54f;
 struct ContactSolverSettings {
   ContactTuning tuning;
   bool friction = true;  // Coulomb friction (off under the viscous and damping models)
+  Vec3 gravity{0.0f};    // "up" for the support masses
 };
 
 // What the lane kernels need to build their batches: the contacts to solve, ordered by colour (the
@@ -76,6 +78,7 @@ struct ContactBatchInput {
   float anchorReach = 0.0f;
   float pushOutSpeed = 0.0f;
   float restitutionThreshold = 0.0f;
+  const SupportMasses* supportMasses = nullptr;  // scales on the bodies' masses, if any (support_masses.h)
 };
 
 // The kernels of one lane width (contact_lanes.h): batches of that many manifolds, and the passes.
@@ -126,6 +129,7 @@ class ContactSolver {
 
  private:
   std::unique_ptr<ContactLanes> lanes_;
+  SupportMasses supportMasses_;
   std::vector<std::uint32_t> solvedContacts_;
   // Colouring scratch (constraint_graph.h).
   std::vector<std::array<std::int32_t, 2>> writtenBodies_;

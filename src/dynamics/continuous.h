@@ -18,9 +18,10 @@ struct ContinuousStats {
 
 // Moves each awake, dynamic, fast body (not a sensor) back along its sweep (centerOfMass0/rotation0
 // to the current pose) to the earliest time of impact with another body whose proxy its swept box
-// touches — static ones only, unless the body is flagged ccd — leaving linearSlop between them. Velocities are kept: the next step's speculative
-// contact, now touching, takes the impact (so no energy is added and no contact skipped). Bodies
-// are visited in index order; a partner that was already moved back sweeps to its new pose.
+// touches — static ones only, unless the body is flagged ccd — leaving linearSlop between them. Velocities
+// are kept: the next step's speculative contact, now touching, takes the impact (so no energy is added and no
+// contact skipped). Bodies are visited in index order; a partner that was already moved back sweeps to its
+// new pose.
 ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, float linearSlop);
 
 }  // namespace collide::detail

@@ -5,8 +5,8 @@
 // substep's solve, and once more at the end of the step (impacts, friction, CCD, revert).
 #pragma once
 
-#include "contacts/contact_cache.h"
 #include "bodies/body_storage.h"
+#include "contacts/contact_cache.h"
 #include "dynamics/joint_solver.h"
 
 #include <collide/events.h>

@@ -102,6 +102,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
   ContactSolverSettings contactSettings;
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
+  contactSettings.gravity = settings.gravity;
   contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h);
   if (settings.projection)
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);

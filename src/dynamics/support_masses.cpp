@@ -1,0 +1,170 @@
+// Support masses: levels from the ground, carried mass from the top down, the scales of the
+// contacts where a heavier body rests on a lighter one (support_masses.h).
+#include "dynamics/support_masses.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace collide::detail {
+
+namespace {
+
+// A contact supports when its normal is within 60 degrees of up: a box on a slope steeper than that
+// slides off rather than rests, and a side-by-side contact carries no weight.
+constexpr float kSupportCosine = 0.5f;
+
+// A body's velocity along the contact's normal at the manifold's centre.
+float speedAlongNormal(const Contact& c, std::uint32_t body, std::int32_t solverBody,
+                       const std::vector<SolverBody>& bodies, const BodyStorage& storage) {
+  Vec3 point(0.0f);
+  for (int k = 0; k < c.manifold.count; ++k) point += c.manifold.points[k].midpoint();
+  point /= float(c.manifold.count);
+  const SolverBody& b = bodies[solverBody];
+  const Vec3 velocity =
+      b.linearVelocity + glm::cross(b.angularVelocity, point - storage.states[body].centerOfMass);
+  return glm::dot(velocity, c.manifold.normal);
+}
+
+}  // namespace
+
+void SupportMasses::compute(std::span<const Contact> contacts, std::span<const std::uint32_t> solvedContacts,
+                            const std::vector<std::int32_t>& solverOf,
+                            const std::vector<SolverBodyInfo>& infos, const std::vector<SolverBody>& bodies,
+                            const BodyStorage& storage, const Vec3& gravity, float restingSpeed) {
+  scaleA_.clear();
+  scaleB_.clear();
+  supports_.clear();
+  const float g = glm::length(gravity);
+  if (!(g > 0.0f) || !std::isfinite(g)) return;
+  const Vec3 up = gravity / -g;
+  const auto isDynamic = [&](std::int32_t s) {
+    return s != kNoSolverBody && infos[s].dynamic && infos[s].inverseMass > 0.0f;
+  };
+
+  // The supporting contacts; nothing to do unless one has a heavier body on a lighter one.
+  bool heavierOnLighter = false;
+  for (const std::uint32_t index : solvedContacts) {
+    const Contact& c = contacts[index];
+    const float rise = glm::dot(c.manifold.normal, up);
+    if (std::abs(rise) < kSupportCosine) continue;
+    const bool lowerIsA = rise > 0.0f;  // the normal points from A to B
+    const std::int32_t lower = solverOf[lowerIsA ? c.bodyA : c.bodyB];
+    const std::int32_t upper = solverOf[lowerIsA ? c.bodyB : c.bodyA];
+    if (!isDynamic(upper)) continue;
+    const bool dynamicLower = isDynamic(lower);
+    heavierOnLighter =
+        heavierOnLighter || (dynamicLower && infos[upper].inverseMass < infos[lower].inverseMass);
+    supports_.push_back({dynamicLower ? lower : kNoSolverBody, upper, index, lowerIsA});
+  }
+  if (!heavierOnLighter) return;
+
+  // Levels, breadth first from the ground, over the edges leaving each dynamic lower body (CSR).
+  const std::size_t bodyCount = infos.size();
+  level_.assign(bodyCount, -1);
+  edgeStart_.assign(bodyCount + 1, 0);
+  for (const Support& s : supports_) {
+    if (s.lower != kNoSolverBody) ++edgeStart_[s.lower + 1];
+  }
+  for (std::size_t i = 1; i <= bodyCount; ++i) edgeStart_[i] += edgeStart_[i - 1];
+  edges_.resize(edgeStart_[bodyCount]);
+  byLevel_.assign(edgeStart_.begin(), edgeStart_.end() - 1);  // the fill cursor, for now
+  for (std::uint32_t i = 0; i < supports_.size(); ++i) {
+    if (supports_[i].lower != kNoSolverBody) edges_[byLevel_[supports_[i].lower]++] = i;
+  }
+  queue_.clear();
+  for (const Support& s : supports_) {
+    if (s.lower == kNoSolverBody && level_[s.upper] < 0) {
+      level_[s.upper] = 1;
+      queue_.push_back(static_cast<std::uint32_t>(s.upper));
+    }
+  }
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const std::uint32_t body = queue_[head];
+    for (std::uint32_t e = edgeStart_[body]; e < edgeStart_[body + 1]; ++e) {
+      const std::int32_t upper = supports_[edges_[e]].upper;
+      if (level_[upper] >= 0) continue;
+      level_[upper] = level_[body] + 1;
+      queue_.push_back(static_cast<std::uint32_t>(upper));
+    }
+  }
+
+  // The supports that carry weight down a level (the upper body on the ground through them), by the
+  // upper body's level, highest first (a stable counting sort), and how many each body rests on.
+  const auto levelOf = [&](std::int32_t s) { return s == kNoSolverBody ? 0 : level_[s]; };
+  const auto carries = [&](const Support& s) {
+    return level_[s.upper] > 0 && levelOf(s.lower) >= 0 && levelOf(s.lower) < level_[s.upper];
+  };
+  int maxLevel = 0;
+  for (const std::uint32_t body : queue_) maxLevel = std::max(maxLevel, level_[body]);
+  supporters_.assign(bodyCount, 0);
+  std::vector<std::uint32_t>& start = edgeStart_;  // the CSR is no longer needed
+  start.assign(static_cast<std::size_t>(maxLevel) + 2, 0);
+  for (const Support& s : supports_) {
+    if (!carries(s)) continue;
+    ++supporters_[s.upper];
+    ++start[maxLevel - level_[s.upper] + 1];
+  }
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  byLevel_.resize(start.back());
+  for (std::uint32_t i = 0; i < supports_.size(); ++i) {
+    if (carries(supports_[i])) byLevel_[start[maxLevel - level_[supports_[i].upper]]++] = i;
+  }
+
+  // Carried mass, from the top down: a body's support mass is its own plus an equal share of the
+  // support mass of each body resting on it. Uppers come before the bodies under them.
+  supportMass_.assign(bodyCount, 0.0f);
+  for (const std::uint32_t body : queue_) supportMass_[body] = 1.0f / infos[body].inverseMass;
+  for (const std::uint32_t i : byLevel_) {
+    const Support& s = supports_[i];
+    if (s.lower != kNoSolverBody)
+      supportMass_[s.lower] += supportMass_[s.upper] / float(supporters_[s.upper]);
+  }
+
+  // The stacks (bodies joined by carrying supports) that hold a heavier body on a lighter one.
+  stackOf_.resize(bodyCount);
+  for (std::size_t b = 0; b < bodyCount; ++b) stackOf_[b] = static_cast<std::int32_t>(b);
+  const auto find = [&](std::int32_t b) {
+    while (stackOf_[b] != b) b = stackOf_[b] = stackOf_[stackOf_[b]];
+    return b;
+  };
+  for (const std::uint32_t i : byLevel_) {
+    const Support& s = supports_[i];
+    if (s.lower == kNoSolverBody) continue;
+    const std::int32_t a = find(s.lower), b = find(s.upper);
+    if (a != b) stackOf_[std::max(a, b)] = std::min(a, b);  // deterministic: the smaller index is the root
+  }
+  heavyOnLight_.assign(bodyCount, 0);
+  for (const std::uint32_t i : byLevel_) {
+    const Support& s = supports_[i];
+    if (s.lower != kNoSolverBody && infos[s.upper].inverseMass < infos[s.lower].inverseMass)
+      heavyOnLight_[find(s.upper)] = 1;
+  }
+
+  // In those stacks, each body appears to the contacts that carry weight as heavy as its support
+  // mass, on both sides: its load's weight then reaches the ground as fast as a uniform stack's.
+  scaleA_.assign(contacts.size(), 1.0f);
+  scaleB_.assign(contacts.size(), 1.0f);
+  const auto scaleOf = [&](std::int32_t body) {
+    return (1.0f / infos[body].inverseMass) / supportMass_[body];
+  };
+  // Only a body at rest along the normal is scaled (no faster than the restitution threshold): one
+  // that falls onto the body under it, or rises into the one above, meets it with its true mass.
+  // Scaled, a falling body would hit as a lighter one and a rising one would lift its load without
+  // slowing, and either gains energy; at rest the scaling moves only what gravity added this step.
+  const auto scaleIn = [&](const Contact& c, std::uint32_t body, std::int32_t solverBody) {
+    const float speed = speedAlongNormal(c, body, solverBody, bodies, storage);
+    return std::abs(speed) <= restingSpeed ? scaleOf(solverBody) : 1.0f;
+  };
+  for (const std::uint32_t i : byLevel_) {
+    const Support& s = supports_[i];
+    if (!heavyOnLight_[find(s.upper)]) continue;
+    const Contact& c = contacts[s.contact];
+    const std::uint32_t upperBody = s.lowerIsA ? c.bodyB : c.bodyA;
+    const std::uint32_t lowerBody = s.lowerIsA ? c.bodyA : c.bodyB;
+    (s.lowerIsA ? scaleB_ : scaleA_)[s.contact] = scaleIn(c, upperBody, s.upper);
+    if (s.lower != kNoSolverBody)
+      (s.lowerIsA ? scaleA_ : scaleB_)[s.contact] = scaleIn(c, lowerBody, s.lower);
+  }
+}
+
+}  // namespace collide::detail
