@@ -342,12 +342,43 @@ void World::setPreSolveCallback(PreSolveFilter filter) {
                                                  ContactSettings&) { return filter(a, b, manifold); };
 }
 
+void World::setContactListener(ContactListener* listener) { impl_->contactListener = listener; }
+
 void World::step(float dt) {
   if (!isFinite(dt) || dt <= 0.0f)
     throw Error("world: step: dt must be finite and > 0, got " + formatFloat(dt));
   impl_->callbackError.clear();
   impl_->step(dt);
   if (!impl_->callbackError.empty()) throw Error(impl_->callbackError);
+  if (impl_->contactListener != nullptr) impl_->tellContactListener();
+}
+
+void World::Impl::tellContactListener() {
+  for (std::size_t i = 0; i < events.contacts.size(); ++i) {
+    const ContactEvent& event = events.contacts[i];
+    const std::uint32_t contact = events.contactOfEvent[i];
+    if (event.type == ContactEvent::Type::End || contact == detail::StepEvents::kNoContact) {
+      contactListener->onEnd(event);
+    } else if (event.type == ContactEvent::Type::Begin) {
+      contactListener->onBegin(detail::makeContactData(bodies, contacts[contact]));
+    } else {
+      contactListener->onPersist(detail::makeContactData(bodies, contacts[contact]));
+    }
+  }
+}
+
+void World::visitContacts(const std::function<void(const ContactData&)>& visitor) const {
+  for (const detail::Contact& c : impl_->contacts) {
+    if (c.touching && !c.sensor) visitor(detail::makeContactData(impl_->bodies, c));
+  }
+}
+
+void World::visitContacts(BodyId body, const std::function<void(const ContactData&)>& visitor) const {
+  const std::uint32_t index = impl_->resolve(body, "visitContacts");
+  for (const detail::Contact& c : impl_->contacts) {
+    if (c.touching && !c.sensor && (c.bodyA == index || c.bodyB == index))
+      visitor(detail::makeContactData(impl_->bodies, c));
+  }
 }
 
 const StepStats& World::lastStats() const { return impl_->lastStats; }

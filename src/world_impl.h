@@ -44,6 +44,7 @@ struct World::Impl {
   StepStats lastStats;
   StepStats totalStats;
   PreSolveCallback preSolve;
+  ContactListener* contactListener = nullptr;
   std::string callbackError;  // reported by step() once the step is complete
   std::size_t touchingCount = 0;
 
@@ -54,6 +55,8 @@ struct World::Impl {
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
 
   void step(float dt);
+  // The contact listener, told of the step's contact events in their order (World::setContactListener).
+  void tellContactListener();
 };
 
 }  // namespace collide

@@ -106,14 +106,6 @@ ViewerScene::ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& 
     : scene_(std::move(scene)),
       renderer_(renderer),
       built_(std::make_unique<scene::SceneWorld>(std::move(built))) {
-  // The pre-solve callback sees every manifold of the step: the only place the World hands out
-  // its contact points. It keeps them for debug drawing and never disables a contact.
-  std::shared_ptr<std::vector<Contact>> contacts = contacts_;
-  built_->world.setPreSolveCallback([contacts](BodyId, BodyId, const Manifold& manifold) {
-    for (int i = 0; i < manifold.count; ++i)
-      contacts->push_back({manifold.points[i].midpoint(), manifold.normal});
-    return true;
-  });
   std::vector<float> radii, staticRadii;
   for (std::size_t i = 0; i < built_->bodies.size(); ++i) {
     const BodyId id = built_->bodies[i];
@@ -167,7 +159,6 @@ BodyId ViewerScene::shoot(const Ray& ray, const SphereShot& shot) {
 }
 
 double ViewerScene::step() {
-  contacts_->clear();
   const auto start = std::chrono::steady_clock::now();
   built_->world.step(scene_.dt);
   const auto stop = std::chrono::steady_clock::now();
@@ -239,16 +230,20 @@ std::vector<LineVertex> ViewerScene::debugLines(const DebugDraw& options) const 
     const Vec3 red(1.0f, 0.2f, 0.2f), yellow(1.0f, 0.9f, 0.2f);
     // Sized by the bodies: a 30 cm normal hides a billiard ball and vanishes next to a house.
     const float kNormal = 0.6f * typicalRadius_, kCross = 0.1f * typicalRadius_;
-    for (const Contact& c : *contacts_) {
-      for (int axis = 0; axis < 3; ++axis) {
-        Vec3 d(0.0f);
-        d[axis] = kCross;
-        lines.push_back({c.point - d, red});
-        lines.push_back({c.point + d, red});
+    // The touching contacts the last step left, as the world hands them out.
+    built_->world.visitContacts([&](const ContactData& contact) {
+      for (int i = 0; i < contact.manifold.count; ++i) {
+        const Vec3 point = contact.manifold.points[i].midpoint();
+        for (int axis = 0; axis < 3; ++axis) {
+          Vec3 d(0.0f);
+          d[axis] = kCross;
+          lines.push_back({point - d, red});
+          lines.push_back({point + d, red});
+        }
+        lines.push_back({point, yellow});
+        lines.push_back({point + kNormal * contact.manifold.normal, yellow});
       }
-      lines.push_back({c.point, yellow});
-      lines.push_back({c.point + kNormal * c.normal, yellow});
-    }
+    });
   }
   return lines;
 }

@@ -74,11 +74,6 @@ class ViewerScene {
   int broadPhaseDepth() const;
 
  private:
-  struct Contact {
-    Vec3 point;
-    Vec3 normal;
-  };
-
   void addBody(BodyId id, const glm::vec4& colour);
   void addParts(const Shape& shape, const glm::mat4& local, std::vector<DrawnBody::Part>& parts);
   void addBroadPhaseLines(const DebugDraw& options, std::vector<LineVertex>& lines) const;
@@ -91,7 +86,6 @@ class ViewerScene {
   std::deque<BodyId> shots_;
   // Meshes shared by shapes with equal parameters (primitives) or the same polyhedron (pointer).
   std::unordered_map<std::string, int> meshKeys_;
-  std::shared_ptr<std::vector<Contact>> contacts_ = std::make_shared<std::vector<Contact>>();
   int steps_ = 0;
   float typicalRadius_ = 0.5f;  // of the scene's bodies: sizes the contact marks
 };

@@ -6,6 +6,7 @@
 #include <collide/math.h>
 #include <collide/narrowphase.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 
@@ -27,6 +28,40 @@ struct ContactEvent {
   Vec3 normal{0.0f, 1.0f, 0.0f};
   float impulse = 0.0f;
   float speed = 0.0f;
+};
+
+// A touching contact as the last step left it, whole: the two bodies, the manifold (its points with
+// their depths, the normal from a to b), the normal impulse the solver gave each point over the
+// step, the impulse of an impact resolved before the solve (the impact stage's, at the manifold's
+// deepest points), and the friction patch's impulse (a world vector, on b), all in N s. The data of
+// World::visitContacts and of a ContactListener's begin and persist calls.
+struct ContactData {
+  BodyId a;
+  BodyId b;
+  Manifold manifold;
+  std::array<float, Manifold::kMaxPoints> normalImpulses{};
+  float impactImpulse = 0.0f;
+  Vec3 frictionImpulse{0.0f};
+  // The step's whole normal impulse on the pair (what the begin event reports).
+  float totalNormalImpulse() const {
+    float sum = impactImpulse;
+    for (int i = 0; i < manifold.count; ++i) sum += normalImpulses[i];
+    return sum;
+  }
+};
+
+// Told of every contact event of a step with the whole contact (World::setContactListener), once
+// the step is done, in the order of World::contactEvents(): begin when a contact starts touching,
+// persist while it goes on touching (only with WorldDef::persistEvents, as the events), end when it
+// stops (its manifold is gone by then: the end event's last known point and normal). The world is
+// not to be changed from inside a call; a call that throws ends the dispatch and World::step
+// rethrows it.
+class ContactListener {
+ public:
+  virtual ~ContactListener() = default;
+  virtual void onBegin(const ContactData&) {}
+  virtual void onPersist(const ContactData&) {}
+  virtual void onEnd(const ContactEvent&) {}
 };
 
 struct SensorEvent {

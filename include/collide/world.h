@@ -166,6 +166,9 @@ class World {
 
   void setPreSolveCallback(PreSolveCallback callback);
   void setPreSolveCallback(PreSolveFilter filter);
+  // The listener told of each step's contact events with the whole contact (events.h); nullptr for
+  // none. The world does not own it: it must outlive the world or be unset first.
+  void setContactListener(ContactListener* listener);
 
   // Advances by dt > 0 (finite); throws Error otherwise.
   void step(float dt);
@@ -180,6 +183,11 @@ class World {
   std::span<const FaultEvent> faultEvents() const;
   // The number of touching (non-sensor) contact pairs after the last step.
   std::size_t touchingContactCount() const;
+  // Every touching (non-sensor) contact after the last step, whole, in the contacts' pair order (the
+  // events' order); and those of one body (a scan of all contacts). For gameplay queries ("what is
+  // this crate resting on, how hard") and drawing. The world is not to be changed from the visitor.
+  void visitContacts(const std::function<void(const ContactData&)>& visitor) const;
+  void visitContacts(BodyId body, const std::function<void(const ContactData&)>& visitor) const;
 
   // ---- Queries between steps, through the broad phase. ----
   // The closest body whose shape the ray hits within ray.maxDistance (the lecture's picking: the

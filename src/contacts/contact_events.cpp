@@ -17,6 +17,7 @@ SensorEvent makeSensorEvent(const BodyStorage& bodies, const Contact& contact, S
 
 void StepEvents::beginStep() {
   contacts.assign(pendingContacts.begin(), pendingContacts.end());
+  contactOfEvent.assign(pendingContacts.size(), kNoContact);
   sensors.assign(pendingSensors.begin(), pendingSensors.end());
   pendingContacts.clear();
   pendingSensors.clear();
@@ -33,6 +34,7 @@ void StepEvents::endVanished(const BodyStorage& bodies, const Contact& old) {
     sensors.push_back(makeSensorEvent(bodies, old, SensorEvent::Type::End));
   } else {
     contacts.push_back(makeContactEvent(bodies, old, ContactEvent::Type::End));
+    contactOfEvent.push_back(kNoContact);
   }
 }
 
@@ -64,9 +66,24 @@ ContactEvent makeContactEvent(const BodyStorage& bodies, const Contact& c, Conta
   return e;
 }
 
+ContactData makeContactData(const BodyStorage& bodies, const Contact& c) {
+  ContactData d;
+  d.a = bodies.idOf(c.bodyA);
+  d.b = bodies.idOf(c.bodyB);
+  d.manifold = c.manifold;
+  for (int i = 0; i < c.manifold.count; ++i) d.normalImpulses[i] = c.points[i].totalNormalImpulse;
+  d.frictionImpulse = c.frictionImpulse;
+  d.impactImpulse = c.impactImpulse;
+  return d;
+}
+
 std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& contacts, StepEvents& events,
                               bool persistEvents) {
   std::size_t touchingCount = 0;
+  const auto emit = [&](const Contact& c, ContactEvent::Type type) {
+    events.contacts.push_back(makeContactEvent(bodies, c, type));
+    events.contactOfEvent.push_back(static_cast<std::uint32_t>(&c - contacts.data()));
+  };
   for (Contact& c : contacts) {
     // A speculative contact that stopped the bodies this step (the solver pushed, or the impact
     // stage gave an impulse) touched them, though it was still apart before: count it, so the begin
@@ -84,12 +101,9 @@ std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& c
       continue;
     }
     if (c.touching) ++touchingCount;
-    if (c.touching && !c.wasTouching)
-      events.contacts.push_back(makeContactEvent(bodies, c, ContactEvent::Type::Begin));
-    if (c.touching && c.wasTouching && persistEvents && !c.asleep)
-      events.contacts.push_back(makeContactEvent(bodies, c, ContactEvent::Type::Persist));
-    if (!c.touching && c.wasTouching)
-      events.contacts.push_back(makeContactEvent(bodies, c, ContactEvent::Type::End));
+    if (c.touching && !c.wasTouching) emit(c, ContactEvent::Type::Begin);
+    if (c.touching && c.wasTouching && persistEvents && !c.asleep) emit(c, ContactEvent::Type::Persist);
+    if (!c.touching && c.wasTouching) emit(c, ContactEvent::Type::End);
   }
   return touchingCount;
 }

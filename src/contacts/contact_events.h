@@ -10,6 +10,7 @@
 #include "contacts/contact_cache.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace collide::detail {
@@ -18,6 +19,10 @@ namespace collide::detail {
 // events of contacts whose body was destroyed between steps, handed out first with the next step's.
 struct StepEvents {
   std::vector<ContactEvent> contacts;
+  // For each contact event, its contact's index in the step's contact array (the contact listener
+  // reads the manifold there), or kNoContact for the end of a vanished pair.
+  static constexpr std::uint32_t kNoContact = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> contactOfEvent;
   std::vector<SensorEvent> sensors;
   std::vector<FaultEvent> faults;
   std::vector<ContactEvent> pendingContacts;
@@ -33,6 +38,8 @@ struct StepEvents {
 };
 
 ContactEvent makeContactEvent(const BodyStorage& bodies, const Contact& contact, ContactEvent::Type type);
+// The whole contact, as World::visitContacts and the contact listener hand it out.
+ContactData makeContactData(const BodyStorage& bodies, const Contact& contact);
 
 // The stage: begin, persist (with persistEvents) and end events of every contact after the solve,
 // and sensor begin and end events. Returns the number of touching (non-sensor) contacts.
