@@ -389,7 +389,43 @@ std::span<const FaultEvent> World::faultEvents() const { return impl_->events.fa
 std::size_t World::touchingContactCount() const { return impl_->touchingCount; }
 
 std::optional<RayCastResult> World::castRay(const Ray& ray, LayerMask mask) const {
-  return detail::castRayClosest(impl_->bodies, *impl_->broadPhase, ray, mask);
+  return detail::castRayClosest(impl_->bodies, *impl_->broadPhase, ray, QueryFilter{mask, false, {}});
+}
+
+std::optional<RayCastResult> World::castRay(const Ray& ray, const QueryFilter& filter) const {
+  return detail::castRayClosest(impl_->bodies, *impl_->broadPhase, ray, filter);
+}
+
+std::optional<RayCastResult> World::castRayAny(const Ray& ray, const QueryFilter& filter) const {
+  return detail::castRayAny(impl_->bodies, *impl_->broadPhase, ray, filter);
+}
+
+std::vector<RayCastResult> World::castRayAll(const Ray& ray, const QueryFilter& filter) const {
+  return detail::castRayAll(impl_->bodies, *impl_->broadPhase, ray, filter);
+}
+
+void World::castRayCollect(const Ray& ray, const RayHitCollector& collector,
+                           const QueryFilter& filter) const {
+  detail::castRayCollect(impl_->bodies, *impl_->broadPhase, ray, collector, filter);
+}
+
+std::optional<ShapeCastResult> World::castShape(const Shape& shape, const Transform& pose,
+                                                const Vec3& translation, const QueryFilter& filter) const {
+  return detail::castShapeClosest(impl_->bodies, *impl_->broadPhase, shape, pose, translation, filter);
+}
+
+std::vector<ShapeCastResult> World::castShapeAll(const Shape& shape, const Transform& pose,
+                                                 const Vec3& translation, const QueryFilter& filter) const {
+  return detail::castShapeAll(impl_->bodies, *impl_->broadPhase, shape, pose, translation, filter);
+}
+
+std::vector<OverlapResult> World::overlapShape(const Shape& shape, const Transform& pose,
+                                               const QueryFilter& filter) const {
+  return detail::overlapShape(impl_->bodies, *impl_->broadPhase, shape, pose, filter);
+}
+
+std::vector<BodyId> World::overlapPoint(const Vec3& point, const QueryFilter& filter) const {
+  return detail::overlapPoint(impl_->bodies, *impl_->broadPhase, point, filter);
 }
 
 std::vector<BodyPair> World::broadPhasePairs() const {

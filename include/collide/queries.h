@@ -1,20 +1,62 @@
-// The answers of the world's queries (World::castRay, World::broadPhasePairs).
+// The answers of the world's queries (World::castRay and its variants, World::castShape,
+// World::overlapShape, World::overlapPoint, World::broadPhasePairs) and the filter they all take.
+// docs/queries.md describes each query and what it reports.
 #pragma once
 
 #include <collide/body.h>
+#include <collide/broadphase.h>
 #include <collide/math.h>
 
 #include <cstdint>
+#include <functional>
 
 namespace collide {
 
-// The hit of World::castRay: the body and where its shape was hit.
+// Which bodies a query sees. A body takes part when its layer passes the mask ((layer & mask) != 0),
+// it is not a sensor (unless includeSensors) and `accept`, when set, returns true for it. Sensors are
+// left out by default: they are trigger volumes without a surface, so a picking ray or a character's
+// sweep should pass through them; set includeSensors to ask which sensors a ray or shape reaches.
+// An unset `accept` costs nothing (no allocation, no call).
+struct QueryFilter {
+  LayerMask mask = kAllLayers;
+  bool includeSensors = false;
+  std::function<bool(BodyId body)> accept{};
+};
+
+// A ray's hit of one body (World::castRay, castRayAny, castRayAll, castRayCollect).
 struct RayCastResult {
   BodyId body;
   float distance = 0.0f;  // along the ray (its direction normalised)
   Vec3 point{0.0f};
   Vec3 normal{0.0f};           // unit, the surface normal at the hit, facing the ray's origin side
-  std::uint32_t subShape = 0;  // triangle index for a mesh, child index for a compound
+  std::uint32_t subShape = 0;  // the part hit: triangle index for a mesh, child index for a compound
+  float fraction = 0.0f;       // distance / ray.maxDistance; 0 for an infinite or zero maxDistance
+};
+
+// Called by World::castRayCollect for each body the ray hits, in no particular order (the broad
+// phase's, deterministic for a given world). Return the new maximum distance: hit.distance to clip
+// the ray there (only nearer hits follow), a larger value (e.g. infinity) to keep going, or a
+// negative number to stop.
+using RayHitCollector = std::function<float(const RayCastResult& hit)>;
+
+// A swept shape's first contact with one body (World::castShape, castShapeAll).
+struct ShapeCastResult {
+  BodyId body;
+  float fraction = 0.0f;       // the time of impact in [0, 1] along the translation
+  float distance = 0.0f;       // fraction * |translation|
+  Vec3 point{0.0f};            // on the contact, midway between the two surfaces
+  Vec3 normal{0.0f};           // unit, from the hit body's surface towards the cast shape
+  std::uint32_t subShape = 0;  // the compound child hit (0 for other shapes)
+  // The shape already overlaps the body at the start of the cast: fraction 0, and normal is the
+  // direction that separates the cast shape from the body.
+  bool initiallyOverlapping = false;
+};
+
+// A body that a shape placed in the world overlaps (World::overlapShape).
+struct OverlapResult {
+  BodyId body;
+  std::uint32_t subShape = 0;  // the first compound child overlapped (0 for other shapes)
+  friend bool operator==(const OverlapResult&, const OverlapResult&) = default;
 };
 
 // Two bodies, as World::broadPhasePairs hands them out.

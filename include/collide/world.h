@@ -198,6 +198,38 @@ class World {
   // or a NaN or negative maxDistance throws Error. A ray that starts inside a solid shape hits it
   // at distance 0 with normal -direction (as collide::rayCast).
   std::optional<RayCastResult> castRay(const Ray& ray, LayerMask mask = kAllLayers) const;
+  // The same with a full filter (QueryFilter: layer mask, sensors, a callback per body).
+  std::optional<RayCastResult> castRay(const Ray& ray, const QueryFilter& filter) const;
+  // The first hit found, the cheapest ray (line of sight, "is anything there?"): not necessarily the
+  // closest, but the same one for the same world. Input as castRay.
+  std::optional<RayCastResult> castRayAny(const Ray& ray, const QueryFilter& filter = {}) const;
+  // Every body the ray hits (one hit each, its first), sorted nearest first, equal distances by
+  // body index. Input as castRay.
+  std::vector<RayCastResult> castRayAll(const Ray& ray, const QueryFilter& filter = {}) const;
+  // Hands each body the ray hits to the collector, which clips the ray or stops it (RayHitCollector);
+  // no allocation of its own. Input as castRay; an unset collector throws Error.
+  void castRayCollect(const Ray& ray, const RayHitCollector& collector, const QueryFilter& filter = {}) const;
+
+  // Shape casts (sweeps): a convex shape (sphere, capsule, box, k-DOP, ellipsoid, cylinder, hull) at
+  // `pose` moved along `translation` without turning, against every body the swept box reaches, by the
+  // narrow phase's timeOfImpact. A start already touching (within 1.25 mm) reports fraction 0 and
+  // initiallyOverlapping. A shape that is not convex, an invalid pose or a non-finite translation
+  // throws Error. The earliest contact (ties to the lower body index):
+  std::optional<ShapeCastResult> castShape(const Shape& shape, const Transform& pose, const Vec3& translation,
+                                           const QueryFilter& filter = {}) const;
+  // Every body reached, sorted by fraction, equal fractions by body index.
+  std::vector<ShapeCastResult> castShapeAll(const Shape& shape, const Transform& pose,
+                                            const Vec3& translation, const QueryFilter& filter = {}) const;
+
+  // Every body the shape placed at `pose` overlaps exactly (the narrow phase's collide() finds a contact,
+  // touching included; not just the boxes), sorted by body index. A mesh is its surface here: a shape
+  // wholly inside a closed mesh does not overlap it. A plane query shape or an invalid pose throws Error.
+  std::vector<OverlapResult> overlapShape(const Shape& shape, const Transform& pose,
+                                          const QueryFilter& filter = {}) const;
+  // Every body whose solid holds the point (collide::containsPoint: the boundary counts; a plane's solid
+  // is its half-space; a closed mesh holds its inside, an open mesh no point), sorted by body index.
+  // A non-finite point throws Error.
+  std::vector<BodyId> overlapPoint(const Vec3& point, const QueryFilter& filter = {}) const;
   // The pairs the broad phase kept in the last step (proxy boxes overlapping, static-static never),
   // in its order (by proxy index); pairs with a body destroyed since are left out. For drawing and
   // inspection: it allocates.

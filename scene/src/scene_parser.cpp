@@ -549,4 +549,19 @@ Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& option
   return scene;
 }
 
+Shape parseShape(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir,
+                 const LoadOptions& options) {
+  const std::string source(sourceName);
+  const Json document = parseDocument(text, source);
+  const JsonNode root(document, source);
+  std::vector<std::filesystem::path> objFiles;
+  const LoadContext context{baseDir, options, &objFiles};
+  return readShape(root, context, 0);
+}
+
+Shape loadShapeFile(const std::filesystem::path& path, const LoadOptions& options) {
+  const std::string text = readFileText(path, kMaxSceneFileBytes, "shape file " + path.string());
+  return parseShape(text, path.string(), path.parent_path().empty() ? "." : path.parent_path(), options);
+}
+
 }  // namespace collide::scene

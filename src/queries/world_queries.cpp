@@ -1,47 +1,291 @@
-// The world's queries over the broad phase: the closest ray hit, the kept pairs (world_queries.h).
+// The world's queries over the broad phase: rays, shape casts, overlaps and points (world_queries.h).
 #include "queries/world_queries.h"
 
 #include <collide/error.h>
+#include <collide/narrowphase.h>
 #include <collide/shapes.h>
 
 #include "base/format.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace collide::detail {
 
-std::optional<RayCastResult> castRayClosest(const BodyStorage& bodies, const BroadPhase& broadPhase,
-                                            const Ray& ray, LayerMask mask) {
-  if (!isFinite(ray.origin))
-    throw Error("world: castRay: origin must be finite, got " + formatVec(ray.origin));
+namespace {
+
+// The filter's verdict beyond the layer mask, which the broad phase applies itself.
+bool passes(const QueryFilter& filter, const BodyStorage& bodies, std::uint32_t index) {
+  if (bodies.records[index].sensor && !filter.includeSensors) return false;
+  return !filter.accept || filter.accept(bodies.idOf(index));
+}
+
+std::uint32_t bodyIndex(const BroadPhase& broadPhase, ProxyId proxy) {
+  return static_cast<std::uint32_t>(broadPhase.userValue(proxy));
+}
+
+// The ray with a unit direction, or Error naming the query.
+Ray checkedUnitRay(const Ray& ray, const char* query) {
+  const std::string where = std::string("world: ") + query + ": ";
+  if (!isFinite(ray.origin)) throw Error(where + "origin must be finite, got " + formatVec(ray.origin));
   const float length = glm::length(ray.direction);
   if (!isFinite(ray.direction) || !(length > 0.0f) || !std::isfinite(length)) {
-    throw Error("world: castRay: direction must be finite and non-zero, got " + formatVec(ray.direction));
+    throw Error(where + "direction must be finite and non-zero, got " + formatVec(ray.direction));
   }
   if (std::isnan(ray.maxDistance) || ray.maxDistance < 0.0f) {
-    throw Error("world: castRay: maxDistance must be >= 0, got " + formatFloat(ray.maxDistance));
+    throw Error(where + "maxDistance must be >= 0, got " + formatFloat(ray.maxDistance));
   }
   Ray unit = ray;
   unit.direction = ray.direction / length;
+  return unit;
+}
+
+float fractionOf(float distance, float maxDistance) {
+  return maxDistance > 0.0f && std::isfinite(maxDistance) ? distance / maxDistance : 0.0f;
+}
+
+RayCastResult rayResult(const BodyStorage& bodies, std::uint32_t index, const RayHit& hit,
+                        float maxDistance) {
+  return {bodies.idOf(index), hit.distance, hit.point,
+          hit.normal,         hit.subShape, fractionOf(hit.distance, maxDistance)};
+}
+
+bool nearerRay(const RayCastResult& a, const RayCastResult& b) {
+  return a.distance < b.distance || (a.distance == b.distance && a.body.index < b.body.index);
+}
+
+void checkPose(const Transform& pose, const char* query) {
+  if (!isValid(pose)) {
+    throw Error(std::string("world: ") + query +
+                ": pose must have a finite position, a unit rotation and a positive finite scale, got "
+                "position " +
+                formatVec(pose.position) + ", scale " + formatFloat(pose.scale));
+  }
+}
+
+// The candidates whose proxy box touches `box`, by body index (the broad phase's order varies by type).
+std::vector<std::uint32_t> candidates(const BroadPhase& broadPhase, const Aabb& box, LayerMask mask) {
+  std::vector<std::uint32_t> out;
+  broadPhase.queryAabb(box, mask, [&](ProxyId proxy) {
+    out.push_back(bodyIndex(broadPhase, proxy));
+    return true;
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The cast's contact is within this gap (ToiSettings::tolerance): touching, not a speculative margin.
+ToiSettings castSettings() {
+  ToiSettings settings;
+  settings.targetSeparation = 0.0f;
+  return settings;
+}
+
+std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint32_t index, const Shape& shape,
+                                           const Sweep& sweep, const Vec3& translation) {
+  const BodyRecord& r = bodies.records[index];
+  const Transform bodyPose = bodyTransform(r, bodies.states[index]);
+  const ToiResult toi = timeOfImpact(shape, sweep, r.shape, Sweep::fixed(bodyPose), castSettings());
+  if (toi.state == ToiResult::State::Separated) return std::nullopt;
+  ShapeCastResult hit;
+  hit.body = bodies.idOf(index);
+  hit.initiallyOverlapping = toi.state == ToiResult::State::Overlapping;
+  hit.fraction = hit.initiallyOverlapping ? 0.0f : toi.t;
+  hit.distance = hit.fraction * glm::length(translation);
+  hit.point = toi.point;
+  hit.normal = -toi.normal;  // ToiResult's normal points from the cast shape (A) to the body (B)
+  if (r.shape.type() == ShapeType::Compound) {
+    // The child reached first (ties to the lower child), as the compound's own sweep takes the earliest.
+    float earliest = std::numeric_limits<float>::infinity();
+    const auto children = r.shape.compound().children();
+    for (std::size_t c = 0; c < children.size(); ++c) {
+      const ToiResult child = timeOfImpact(shape, sweep, children[c].shape,
+                                           Sweep::fixed(bodyPose * children[c].transform), castSettings());
+      if (child.state != ToiResult::State::Separated && child.t < earliest) {
+        earliest = child.t;
+        hit.subShape = static_cast<std::uint32_t>(c);
+      }
+    }
+  }
+  return hit;
+}
+
+std::vector<ShapeCastResult> castShapeCandidates(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                                 const Shape& shape, const Transform& pose,
+                                                 const Vec3& translation, const QueryFilter& filter,
+                                                 const char* query) {
+  if (!shape.isConvex()) {
+    throw Error(std::string("world: ") + query +
+                ": the cast shape must be convex (sphere, capsule, box, k-DOP, ellipsoid, cylinder or convex "
+                "hull), got " +
+                std::string(toString(shape.type())));
+  }
+  checkPose(pose, query);
+  if (!isFinite(translation)) {
+    throw Error(std::string("world: ") + query + ": translation must be finite, got " +
+                formatVec(translation));
+  }
+  Transform end = pose;
+  end.position += translation;
+  const Sweep sweep = Sweep::between(pose, end);
+  const Aabb swept =
+      merge(worldBounds(shape, pose), worldBounds(shape, end)).expanded(castSettings().tolerance);
+  std::vector<ShapeCastResult> hits;
+  for (const std::uint32_t index : candidates(broadPhase, swept, filter.mask)) {
+    if (!passes(filter, bodies, index)) continue;
+    if (std::optional<ShapeCastResult> hit = castAgainst(bodies, index, shape, sweep, translation)) {
+      hits.push_back(*hit);
+    }
+  }
+  return hits;
+}
+
+bool earlierCast(const ShapeCastResult& a, const ShapeCastResult& b) {
+  return a.fraction < b.fraction || (a.fraction == b.fraction && a.body.index < b.body.index);
+}
+
+// Exact overlap: collide() reports a contact of depth >= 0 (touching counts).
+bool touches(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB) {
+  Manifold manifold;
+  return collide(a, poseA, b, poseB, manifold) && manifold.maxDepth() >= 0.0f;
+}
+
+}  // namespace
+
+std::optional<RayCastResult> castRayClosest(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                            const Ray& ray, const QueryFilter& filter) {
+  const Ray unit = checkedUnitRay(ray, "castRay");
   std::optional<RayCastResult> best;
-  std::uint32_t bestIndex = 0;
   // Each candidate's shape is cast over the whole ray (not clipped to the best so far), so that an
   // equal distance is seen and the tie goes to the lower index whatever order the boxes come in;
   // the broad phase still prunes every box entered beyond the best hit.
-  broadPhase.rayCast(unit, mask, [&](ProxyId proxy, float) {
-    const auto index = static_cast<std::uint32_t>(broadPhase.userValue(proxy));
-    const BodyRecord& r = bodies.records[index];
-    if (!r.sensor) {
-      const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit);
-      if (hit && (!best || hit->distance < best->distance ||
-                  (hit->distance == best->distance && index < bestIndex))) {
-        best = RayCastResult{bodies.idOf(index), hit->distance, hit->point, hit->normal, hit->subShape};
-        bestIndex = index;
+  broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
+    const std::uint32_t index = bodyIndex(broadPhase, proxy);
+    if (passes(filter, bodies, index)) {
+      const BodyRecord& r = bodies.records[index];
+      if (const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit)) {
+        const RayCastResult result = rayResult(bodies, index, *hit, unit.maxDistance);
+        if (!best || nearerRay(result, *best)) best = result;
       }
     }
     return best ? best->distance : unit.maxDistance;
   });
   return best;
+}
+
+void castRayCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Ray& ray,
+                    const RayHitCollector& collector, const QueryFilter& filter) {
+  const Ray unit = checkedUnitRay(ray, "castRayCollect");
+  if (!collector) throw Error("world: castRayCollect: the collector must be set");
+  float reach = unit.maxDistance;
+  broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
+    const std::uint32_t index = bodyIndex(broadPhase, proxy);
+    if (!passes(filter, bodies, index)) return reach;
+    const BodyRecord& r = bodies.records[index];
+    const std::optional<RayHit> hit =
+        rayCast(r.shape, bodyTransform(r, bodies.states[index]), Ray{unit.origin, unit.direction, reach});
+    if (!hit) return reach;
+    const float answer = collector(rayResult(bodies, index, *hit, unit.maxDistance));
+    if (answer < 0.0f) return -1.0f;                           // stop
+    if (!std::isnan(answer)) reach = std::min(answer, reach);  // clip; never beyond the reach so far
+    return reach;
+  });
+}
+
+std::optional<RayCastResult> castRayAny(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                        const Ray& ray, const QueryFilter& filter) {
+  const Ray unit = checkedUnitRay(ray, "castRayAny");
+  std::optional<RayCastResult> found;
+  broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
+    const std::uint32_t index = bodyIndex(broadPhase, proxy);
+    if (!passes(filter, bodies, index)) return unit.maxDistance;
+    const BodyRecord& r = bodies.records[index];
+    const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit);
+    if (!hit) return unit.maxDistance;
+    found = rayResult(bodies, index, *hit, unit.maxDistance);
+    return -1.0f;
+  });
+  return found;
+}
+
+std::vector<RayCastResult> castRayAll(const BodyStorage& bodies, const BroadPhase& broadPhase, const Ray& ray,
+                                      const QueryFilter& filter) {
+  const Ray unit = checkedUnitRay(ray, "castRayAll");
+  std::vector<RayCastResult> hits;
+  broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
+    const std::uint32_t index = bodyIndex(broadPhase, proxy);
+    if (passes(filter, bodies, index)) {
+      const BodyRecord& r = bodies.records[index];
+      if (const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit)) {
+        hits.push_back(rayResult(bodies, index, *hit, unit.maxDistance));
+      }
+    }
+    return unit.maxDistance;
+  });
+  std::sort(hits.begin(), hits.end(), nearerRay);
+  return hits;
+}
+
+std::optional<ShapeCastResult> castShapeClosest(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                                const Shape& shape, const Transform& pose,
+                                                const Vec3& translation, const QueryFilter& filter) {
+  const std::vector<ShapeCastResult> hits =
+      castShapeCandidates(bodies, broadPhase, shape, pose, translation, filter, "castShape");
+  const auto first = std::min_element(hits.begin(), hits.end(), earlierCast);
+  if (first == hits.end()) return std::nullopt;
+  return *first;
+}
+
+std::vector<ShapeCastResult> castShapeAll(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                          const Shape& shape, const Transform& pose, const Vec3& translation,
+                                          const QueryFilter& filter) {
+  std::vector<ShapeCastResult> hits =
+      castShapeCandidates(bodies, broadPhase, shape, pose, translation, filter, "castShapeAll");
+  std::sort(hits.begin(), hits.end(), earlierCast);
+  return hits;
+}
+
+std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                        const Shape& shape, const Transform& pose,
+                                        const QueryFilter& filter) {
+  if (shape.type() == ShapeType::Plane) {
+    throw Error("world: overlapShape: a plane has no finite extent to query with; use a box");
+  }
+  checkPose(pose, "overlapShape");
+  std::vector<OverlapResult> out;
+  for (const std::uint32_t index : candidates(broadPhase, worldBounds(shape, pose), filter.mask)) {
+    if (!passes(filter, bodies, index)) continue;
+    const BodyRecord& r = bodies.records[index];
+    const Transform bodyPose = bodyTransform(r, bodies.states[index]);
+    if (r.shape.type() == ShapeType::Compound) {
+      // Child by child, so that the part overlapped is known; a compound's collide() is their union.
+      const auto children = r.shape.compound().children();
+      for (std::size_t c = 0; c < children.size(); ++c) {
+        if (touches(shape, pose, children[c].shape, bodyPose * children[c].transform)) {
+          out.push_back({bodies.idOf(index), static_cast<std::uint32_t>(c)});
+          break;
+        }
+      }
+    } else if (touches(shape, pose, r.shape, bodyPose)) {
+      out.push_back({bodies.idOf(index), 0});
+    }
+  }
+  return out;
+}
+
+std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
+                                 const QueryFilter& filter) {
+  if (!isFinite(point)) throw Error("world: overlapPoint: point must be finite, got " + formatVec(point));
+  std::vector<BodyId> out;
+  for (const std::uint32_t index : candidates(broadPhase, Aabb{point, point}, filter.mask)) {
+    if (!passes(filter, bodies, index)) continue;
+    const BodyRecord& r = bodies.records[index];
+    if (containsPoint(r.shape, bodyTransform(r, bodies.states[index]), point))
+      out.push_back(bodies.idOf(index));
+  }
+  return out;
 }
 
 std::vector<BodyPair> bodyPairs(const BodyStorage& bodies, const BroadPhase& broadPhase,
@@ -50,8 +294,7 @@ std::vector<BodyPair> bodyPairs(const BodyStorage& bodies, const BroadPhase& bro
   out.reserve(pairs.size());
   for (const ProxyPair& pair : pairs) {
     if (!broadPhase.contains(pair.a) || !broadPhase.contains(pair.b)) continue;  // destroyed since
-    out.push_back({bodies.idOf(static_cast<std::uint32_t>(broadPhase.userValue(pair.a))),
-                   bodies.idOf(static_cast<std::uint32_t>(broadPhase.userValue(pair.b)))});
+    out.push_back({bodies.idOf(bodyIndex(broadPhase, pair.a)), bodies.idOf(bodyIndex(broadPhase, pair.b))});
   }
   return out;
 }

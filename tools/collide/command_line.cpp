@@ -81,6 +81,37 @@ int runCollide(int argc, const char* const* argv) try {
   CLI::App* fit = app.add_subcommand("fit", "fit every proxy type to a mesh's points and compare them");
   fit->add_option("mesh", meshPath, "a Wavefront OBJ file")->required();
 
+  QueryArguments query;
+  CLI::App* queryApp = app.add_subcommand(
+      "query",
+      "after N steps, cast a ray or a shape, or overlap a shape; one JSON line per hit, nearest first");
+  queryApp->add_option("scene", query.scene, "scene file (collide-scene/1 JSON) or built-in name")
+      ->required();
+  queryApp->add_option("--steps", query.steps, "steps to take first")
+      ->check(wholeNumber(0, collide::scene::kMaxSteps))
+      ->capture_default_str();
+  CLI::Option* ray =
+      queryApp->add_option("--ray", query.ray, "a ray from X,Y,Z along DX,DY,DZ (its length is the reach)")
+          ->expected(2)
+          ->type_name("X,Y,Z DX,DY,DZ");
+  CLI::Option* cast =
+      queryApp
+          ->add_option("--cast", query.cast, "the shape of a JSON file placed at X,Y,Z swept along DX,DY,DZ")
+          ->expected(3)
+          ->type_name("SHAPE.json X,Y,Z DX,DY,DZ");
+  CLI::Option* overlapOption =
+      queryApp
+          ->add_option("--overlap", query.overlap,
+                       "the bodies the shape of a JSON file placed at X,Y,Z overlaps")
+          ->expected(2)
+          ->type_name("SHAPE.json X,Y,Z");
+  ray->excludes(cast)->excludes(overlapOption);
+  cast->excludes(overlapOption);
+  queryApp->add_flag("--all", query.all,
+                     "every hit of the ray or cast, nearest first (default: the closest)");
+  queryApp->add_flag("--allow-outside-paths", query.allowOutsidePaths,
+                     "let the scene read OBJ files outside its folder (absolute, \"..\", links leading out)");
+
   CLI11_PARSE(app, argc, argv);
   if (pairs->parsed()) {
     std::printf("%s", collide::describePairTable().c_str());
@@ -90,6 +121,7 @@ int runCollide(int argc, const char* const* argv) try {
   if (benchApp->parsed()) return benchCommand(bench);
   if (scenes->parsed()) return scenesCommand(exportName);
   if (fit->parsed()) return fitCommand(meshPath);
+  if (queryApp->parsed()) return queryCommand(query);
   return printProxyTable();
 } catch (const std::exception& e) {
   std::fprintf(stderr, "collide: %s\n", e.what());

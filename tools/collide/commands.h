@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 // A scene file, or else a built-in scene of that name (`collide run` and `collide bench`).
 collide::scene::Scene loadSceneArgument(const std::string& argument,
@@ -41,3 +42,16 @@ int scenesCommand(const std::string& exportName);
 
 // `collide fit MESH.obj`: every proxy fitted to the mesh's points, with tightness, memory and cost.
 int fitCommand(const std::string& meshPath);
+
+struct QueryArguments {
+  std::string scene;  // a file or a built-in name
+  int steps = 0;
+  std::vector<std::string> ray;      // X,Y,Z DX,DY,DZ
+  std::vector<std::string> cast;     // SHAPE.json X,Y,Z DX,DY,DZ
+  std::vector<std::string> overlap;  // SHAPE.json X,Y,Z
+  bool all = false;                  // every hit of the ray or cast, not only the closest
+  bool allowOutsidePaths = false;
+};
+// `collide query SCENE`: after `steps` steps, one ray, shape cast or overlap; a JSON line per hit,
+// nearest first ({"body", "part", "fraction", "distance", "point", "normal"}; overlaps: body, part).
+int queryCommand(const QueryArguments& arguments);

@@ -78,6 +78,14 @@ Scene parseScene(std::string_view text, std::string_view source = "scene",
 // is not a regular file (a directory, a device, a FIFO) or is larger than kMaxSceneFileBytes.
 Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options = {});
 
+// One shape as a scene file writes a body's "shape" ({"type": "box", "halfExtents": [1, 2, 3]}, a
+// hull's points, a mesh's OBJ file, a compound's children), validated as in a scene: the same errors,
+// with `source` in front. `baseDir` resolves (and holds) a mesh's OBJ file. For `collide query`.
+Shape parseShape(std::string_view text, std::string_view source = "shape",
+                 const std::filesystem::path& baseDir = ".", const LoadOptions& options = {});
+// Reads and parses a shape file (an OBJ path relative to the file's folder).
+Shape loadShapeFile(const std::filesystem::path& path, const LoadOptions& options = {});
+
 // A World built from a scene; bodies[i] is the id of scene.bodies[i], constraints[i] of
 // scene.constraints[i].
 struct SceneWorld {
