@@ -40,9 +40,11 @@ void World::Impl::step(float dt) {
   detail::updateProxies(bodies, *broadPhase, dt, tuning.speculativeDistance);
   lastStats = StepStats(broadPhase->findPairs(pairs));
   if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
+  const detail::PairFilters filters{&jointedApart, &pairFilter};
   const detail::ContactUpdateCounts tested =
       contactUpdate.run(bodies, *broadPhase, pairs, contacts, previousContacts, contactSettings(def), dt,
-                        preSolve, events, callbackError);
+                        preSolve, filters, events, callbackError);
+  lastStats.filteredPairs = tested.filteredPairs;
   lastStats.narrowPhaseTests = tested.narrowPhaseTests;
   lastStats.reusedManifolds = tested.reusedManifolds;
 
@@ -52,15 +54,15 @@ void World::Impl::step(float dt) {
   detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());
   bodies.clearForces();
-  if (def.ccd) detail::solveContinuous(bodies, *broadPhase, tuning.linearSlop);
+  if (def.ccd) detail::solveContinuous(bodies, *broadPhase, filters, tuning.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert)
-    revert.apply(bodies, *broadPhase, pairs, contacts, tuning.linearSlop);
+    revert.apply(bodies, *broadPhase, pairs, contacts, filters, tuning.linearSlop);
   detail::guardFiniteStates(bodies, events.faults);
   if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, joints);
 
   detail::refreshEscapedProxies(bodies, *broadPhase, tuning.speculativeDistance);
   touchingCount = detail::emitContactEvents(bodies, contacts, events, def.persistEvents);
-  detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, events);
+  detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, filters, events);
   lastStats.contactPairs = touchingCount;
   if (def.sleeping) islands.updateSleep(bodies, contacts, joints, def.sleep, dt);
   totalStats += lastStats;

@@ -40,6 +40,11 @@ std::uint32_t World::Impl::resolve(JointId id, const char* operation) const {
 }
 
 void World::Impl::freeJoint(std::uint32_t index) {
+  const detail::DistanceJoint& joint = joints[index];
+  if (!joint.collideConnected) {
+    const auto it = jointedApart.find(detail::bodyPairKey(joint.bodyA, joint.bodyB));
+    if (it != jointedApart.end() && --it->second == 0) jointedApart.erase(it);
+  }
   joints[index].alive = false;
   ++joints[index].generation;
   freeJoints.push_back(index);
@@ -291,6 +296,8 @@ JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
     fail("dampingRatio must be finite and >= 0, got " + formatFloat(def.dampingRatio));
   joint.compliance = def.compliance;
   joint.dampingRatio = def.dampingRatio;
+  joint.collideConnected = def.collideConnected;
+  if (!joint.collideConnected) ++w.jointedApart[detail::bodyPairKey(joint.bodyA, joint.bodyB)];
   if (glm::length(d) > 1e-6f) joint.axis = d / glm::length(d);
   joint.alive = true;
 
@@ -343,6 +350,26 @@ void World::setPreSolveCallback(PreSolveFilter filter) {
 }
 
 void World::setContactListener(ContactListener* listener) { impl_->contactListener = listener; }
+void World::setPairFilter(PairFilter filter) { impl_->pairFilter = std::move(filter); }
+
+void World::setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mask, std::int32_t group) {
+  Impl& w = *impl_;
+  const std::uint32_t index = w.resolve(id, "setCollisionFilter");
+  BodyRecord& r = w.bodies.records[index];
+  r.layer = layer;
+  r.mask = mask;
+  r.group = group;
+  w.broadPhase->setLayer(r.proxy, layer);
+  detail::wakeIsland(w.bodies, index);
+}
+
+std::uint32_t World::layer(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "layer")].layer;
+}
+std::uint32_t World::mask(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "mask")].mask; }
+std::int32_t World::group(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "group")].group;
+}
 
 void World::step(float dt) {
   if (!isFinite(dt) || dt <= 0.0f)

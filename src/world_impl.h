@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace collide {
@@ -44,6 +45,10 @@ struct World::Impl {
   StepStats lastStats;
   StepStats totalStats;
   PreSolveCallback preSolve;
+  PairFilter pairFilter;
+  // The body pairs that constraints with collideConnected false keep apart, and how many such
+  // constraints join each (detail::bodyPairKey).
+  std::unordered_map<std::uint64_t, std::uint32_t> jointedApart;
   ContactListener* contactListener = nullptr;
   std::string callbackError;  // reported by step() once the step is complete
   std::size_t touchingCount = 0;

@@ -50,9 +50,14 @@ struct BodyDef {
   // contact, at most this length times the normal force (a ball of radius r on a surface with
   // rolling coefficient c: c r). 0 rolls freely; a pair takes the larger of its two bodies' values.
   float rollingResistance = 0.0f;
+  // Which bodies it collides with (docs/architecture.md, "Filtering"): two bodies of the same
+  // non-zero group always collide (positive) or never do (negative); otherwise each body's layer must
+  // be in the other's mask. Then a world's pair filter (World::setPairFilter), if set, has the last
+  // word. Sensors use the same rules for their overlaps.
   std::uint32_t layer = 1;          // the body's bits
   std::uint32_t mask = kAllLayers;  // the layers it collides with; both must agree
-  bool sensor = false;              // reports overlap events, takes no response
+  std::int32_t group = 0;
+  bool sensor = false;  // reports overlap events, takes no response
   // A point mass: a dynamic body whose shape must be a Sphere (it collides as a sphere of that
   // radius times scale) but that has no inertia, no angular velocity and a rotation that never
   // changes. Cheap links for chains, ropes and cloth-like meshes of distance constraints.

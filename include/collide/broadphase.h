@@ -143,6 +143,7 @@ class BroadPhase {
   MotionType motion(ProxyId id) const;
   std::uint64_t userValue(ProxyId id) const;
   std::uint32_t layer(ProxyId id) const;
+  void setLayer(ProxyId id, std::uint32_t layer);  // the queries' masks see it at once
 
   // ---- Pairs. ----
   // All pairs of proxies whose boxes overlap (touching counts), at least one of them movable, sorted

@@ -103,6 +103,12 @@ struct ContactSettings {
 // the first pair: a pose set from inside the callback counts from the next step.
 using PreSolveCallback =
     std::function<bool(BodyId a, BodyId b, const Manifold& manifold, ContactSettings& settings)>;
+// A world's last word on a pair of bodies that passed their groups, layers and masks (and the
+// constraints' collideConnected): return false to keep them from colliding (or a sensor from
+// reporting them). Called for each candidate pair in every stage that pairs bodies (contacts, sensor
+// crossings, continuous collision, revert), from inside the step: it must not change the world.
+using PairFilter = std::function<bool(BodyId a, BodyId b)>;
+
 // The same without settings, for callbacks that only look or disable.
 using PreSolveFilter = std::function<bool(BodyId a, BodyId b, const Manifold& manifold)>;
 

@@ -34,6 +34,9 @@ struct StepStats {
   std::uint64_t potentialPairs = 0;
   std::uint64_t keptPairs = 0;
   std::uint64_t boxTests = 0;
+  // Of the kept pairs, those the filters ruled out before the narrow phase (groups, layers and
+  // masks, constraints' collideConnected, the pair filter).
+  std::uint64_t filteredPairs = 0;
   std::uint64_t narrowPhaseTests = 0;
   // Of those, the pairs whose manifold was placed again from its last computation instead of
   // computed, because the two bodies had not moved relative to each other (the manifold cache).
@@ -52,6 +55,7 @@ struct StepStats {
     potentialPairs += step.potentialPairs;
     keptPairs += step.keptPairs;
     boxTests += step.boxTests;
+    filteredPairs += step.filteredPairs;
     narrowPhaseTests += step.narrowPhaseTests;
     reusedManifolds += step.reusedManifolds;
     contactPairs += step.contactPairs;
@@ -99,6 +103,9 @@ struct DistanceConstraintDef {
   // docs/architecture.md ("Distance constraints").
   float compliance = 0.0f;
   float dampingRatio = 0.0f;  // of the spring (compliance > 0), >= 0; 1 is critical
+  // false: the two bodies do not collide with each other while the constraint exists (a ragdoll's
+  // neighbouring limbs, a chain's links that overlap at the joints).
+  bool collideConnected = true;
 };
 
 class World {
@@ -166,6 +173,14 @@ class World {
 
   void setPreSolveCallback(PreSolveCallback callback);
   void setPreSolveCallback(PreSolveFilter filter);
+  // The pair filter (above); an empty function for none.
+  void setPairFilter(PairFilter filter);
+  // A body's collision filter (BodyDef::layer, mask, group), changed at once: the next step's pairs
+  // follow it (a contact it rules out ends then). Wakes the body.
+  void setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mask, std::int32_t group);
+  std::uint32_t layer(BodyId id) const;
+  std::uint32_t mask(BodyId id) const;
+  std::int32_t group(BodyId id) const;
   // The listener told of each step's contact events with the whole contact (events.h); nullptr for
   // none. The world does not own it: it must outlive the world or be unset first.
   void setContactListener(ContactListener* listener);

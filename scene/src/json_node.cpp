@@ -128,6 +128,13 @@ float JsonNode::unitInterval() const {
   return v;
 }
 
+std::uint32_t JsonNode::bits() const {
+  if (!value_->is_number_integer()) fail("must be an integer, got " + shown());
+  if (!value_->is_number_unsigned() || value_->get<std::uint64_t>() > 0xFFFFFFFFull)
+    fail("must be from 0 to 4294967295 (32 bits), got " + shown());
+  return static_cast<std::uint32_t>(value_->get<std::uint64_t>());
+}
+
 int JsonNode::integer(int minimum, int maximum) const {
   if (!value_->is_number_integer()) fail("must be an integer, got " + shown());
   if (value_->is_number_unsigned() && value_->get<std::uint64_t>() > std::uint64_t(maximum)) {

@@ -56,6 +56,7 @@ class JsonNode {
   float nonNegative() const;                                                      // >= 0
   float unitInterval() const;                                                     // in [0, 1]
   int integer(int minimum, int maximum = std::numeric_limits<int>::max()) const;  // in [minimum, maximum]
+  std::uint32_t bits() const;  // an integer in [0, 2^32 - 1]: layer and mask bits
   Vec3 vec3() const;
   Vec3 positiveVec3() const;  // every component > 0
   Quat quaternion() const;    // [x, y, z, w], unit length (within 1e-3), returned normalised

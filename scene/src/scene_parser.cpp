@@ -252,9 +252,17 @@ BodyType readBodyType(const JsonNode& node) {
 }
 
 Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
-  node.expectObject({"name", "type", "shape", "position", "rotation", "scale", "velocity", "angular_velocity",
-                     "mass", "density", "material", "bounciness", "friction", "rolling_resistance", "ccd",
-                     "sensor", "break_impulse", "particle"});
+  node.expectObject({"name",          "type",
+                     "shape",         "position",
+                     "rotation",      "scale",
+                     "velocity",      "angular_velocity",
+                     "mass",          "density",
+                     "material",      "bounciness",
+                     "friction",      "rolling_resistance",
+                     "ccd",           "sensor",
+                     "break_impulse", "particle",
+                     "layer",         "mask",
+                     "group"});
   Body body;
   BodyDef& d = body.def;
   d.name = node.at("name").string();
@@ -293,6 +301,9 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   if (auto n = node.find("rolling_resistance")) d.rollingResistance = n->nonNegative();
   if (auto n = node.find("ccd")) body.def.ccd = n->boolean();
   if (auto n = node.find("sensor")) d.sensor = n->boolean();
+  if (auto n = node.find("layer")) d.layer = n->bits();
+  if (auto n = node.find("mask")) d.mask = n->bits();
+  if (auto n = node.find("group")) d.group = n->integer(std::numeric_limits<int>::min());
   if (auto n = node.find("break_impulse")) body.breakImpulse = n->positive();
   // Our extension: a point mass (BodyDef::particle), the links of chains and nets.
   if (auto n = node.find("particle")) d.particle = n->boolean();
@@ -315,7 +326,7 @@ DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::stri
   const JsonNode typeNode = node.at("type");
   if (typeNode.string() != "distance")
     typeNode.fail("unknown constraint type " + typeNode.shown() + " (expected distance)");
-  node.expectObject({"type", "a", "b", "anchor_a", "anchor_b", "length", "compliance"});
+  node.expectObject({"type", "a", "b", "anchor_a", "anchor_b", "length", "compliance", "collide_connected"});
   DistanceConstraint c;
   for (const char* key : {"a", "b"}) {
     const JsonNode n = node.at(key);
@@ -337,6 +348,7 @@ DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::stri
   c.anchorB = readAnchor("anchor_b", c.b);
   if (auto n = node.find("length")) c.length = n->nonNegative();
   if (auto n = node.find("compliance")) c.compliance = n->nonNegative();
+  if (auto n = node.find("collide_connected")) c.collideConnected = n->boolean();
   return c;
 }
 

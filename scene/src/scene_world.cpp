@@ -42,6 +42,7 @@ SceneWorld buildWorld(const Scene& scene) {
     def.localAnchorB = c.anchorB;
     def.length = c.length;
     def.compliance = c.compliance;
+    def.collideConnected = c.collideConnected;
     try {
       out.constraints.push_back(out.world.createDistanceConstraint(def));
     } catch (const Error& e) {

@@ -161,6 +161,7 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   r.rollingResistance = def.rollingResistance;
   r.layer = def.layer;
   r.mask = def.mask;
+  r.group = def.group;
   r.sensor = def.sensor;
   r.particle = def.particle;
   r.ccd = def.ccd && !def.sensor;

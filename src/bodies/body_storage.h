@@ -43,6 +43,7 @@ struct BodyRecord {
   std::uint32_t generation = 1;
   std::uint32_t layer = 1;
   std::uint32_t mask = kAllLayers;
+  std::int32_t group = 0;
   float scale = 1.0f;
   float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
   float originRadius = 0.0f;    // around the body origin, every body type (the manifold cache)

@@ -132,6 +132,9 @@ const Aabb& BroadPhase::bounds(ProxyId id) const { return proxies_[resolve(id, "
 MotionType BroadPhase::motion(ProxyId id) const { return proxies_[resolve(id, "motion")].motion; }
 std::uint64_t BroadPhase::userValue(ProxyId id) const { return proxies_[resolve(id, "userValue")].userValue; }
 std::uint32_t BroadPhase::layer(ProxyId id) const { return proxies_[resolve(id, "layer")].layer; }
+void BroadPhase::setLayer(ProxyId id, std::uint32_t layer) {
+  proxies_[resolve(id, "setLayer")].layer = layer;
+}
 
 const BroadPhaseStats& BroadPhase::findPairs(std::vector<ProxyPair>& outPairs) {
   keys_.clear();

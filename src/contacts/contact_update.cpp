@@ -46,7 +46,7 @@ class PairPass {
   PairPass(const ContactUpdate& scratch, const BodyStorage& bodies, std::span<const ProxyPair> pairs,
            std::vector<Contact>& contacts, const std::vector<Contact>& previous,
            const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
-           StepEvents& events, std::string& callbackError)
+           const PairFilters& filters, StepEvents& events, std::string& callbackError)
       : s_(scratch),
         bodies_(bodies),
         pairs_(pairs),
@@ -55,6 +55,7 @@ class PairPass {
         settings_(settings),
         dt_(dt),
         preSolve_(preSolve),
+        filters_(filters),
         events_(events),
         callbackError_(callbackError) {}
 
@@ -118,7 +119,12 @@ class PairPass {
     // Only a dynamic body responds: kinematic-kinematic and kinematic-static pairs are never tested
     // (static-static never reaches us: the broad phase does not produce them).
     if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) return;
-    if ((ra.sensor && rb.sensor) || (ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) {
+    if (ra.sensor && rb.sensor) {
+      if (previous) events_.endVanished(bodies_, *previous);
+      return;
+    }
+    if (!pairAllowed(bodies_, filters_, ia, ib)) {
+      ++counts_.filteredPairs;
       if (previous) events_.endVanished(bodies_, *previous);
       return;
     }
@@ -285,6 +291,7 @@ class PairPass {
   const ContactUpdateSettings& settings_;
   float dt_;
   const PreSolveCallback& preSolve_;
+  const PairFilters& filters_;
   StepEvents& events_;
   std::string& callbackError_;
   std::size_t next_ = 0;  // last step's contacts before this are matched or ended
@@ -321,12 +328,13 @@ void ContactUpdate::snapshotBodies(const BodyStorage& bodies, const BroadPhase& 
 ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                        std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
                                        std::vector<Contact>& previous, const ContactUpdateSettings& settings,
-                                       float dt, const PreSolveCallback& preSolve, StepEvents& events,
-                                       std::string& callbackError) {
+                                       float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
+                                       StepEvents& events, std::string& callbackError) {
   snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance);
   std::swap(contacts, previous);
   contacts.clear();
-  return PairPass(*this, bodies, pairs, contacts, previous, settings, dt, preSolve, events, callbackError)
+  return PairPass(*this, bodies, pairs, contacts, previous, settings, dt, preSolve, filters, events,
+                  callbackError)
       .run();
 }
 

@@ -18,6 +18,7 @@
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "contacts/contact_events.h"
+#include "contacts/pair_filter.h"
 
 #include <cstdint>
 #include <limits>
@@ -53,6 +54,7 @@ struct ContactUpdateSettings {
 };
 
 struct ContactUpdateCounts {
+  std::uint64_t filteredPairs = 0;  // kept by the broad phase, ruled out by the filters
   std::uint64_t narrowPhaseTests = 0;
   std::uint64_t reusedManifolds = 0;  // of those, manifolds placed again rather than computed
 };
@@ -68,7 +70,8 @@ class ContactUpdate {
   ContactUpdateCounts run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                           std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
                           std::vector<Contact>& previous, const ContactUpdateSettings& settings, float dt,
-                          const PreSolveCallback& preSolve, StepEvents& events, std::string& callbackError);
+                          const PreSolveCallback& preSolve, const PairFilters& filters, StepEvents& events,
+                          std::string& callbackError);
 
  private:
   friend class PairPass;

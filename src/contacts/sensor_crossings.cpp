@@ -13,7 +13,7 @@ bool moved(const BodyState& s) { return s.centerOfMass != s.centerOfMass0 || s.r
 
 void reportSensorCrossings(const BodyStorage& bodies, const BroadPhase& broadPhase,
                            std::span<const ProxyPair> pairs, std::span<const Contact> contacts,
-                           StepEvents& events) {
+                           const PairFilters& filters, StepEvents& events) {
   ToiSettings touch;
   touch.targetSeparation = 0.0f;
   touch.tolerance = 1e-4f;
@@ -23,7 +23,7 @@ void reportSensorCrossings(const BodyStorage& bodies, const BroadPhase& broadPha
     const BodyRecord& ra = bodies.records[ia];
     const BodyRecord& rb = bodies.records[ib];
     if (ra.sensor == rb.sensor || !ra.alive || !rb.alive) continue;  // exactly one sensor
-    if ((ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) continue;
+    if (!pairAllowed(bodies, filters, ia, ib)) continue;
     const BodyState& sa = bodies.states[ia];
     const BodyState& sb = bodies.states[ib];
     if (!moved(sa) && !moved(sb)) continue;

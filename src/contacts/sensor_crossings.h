@@ -11,6 +11,7 @@
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "contacts/contact_events.h"
+#include "contacts/pair_filter.h"
 
 #include <span>
 
@@ -18,6 +19,6 @@ namespace collide::detail {
 
 void reportSensorCrossings(const BodyStorage& bodies, const BroadPhase& broadPhase,
                            std::span<const ProxyPair> pairs, std::span<const Contact> contacts,
-                           StepEvents& events);
+                           const PairFilters& filters, StepEvents& events);
 
 }  // namespace collide::detail

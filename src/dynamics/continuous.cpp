@@ -9,7 +9,8 @@
 
 namespace collide::detail {
 
-ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, float linearSlop) {
+ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, const PairFilters& filters,
+                                float linearSlop) {
   ContinuousStats stats;
   ToiSettings settings;
   settings.targetSeparation = linearSlop;
@@ -36,11 +37,12 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
     swept.grow(worldBounds(record.shape, sweep.at(1.0f)));
     swept = swept.expanded(turn + linearSlop);  // between the ends, turning reaches at most this far
     float first = 1.0f;
-    broadPhase.queryAabb(swept, record.mask, [&](ProxyId id) {
+    // Every layer: a body of the same positive group collides whatever its layer.
+    broadPhase.queryAabb(swept, kAllLayers, [&](ProxyId id) {
       const auto j = static_cast<std::uint32_t>(broadPhase.userValue(id));
       if (j == i) return true;
       const BodyRecord& other = bodies.records[j];
-      if (other.sensor || (other.layer & record.mask) == 0 || (record.layer & other.mask) == 0) return true;
+      if (other.sensor || !pairAllowed(bodies, filters, i, j)) return true;
       // Every body against static geometry; a body flagged ccd (a bullet) against moving ones too.
       if (!record.ccd && other.type != BodyType::Static) return true;
       ++stats.candidates;

@@ -7,6 +7,7 @@
 #include <collide/broadphase.h>
 
 #include "bodies/body_storage.h"
+#include "contacts/pair_filter.h"
 
 namespace collide::detail {
 
@@ -22,6 +23,7 @@ struct ContinuousStats {
 // are kept: the next step's speculative contact, now touching, takes the impact (so no energy is added and no
 // contact skipped). Bodies are visited in index order; a partner that was already moved back sweeps to its
 // new pose.
-ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, float linearSlop);
+ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, const PairFilters& filters,
+                                float linearSlop);
 
 }  // namespace collide::detail

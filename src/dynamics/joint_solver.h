@@ -25,8 +25,9 @@ struct DistanceJoint {
   float length = 0.0f;
   float compliance = 0.0f;  // m/N; 0 = rigid
   float dampingRatio = 0.0f;
-  float impulse = 0.0f;         // accumulated along the axis (warm start), N s
-  Vec3 axis{1.0f, 0.0f, 0.0f};  // the last axis, kept for coincident anchors
+  bool collideConnected = true;  // false: its bodies are kept apart in the pair filters
+  float impulse = 0.0f;          // accumulated along the axis (warm start), N s
+  Vec3 axis{1.0f, 0.0f, 0.0f};   // the last axis, kept for coincident anchors
   bool alive = false;
   bool active = false;  // this step: at least one awake dynamic body
   std::uint32_t generation = 1;

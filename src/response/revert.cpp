@@ -50,7 +50,7 @@ bool RevertResponse::pass(BodyStorage& bodies, float linearSlop) {
 
 void RevertResponse::apply(BodyStorage& bodies, const BroadPhase& broadPhase,
                            std::span<const ProxyPair> pairs, std::span<const Contact> contacts,
-                           float linearSlop) {
+                           const PairFilters& filters, float linearSlop) {
   // The pairs that respond: a dynamic body, no sensor, the layers agree, not both asleep, and not a
   // contact the pre-solve callback disabled (a one-way platform lets bodies through).
   candidates_.clear();
@@ -61,7 +61,7 @@ void RevertResponse::apply(BodyStorage& bodies, const BroadPhase& broadPhase,
     const BodyRecord& rb = bodies.records[b];
     if (!ra.alive || !rb.alive || ra.sensor || rb.sensor) continue;
     if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) continue;
-    if ((ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) continue;
+    if (!pairAllowed(bodies, filters, a, b)) continue;
     if (!bodies.isAwakeDynamic(a) && !bodies.isAwakeDynamic(b)) continue;
     const Contact* contact = findContact(contacts, pairKey(pair.a.index, pair.b.index));
     if (contact && contact->manifold.count > 0 && !contact->enabled) continue;

@@ -16,6 +16,7 @@
 
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
+#include "contacts/pair_filter.h"
 
 #include <cstdint>
 #include <span>
@@ -26,7 +27,7 @@ namespace collide::detail {
 class RevertResponse {
  public:
   void apply(BodyStorage& bodies, const BroadPhase& broadPhase, std::span<const ProxyPair> pairs,
-             std::span<const Contact> contacts, float linearSlop);
+             std::span<const Contact> contacts, const PairFilters& filters, float linearSlop);
 
  private:
   // One pass over the pairs: marks the bodies that penetrate, and puts back those that can still go

@@ -84,6 +84,12 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_TRUE(crate.def.sensor);
   EXPECT_FLOAT_EQ(crate.def.friction, 0.3f);
   EXPECT_FLOAT_EQ(crate.def.bounciness, 0.0f);  // neither the body nor steel says: the default
+  EXPECT_EQ(crate.def.layer, 6u);
+  EXPECT_EQ(crate.def.mask, 0xFFFFFFFFu);
+  EXPECT_EQ(crate.def.group, -3);
+  EXPECT_EQ(ball.def.layer, 1u);  // the defaults
+  EXPECT_EQ(ball.def.mask, kAllLayers);
+  EXPECT_EQ(ball.def.group, 0);
 
   const Body& pill = s.bodies[3];
   EXPECT_FLOAT_EQ(pill.def.shape.capsule().radius, 0.2f);
@@ -125,6 +131,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   ASSERT_TRUE(c.length.has_value());
   EXPECT_FLOAT_EQ(*c.length, 2.5f);
   EXPECT_FLOAT_EQ(c.compliance, 0.001f);
+  EXPECT_FALSE(c.collideConnected);
 }
 
 TEST(SceneParser, BodiesReachTheWorld) {
@@ -187,6 +194,18 @@ TEST(SceneParserErrors, WrongTypeNamesTheField) {
   EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "position": [1, 2],
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].position: must be [x, y, z], got [1,2]"));
+}
+
+TEST(SceneParserErrors, LayerAndMaskAre32Bits) {
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "mask": 4294967296,
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].mask: must be from 0 to 4294967295 (32 bits), got 4294967296"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "layer": -1,
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].layer: must be from 0 to 4294967295 (32 bits), got -1"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "group": 1.5,
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].group: must be an integer, got 1.5"));
 }
 
 TEST(SceneParserErrors, MissingRequiredField) {

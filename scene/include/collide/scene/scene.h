@@ -40,8 +40,9 @@ struct DistanceConstraint {
   std::string b;
   std::optional<Vec3> anchorA;  // local points; unset: the centre of mass
   std::optional<Vec3> anchorB;
-  std::optional<float> length;  // default: the distance at load time
-  float compliance = 0.0f;      // 0 = rigid
+  std::optional<float> length;   // default: the distance at load time
+  float compliance = 0.0f;       // 0 = rigid
+  bool collideConnected = true;  // false: a and b do not collide with each other
 };
 
 struct Scene {
