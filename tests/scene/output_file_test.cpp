@@ -1,6 +1,8 @@
 // The outputs of a run lose nothing the user owns: a path that is an input of the run or another
 // output is refused before the run, every write and the close are checked, and a target is replaced
 // only by a complete file.
+#include "temp_folder.h"
+
 #include <collide/scene/output_file.h>
 #include <collide/scene/runner.h>
 #include <collide/scene/scene.h>
@@ -24,30 +26,7 @@ using ::testing::HasSubstr;
 
 const std::string kData = COLLIDE_SCENE_TEST_DATA;
 
-// A fresh folder under the system's temporary folder, removed with everything in it at the end.
-class TempFolder {
- public:
-  TempFolder() {
-    path_ = fs::temp_directory_path() /
-            ("collide_output_file_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-  std::size_t files() const {
-    std::size_t n = 0;
-    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(path_)) ++n;
-    return n;
-  }
-
- private:
-  static inline int counter_ = 0;
-  fs::path path_;
-};
+using test::TempFolder;
 
 std::string contents(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -1,6 +1,8 @@
 // The files a scene reads: OBJ paths stay inside the scene's folder unless the loader is told
 // otherwise, and only regular files within the size limits are read (a directory, a device, a FIFO
 // or a huge file is refused with a message naming it, instead of a hang or exhausted memory).
+#include "temp_folder.h"
+
 #include <collide/scene/limits.h>
 #include <collide/scene/obj_file.h>
 #include <collide/scene/scene.h>
@@ -23,25 +25,7 @@ using ::testing::HasSubstr;
 
 const std::string kData = COLLIDE_SCENE_TEST_DATA;
 
-// A fresh folder under the system's temporary folder, removed with everything in it at the end.
-class TempFolder {
- public:
-  TempFolder() {
-    path_ = fs::temp_directory_path() /
-            ("collide_scene_files_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  static inline int counter_ = 0;
-  fs::path path_;
-};
+using test::TempFolder;
 
 void copyCube(const fs::path& to) {
   fs::copy_file(kData + "/cube.obj", to, fs::copy_options::overwrite_existing);
