@@ -52,6 +52,17 @@ RayCastResult rayResult(const BodyStorage& bodies, std::uint32_t index, const Ra
           hit.normal,         hit.subShape, fractionOf(hit.distance, maxDistance)};
 }
 
+// Body `index`'s hit by `ray` if the filter lets the body through; the fraction is of `reach`, the
+// query's whole length (the ray cast may be a clipped part of it).
+std::optional<RayCastResult> bodyRayHit(const BodyStorage& bodies, std::uint32_t index, const Ray& ray,
+                                        float reach, const QueryFilter& filter) {
+  if (!passes(filter, bodies, index)) return std::nullopt;
+  const BodyRecord& r = bodies.records[index];
+  const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), ray);
+  if (!hit) return std::nullopt;
+  return rayResult(bodies, index, *hit, reach);
+}
+
 bool nearerRay(const RayCastResult& a, const RayCastResult& b) {
   return a.distance < b.distance || (a.distance == b.distance && a.body.index < b.body.index);
 }
@@ -162,14 +173,8 @@ std::optional<RayCastResult> castRayClosest(const BodyStorage& bodies, const Bro
   // equal distance is seen and the tie goes to the lower index whatever order the boxes come in;
   // the broad phase still prunes every box entered beyond the best hit.
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
-    const std::uint32_t index = bodyIndex(broadPhase, proxy);
-    if (passes(filter, bodies, index)) {
-      const BodyRecord& r = bodies.records[index];
-      if (const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit)) {
-        const RayCastResult result = rayResult(bodies, index, *hit, unit.maxDistance);
-        if (!best || nearerRay(result, *best)) best = result;
-      }
-    }
+    const auto hit = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), unit, unit.maxDistance, filter);
+    if (hit && (!best || nearerRay(*hit, *best))) best = hit;
     return best ? best->distance : unit.maxDistance;
   });
   return best;
@@ -181,13 +186,10 @@ void castRayCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, con
   if (!collector) throw Error("world: castRayCollect: the collector must be set");
   float reach = unit.maxDistance;
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
-    const std::uint32_t index = bodyIndex(broadPhase, proxy);
-    if (!passes(filter, bodies, index)) return reach;
-    const BodyRecord& r = bodies.records[index];
-    const std::optional<RayHit> hit =
-        rayCast(r.shape, bodyTransform(r, bodies.states[index]), Ray{unit.origin, unit.direction, reach});
+    const auto hit = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), Ray{unit.origin, unit.direction, reach},
+                                unit.maxDistance, filter);
     if (!hit) return reach;
-    const float answer = collector(rayResult(bodies, index, *hit, unit.maxDistance));
+    const float answer = collector(*hit);
     if (answer < 0.0f) return -1.0f;                           // stop
     if (!std::isnan(answer)) reach = std::min(answer, reach);  // clip; never beyond the reach so far
     return reach;
@@ -199,13 +201,8 @@ std::optional<RayCastResult> castRayAny(const BodyStorage& bodies, const BroadPh
   const Ray unit = checkedUnitRay(ray, "castRayAny");
   std::optional<RayCastResult> found;
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
-    const std::uint32_t index = bodyIndex(broadPhase, proxy);
-    if (!passes(filter, bodies, index)) return unit.maxDistance;
-    const BodyRecord& r = bodies.records[index];
-    const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit);
-    if (!hit) return unit.maxDistance;
-    found = rayResult(bodies, index, *hit, unit.maxDistance);
-    return -1.0f;
+    found = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), unit, unit.maxDistance, filter);
+    return found ? -1.0f : unit.maxDistance;  // the first hit stops the cast
   });
   return found;
 }
@@ -215,13 +212,8 @@ std::vector<RayCastResult> castRayAll(const BodyStorage& bodies, const BroadPhas
   const Ray unit = checkedUnitRay(ray, "castRayAll");
   std::vector<RayCastResult> hits;
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
-    const std::uint32_t index = bodyIndex(broadPhase, proxy);
-    if (passes(filter, bodies, index)) {
-      const BodyRecord& r = bodies.records[index];
-      if (const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), unit)) {
-        hits.push_back(rayResult(bodies, index, *hit, unit.maxDistance));
-      }
-    }
+    if (const auto hit = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), unit, unit.maxDistance, filter))
+      hits.push_back(*hit);
     return unit.maxDistance;
   });
   std::sort(hits.begin(), hits.end(), nearerRay);
