@@ -6,6 +6,8 @@
 #include <collide/error.h>
 #include <collide/scene/scene.h>
 
+#include <nlohmann/json.hpp>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -33,22 +35,8 @@ Vec3 parseVec3(const std::string& text, const std::string& what) {
   return v;
 }
 
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+// A body name as a JSON string (names come from scene files: quotes and control characters escaped).
+std::string jsonString(const std::string& text) { return nlohmann::json(text).dump(); }
 
 // The shortest text that reads back as the same float.
 std::string jsonNumber(float value) {
