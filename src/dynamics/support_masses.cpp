@@ -14,11 +14,16 @@ namespace {
 constexpr float kSupportCosine = 0.5f;
 
 // A body's velocity along the contact's normal at the manifold's centre.
-float speedAlongNormal(const Contact& c, std::uint32_t body, std::int32_t solverBody,
-                       const std::vector<SolverBody>& bodies, const BodyStorage& storage) {
+// The centre of a manifold's points, where the bodies' speeds along its normal are measured.
+Vec3 manifoldCentre(const Manifold& m) {
   Vec3 point(0.0f);
-  for (int k = 0; k < c.manifold.count; ++k) point += c.manifold.points[k].midpoint();
-  point /= float(c.manifold.count);
+  for (int k = 0; k < m.count; ++k) point += m.points[k].midpoint();
+  return point / float(m.count);
+}
+
+// A body's velocity along the contact's normal at `point`.
+float speedAlongNormal(const Contact& c, const Vec3& point, std::uint32_t body, std::int32_t solverBody,
+                       const std::vector<SolverBody>& bodies, const BodyStorage& storage) {
   const SolverBody& b = bodies[solverBody];
   const Vec3 velocity =
       b.linearVelocity + glm::cross(b.angularVelocity, point - storage.states[body].centerOfMass);
@@ -151,8 +156,9 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
   // that falls onto the body under it, or rises into the one above, meets it with its true mass.
   // Scaled, a falling body would hit as a lighter one and a rising one would lift its load without
   // slowing, and either gains energy; at rest the scaling moves only what gravity added this step.
-  const auto scaleIn = [&](const Contact& c, std::uint32_t body, std::int32_t solverBody) {
-    const float speed = speedAlongNormal(c, body, solverBody, bodies, storage);
+  const auto scaleIn = [&](const Contact& c, const Vec3& centre, std::uint32_t body,
+                           std::int32_t solverBody) {
+    const float speed = speedAlongNormal(c, centre, body, solverBody, bodies, storage);
     return std::abs(speed) <= restingSpeed ? scaleOf(solverBody) : 1.0f;
   };
   for (const std::uint32_t i : byLevel_) {
@@ -161,9 +167,10 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
     const Contact& c = contacts[s.contact];
     const std::uint32_t upperBody = s.lowerIsA ? c.bodyB : c.bodyA;
     const std::uint32_t lowerBody = s.lowerIsA ? c.bodyA : c.bodyB;
-    (s.lowerIsA ? scaleB_ : scaleA_)[s.contact] = scaleIn(c, upperBody, s.upper);
+    const Vec3 centre = manifoldCentre(c.manifold);
+    (s.lowerIsA ? scaleB_ : scaleA_)[s.contact] = scaleIn(c, centre, upperBody, s.upper);
     if (s.lower != kNoSolverBody)
-      (s.lowerIsA ? scaleA_ : scaleB_)[s.contact] = scaleIn(c, lowerBody, s.lower);
+      (s.lowerIsA ? scaleA_ : scaleB_)[s.contact] = scaleIn(c, centre, lowerBody, s.lower);
   }
 }
 
