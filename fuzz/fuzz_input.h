@@ -66,7 +66,10 @@ class FuzzInput {
 
   // A rotation: usually a unit quaternion, sometimes one that is not (the API must refuse it).
   Quat rotation() {
-    Quat q(range(-1, 1), range(-1, 1), range(-1, 1), range(-1, 1));
+    // One read per statement: the order of a call's arguments is unspecified (GCC and clang differ),
+    // and a finding must decode the same under both.
+    const float w = range(-1, 1), x = range(-1, 1), y = range(-1, 1), z = range(-1, 1);
+    Quat q(w, x, y, z);
     if (byte() >= 240) return Quat(value(-1, 1), q.x, q.y, q.z);
     return glm::length(q) < 0.1f ? Quat(1, 0, 0, 0) : glm::normalize(q);
   }

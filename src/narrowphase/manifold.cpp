@@ -146,6 +146,10 @@ bool mergeContacts(std::span<const NormalContact> contacts, float margin, Manifo
     if (glm::dot(contact.normal, normal) < kSameDirection) continue;
     ContactPoint point = contact.point;
     point.depth = glm::dot(point.pointOnA - point.pointOnB, normal);
+    // A point apart along its own normal stays apart along the shared one. Its pair of points is
+    // not always along its normal (a speculative edge contact's closest points at an edge's end),
+    // and measured along another normal such a pair could read as penetrating.
+    if (contact.point.depth < 0.0f && point.depth > 0.0f) point.depth = contact.point.depth;
     if (point.depth < -margin) continue;
     // A point on an edge shared by two triangles comes from both, with the same id: keep one.
     const ContactPoint* begin = overflow.empty() ? kept : overflow.data();

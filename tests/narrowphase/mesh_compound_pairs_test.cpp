@@ -8,8 +8,8 @@
 
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/pair_functions.h"
-#include "support/narrowphase_helpers.h"
 #include "support/flat_grid.h"
+#include "support/narrowphase_helpers.h"
 
 using namespace collide;
 using namespace collide::test;
@@ -201,6 +201,34 @@ TEST(CompoundPairs, TwoSphereCompoundOnAPlaneGivesTwoPoints) {
   ASSERT_TRUE(collide::collide(Plane{}, Transform::identity(), dumbbell, at({0.2f, 0.4f, 0.0f}), m));
   ASSERT_EQ(m.count, 2);
   EXPECT_NEAR(m.normal.y, 1.0f, 1e-6f);
+}
+
+TEST(CompoundPairs, ChildrenApartAlongTheirOwnNormalsStayApartInTheMerge) {
+  // A sphere and a box on a turned compound, 5 cm above a box: both children's contacts are
+  // speculative, at normals 24 degrees apart. The box child's speculative edge contact has its
+  // closest points at an edge's end, 0.5 m apart sideways; measured along the sphere's normal that
+  // pair reads as 8 cm deep. The merged manifold must keep it apart, as overlap() says the shapes
+  // are (the narrow-phase fuzzer's finding, its decoded input).
+  const Quat childTurn(1.0f, 1.52587891e-05f, 1.52587891e-05f, 1.52587891e-05f);
+  std::vector<Compound::Child> children;
+  children.push_back({Shape(Sphere{0.400013894f}),
+                      Transform{Vec3(3.05175781e-05f, 0.499977112f, 3.05175781e-05f), childTurn, 1.0f}});
+  children.push_back({Shape(Box{Vec3(0.299990058f)}),
+                      Transform{Vec3(3.05175781e-05f, -0.499977112f, 3.05175781e-05f), childTurn, 1.0f}});
+  const Shape compound = Compound::fromChildren(std::move(children));
+  const Transform compoundAt{Vec3(4.57763672e-05f),
+                             Quat(0.706718922f, -0.0331171714f, 1.0783675e-05f, -0.706718922f), 1.0f};
+  const Shape box = Box{Vec3(0.299990058f)};
+  const Transform boxAt{Vec3(4.57763672e-05f, -0.749965668f, 4.57763672e-05f),
+                        Quat(1.0f, 1.53510809e-05f, 1.53510809e-05f, 1.53510809e-05f), 1.0f};
+  ASSERT_FALSE(overlap(compound, compoundAt, box, boxAt));
+  Manifold m;
+  ASSERT_TRUE(collide::collide(compound, compoundAt, box, boxAt, m, 0.25f));
+  ASSERT_GT(m.count, 0);
+  for (int i = 0; i < m.count; ++i) EXPECT_LT(m.points[i].depth, -0.04f) << "point " << i;
+  // The other order, through the mirroring wrapper.
+  ASSERT_TRUE(collide::collide(box, boxAt, compound, compoundAt, m, 0.25f));
+  for (int i = 0; i < m.count; ++i) EXPECT_LT(m.points[i].depth, -0.04f) << "point " << i;
 }
 
 namespace {
