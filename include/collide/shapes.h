@@ -118,6 +118,9 @@ class ConvexHull {
   // Inertia tensor per unit density about the centroid.
   const Mat3& unitInertia() const { return unitInertia_; }
   Aabb bounds() const { return bounds_; }
+  // Different for every hull built and shared by its copies: what a cache of placed hulls keys on
+  // with the address, since a hull freed and another built in its place may share the address.
+  std::uint64_t serial() const { return serial_; }
 
  private:
   friend class HullBuilder;
@@ -134,6 +137,7 @@ class ConvexHull {
   Vec3 centroid_{0.0f};
   Mat3 unitInertia_{0.0f};
   Aabb bounds_;
+  std::uint64_t serial_ = 0;
 };
 
 // A discrete oriented polytope (k-DOP): the intersection of k/2 slabs along fixed axes. k = 6 is an

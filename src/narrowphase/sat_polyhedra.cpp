@@ -160,7 +160,7 @@ struct PlacementCache {
   static constexpr std::size_t kEntries = 256;
   struct Entry {
     const ConvexHull* hull = nullptr;
-    Vec3 firstVertex{0.0f};  // with the address: a hull freed and another made in its place differ here
+    std::uint64_t serial = 0;  // with the address: a hull freed and another built in its place differ here
     Vec3 scale{0.0f};
     Transform transform;
     std::vector<Vec3> vertices;
@@ -251,14 +251,14 @@ WorldPolyhedron place(const Shape& shape, const Transform& transform, int slot, 
   }
   PlacementCache::Entry& entry = cache.entries[index];
   cache.slotEntry[slot] = index;
-  if (entry.hull == poly.hull && entry.firstVertex == hull.vertices()[0] && entry.scale == localScale &&
+  if (entry.hull == poly.hull && entry.serial == hull.serial() && entry.scale == localScale &&
       entry.transform.position == transform.position && entry.transform.rotation == transform.rotation &&
       entry.transform.scale == transform.scale) {
     return entry.poly;
   }
   placeInto(hull, transform, localScale, entry.vertices, entry.planes, entry.normalBlocks, poly);
   entry.hull = poly.hull;
-  entry.firstVertex = hull.vertices()[0];
+  entry.serial = hull.serial();
   entry.scale = localScale;
   entry.transform = transform;
   entry.poly = poly;

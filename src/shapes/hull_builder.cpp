@@ -12,6 +12,7 @@ extern "C" {
 }
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -276,6 +277,8 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
   const std::vector<RawFace> rawFaces = runQhull(points, size);
 
   ConvexHull hull;
+  static std::atomic<std::uint64_t> builtHulls{0};
+  hull.serial_ = ++builtHulls;
   EdgeMap edgeByEndpoints;
   addFaces(points, rawFaces, hull.vertices_, hull.faces_, hull.halfEdges_, edgeByEndpoints);
   for (std::uint32_t h = 0; h < hull.halfEdges_.size(); ++h) {

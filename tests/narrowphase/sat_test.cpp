@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <set>
 
-#include "support/ccd_reference.h"
 #include "narrowphase/pair_functions.h"
-#include "support/narrowphase_helpers.h"
+#include "support/ccd_reference.h"
 #include "support/flat_grid.h"
+#include "support/narrowphase_helpers.h"
 
 using namespace collide;
 using namespace collide::test;
@@ -186,6 +186,37 @@ TEST(SatPolyhedra, SeparatedBoxesGiveNoContactUnlessWithinTheMargin) {
   ASSERT_TRUE(collide::collide(Box{Vec3(0.5f)}, ta, Box{Vec3(0.5f)}, tc, m, 0.1f));
   ASSERT_EQ(m.count, 1);
   EXPECT_NEAR(m.points[0].depth, -0.05f, 1e-5f);
+}
+
+TEST(SatPolyhedra, AHullBuiltWhereAFreedOneWasIsPlacedAnew) {
+  // The SAT keeps placed hulls in a cache. A cube hull is placed under a box, then freed, and a
+  // taller hull with the same first vertex is built, most likely at the freed one's address (the
+  // allocator reuses a block of the same size): at the same pose it must be placed anew, its top
+  // 0.8 m into the box, not 0.2 m under it as the freed cube's was.
+  const Shape box = Box{Vec3(0.5f)};
+  const Transform boxAt = at({0.0f, 1.2f, 0.0f});
+  auto cuboid = [](float top) {
+    std::vector<Vec3> points;
+    for (const float x : {0.5f, -0.5f})
+      for (const float y : {top, -0.5f})
+        for (const float z : {0.5f, -0.5f}) points.emplace_back(x, y, z);
+    return Shape(std::make_shared<const ConvexHull>(ConvexHull::fromPoints(points)));
+  };
+  Manifold m;
+  const ConvexHull* firstAddress = nullptr;
+  Vec3 firstVertex;
+  {
+    const Shape cube = cuboid(0.5f);
+    firstAddress = &cube.convexHull();
+    firstVertex = cube.convexHull().vertices()[0];
+    ASSERT_TRUE(collide::collide(cube, Transform::identity(), box, boxAt, m, 0.5f));
+    EXPECT_NEAR(m.maxDepth(), -0.2f, 1e-5f);
+  }
+  const Shape tall = cuboid(1.5f);
+  ASSERT_EQ(tall.convexHull().vertices()[0], firstVertex);
+  if (&tall.convexHull() != firstAddress) GTEST_SKIP() << "the allocator did not reuse the address";
+  ASSERT_TRUE(collide::collide(tall, Transform::identity(), box, boxAt, m, 0.5f));
+  EXPECT_NEAR(m.maxDepth(), 0.8f, 1e-5f);
 }
 
 TEST(SatPolyhedra, CubeHullsAndKdopsAgreeWithBoxes) {
