@@ -13,7 +13,6 @@ namespace {
 // slides off rather than rests, and a side-by-side contact carries no weight.
 constexpr float kSupportCosine = 0.5f;
 
-// A body's velocity along the contact's normal at the manifold's centre.
 // The centre of a manifold's points, where the bodies' speeds along its normal are measured.
 Vec3 manifoldCentre(const Manifold& m) {
   Vec3 point(0.0f);
@@ -41,12 +40,22 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
   supports_.clear();
   const float g = glm::length(gravity);
   if (!(g > 0.0f) || !std::isfinite(g)) return;
-  const Vec3 up = gravity / -g;
+  if (!findSupports(contacts, solvedContacts, solverOf, infos, gravity / -g)) return;
+  assignLevels(infos.size());
+  orderCarryingSupports(infos.size());
+  carryMasses(infos);
+  markHeavyOnLightStacks(infos);
+  scaleRestingContacts(contacts, infos, bodies, storage, restingSpeed);
+}
+
+// The supporting contacts; true when one has a heavier body on a lighter one (else nothing to do).
+bool SupportMasses::findSupports(std::span<const Contact> contacts,
+                                 std::span<const std::uint32_t> solvedContacts,
+                                 const std::vector<std::int32_t>& solverOf,
+                                 const std::vector<SolverBodyInfo>& infos, const Vec3& up) {
   const auto isDynamic = [&](std::int32_t s) {
     return s != kNoSolverBody && infos[s].dynamic && infos[s].inverseMass > 0.0f;
   };
-
-  // The supporting contacts; nothing to do unless one has a heavier body on a lighter one.
   bool heavierOnLighter = false;
   for (const std::uint32_t index : solvedContacts) {
     const Contact& c = contacts[index];
@@ -61,10 +70,11 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
         heavierOnLighter || (dynamicLower && infos[upper].inverseMass < infos[lower].inverseMass);
     supports_.push_back({dynamicLower ? lower : kNoSolverBody, upper, index, lowerIsA});
   }
-  if (!heavierOnLighter) return;
+  return heavierOnLighter;
+}
 
-  // Levels, breadth first from the ground, over the edges leaving each dynamic lower body (CSR).
-  const std::size_t bodyCount = infos.size();
+// Levels, breadth first from the ground, over the edges leaving each dynamic lower body (CSR).
+void SupportMasses::assignLevels(std::size_t bodyCount) {
   level_.assign(bodyCount, -1);
   edgeStart_.assign(bodyCount + 1, 0);
   for (const Support& s : supports_) {
@@ -92,9 +102,11 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
       queue_.push_back(static_cast<std::uint32_t>(upper));
     }
   }
+}
 
-  // The supports that carry weight down a level (the upper body on the ground through them), by the
-  // upper body's level, highest first (a stable counting sort), and how many each body rests on.
+// The supports that carry weight down a level (the upper body on the ground through them), by the
+// upper body's level, highest first (a stable counting sort), and how many each body rests on.
+void SupportMasses::orderCarryingSupports(std::size_t bodyCount) {
   const auto levelOf = [&](std::int32_t s) { return s == kNoSolverBody ? 0 : level_[s]; };
   const auto carries = [&](const Support& s) {
     return level_[s.upper] > 0 && levelOf(s.lower) >= 0 && levelOf(s.lower) < level_[s.upper];
@@ -114,48 +126,59 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
   for (std::uint32_t i = 0; i < supports_.size(); ++i) {
     if (carries(supports_[i])) byLevel_[start[maxLevel - level_[supports_[i].upper]]++] = i;
   }
+}
 
-  // Carried mass, from the top down: a body's support mass is its own plus an equal share of the
-  // support mass of each body resting on it. Uppers come before the bodies under them.
-  supportMass_.assign(bodyCount, 0.0f);
+// Carried mass, from the top down: a body's support mass is its own plus an equal share of the
+// support mass of each body resting on it. Uppers come before the bodies under them.
+void SupportMasses::carryMasses(const std::vector<SolverBodyInfo>& infos) {
+  supportMass_.assign(infos.size(), 0.0f);
   for (const std::uint32_t body : queue_) supportMass_[body] = 1.0f / infos[body].inverseMass;
   for (const std::uint32_t i : byLevel_) {
     const Support& s = supports_[i];
     if (s.lower != kNoSolverBody)
       supportMass_[s.lower] += supportMass_[s.upper] / float(supporters_[s.upper]);
   }
+}
 
-  // The stacks (bodies joined by carrying supports) that hold a heavier body on a lighter one.
+std::int32_t SupportMasses::stackRoot(std::int32_t body) {
+  while (stackOf_[body] != body) body = stackOf_[body] = stackOf_[stackOf_[body]];
+  return body;
+}
+
+// The stacks (bodies joined by carrying supports) that hold a heavier body on a lighter one.
+void SupportMasses::markHeavyOnLightStacks(const std::vector<SolverBodyInfo>& infos) {
+  const std::size_t bodyCount = infos.size();
   stackOf_.resize(bodyCount);
   for (std::size_t b = 0; b < bodyCount; ++b) stackOf_[b] = static_cast<std::int32_t>(b);
-  const auto find = [&](std::int32_t b) {
-    while (stackOf_[b] != b) b = stackOf_[b] = stackOf_[stackOf_[b]];
-    return b;
-  };
   for (const std::uint32_t i : byLevel_) {
     const Support& s = supports_[i];
     if (s.lower == kNoSolverBody) continue;
-    const std::int32_t a = find(s.lower), b = find(s.upper);
+    const std::int32_t a = stackRoot(s.lower), b = stackRoot(s.upper);
     if (a != b) stackOf_[std::max(a, b)] = std::min(a, b);  // deterministic: the smaller index is the root
   }
   heavyOnLight_.assign(bodyCount, 0);
   for (const std::uint32_t i : byLevel_) {
     const Support& s = supports_[i];
     if (s.lower != kNoSolverBody && infos[s.upper].inverseMass < infos[s.lower].inverseMass)
-      heavyOnLight_[find(s.upper)] = 1;
+      heavyOnLight_[stackRoot(s.upper)] = 1;
   }
+}
 
-  // In those stacks, each body appears to the contacts that carry weight as heavy as its support
-  // mass, on both sides: its load's weight then reaches the ground as fast as a uniform stack's.
+// In those stacks, each body appears to the contacts that carry weight as heavy as its support
+// mass, on both sides: its load's weight then reaches the ground as fast as a uniform stack's.
+// Only a body at rest along the normal is scaled (no faster than the restitution threshold): one
+// that falls onto the body under it, or rises into the one above, meets it with its true mass.
+// Scaled, a falling body would hit as a lighter one and a rising one would lift its load without
+// slowing, and either gains energy; at rest the scaling moves only what gravity added this step.
+void SupportMasses::scaleRestingContacts(std::span<const Contact> contacts,
+                                         const std::vector<SolverBodyInfo>& infos,
+                                         const std::vector<SolverBody>& bodies, const BodyStorage& storage,
+                                         float restingSpeed) {
   scaleA_.assign(contacts.size(), 1.0f);
   scaleB_.assign(contacts.size(), 1.0f);
   const auto scaleOf = [&](std::int32_t body) {
     return (1.0f / infos[body].inverseMass) / supportMass_[body];
   };
-  // Only a body at rest along the normal is scaled (no faster than the restitution threshold): one
-  // that falls onto the body under it, or rises into the one above, meets it with its true mass.
-  // Scaled, a falling body would hit as a lighter one and a rising one would lift its load without
-  // slowing, and either gains energy; at rest the scaling moves only what gravity added this step.
   const auto scaleIn = [&](const Contact& c, const Vec3& centre, std::uint32_t body,
                            std::int32_t solverBody) {
     const float speed = speedAlongNormal(c, centre, body, solverBody, bodies, storage);
@@ -163,7 +186,7 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
   };
   for (const std::uint32_t i : byLevel_) {
     const Support& s = supports_[i];
-    if (!heavyOnLight_[find(s.upper)]) continue;
+    if (!heavyOnLight_[stackRoot(s.upper)]) continue;
     const Contact& c = contacts[s.contact];
     const std::uint32_t upperBody = s.lowerIsA ? c.bodyB : c.bodyA;
     const std::uint32_t lowerBody = s.lowerIsA ? c.bodyA : c.bodyB;

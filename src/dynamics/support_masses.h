@@ -57,6 +57,19 @@ class SupportMasses {
     std::uint32_t contact;
     bool lowerIsA;
   };
+  // The stages of compute, in order.
+  bool findSupports(std::span<const Contact> contacts, std::span<const std::uint32_t> solvedContacts,
+                    const std::vector<std::int32_t>& solverOf, const std::vector<SolverBodyInfo>& infos,
+                    const Vec3& up);
+  void assignLevels(std::size_t bodyCount);
+  void orderCarryingSupports(std::size_t bodyCount);
+  void carryMasses(const std::vector<SolverBodyInfo>& infos);
+  void markHeavyOnLightStacks(const std::vector<SolverBodyInfo>& infos);
+  void scaleRestingContacts(std::span<const Contact> contacts, const std::vector<SolverBodyInfo>& infos,
+                            const std::vector<SolverBody>& bodies, const BodyStorage& storage,
+                            float restingSpeed);
+  std::int32_t stackRoot(std::int32_t body);  // union-find with path halving
+
   std::vector<float> scaleA_, scaleB_;  // by contact index; empty when nothing is scaled
   // Scratch, kept between steps for its capacity.
   std::vector<Support> supports_;
