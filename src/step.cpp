@@ -1,7 +1,7 @@
 // One step of the world: the lecture's pipeline, one stage a call, each in the folder of its layer.
 //   proxies and bounds -> broad phase -> contacts (narrow phase, manifold reuse, pre-solve) ->
-//   impacts -> solve (soft step) -> friction models -> continuous -> revert -> fault guard -> events
-//   -> islands and sleep.
+//   impacts -> solve (soft step) -> friction models and rolling resistance -> continuous -> revert ->
+//   fault guard -> events -> islands and sleep.
 // docs/architecture.md walks one body through these stages.
 #include "world_impl.h"
 

@@ -377,21 +377,8 @@ void World::step(float dt) {
   impl_->callbackError.clear();
   impl_->step(dt);
   if (!impl_->callbackError.empty()) throw Error(impl_->callbackError);
-  if (impl_->contactListener != nullptr) impl_->tellContactListener();
-}
-
-void World::Impl::tellContactListener() {
-  for (std::size_t i = 0; i < events.contacts.size(); ++i) {
-    const ContactEvent& event = events.contacts[i];
-    const std::uint32_t contact = events.contactOfEvent[i];
-    if (event.type == ContactEvent::Type::End || contact == detail::StepEvents::kNoContact) {
-      contactListener->onEnd(event);
-    } else if (event.type == ContactEvent::Type::Begin) {
-      contactListener->onBegin(detail::makeContactData(bodies, contacts[contact]));
-    } else {
-      contactListener->onPersist(detail::makeContactData(bodies, contacts[contact]));
-    }
-  }
+  if (impl_->contactListener != nullptr)
+    detail::tellContactListener(impl_->events, impl_->bodies, impl_->contacts, *impl_->contactListener);
 }
 
 void World::visitContacts(const std::function<void(const ContactData&)>& visitor) const {

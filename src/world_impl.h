@@ -60,8 +60,6 @@ struct World::Impl {
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
 
   void step(float dt);
-  // The contact listener, told of the step's contact events in their order (World::setContactListener).
-  void tellContactListener();
 };
 
 }  // namespace collide

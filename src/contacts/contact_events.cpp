@@ -108,4 +108,19 @@ std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& c
   return touchingCount;
 }
 
+void tellContactListener(const StepEvents& events, const BodyStorage& bodies,
+                         const std::vector<Contact>& contacts, ContactListener& listener) {
+  for (std::size_t i = 0; i < events.contacts.size(); ++i) {
+    const ContactEvent& event = events.contacts[i];
+    const std::uint32_t contact = events.contactOfEvent[i];
+    if (event.type == ContactEvent::Type::End || contact == StepEvents::kNoContact) {
+      listener.onEnd(event);
+    } else if (event.type == ContactEvent::Type::Begin) {
+      listener.onBegin(makeContactData(bodies, contacts[contact]));
+    } else {
+      listener.onPersist(makeContactData(bodies, contacts[contact]));
+    }
+  }
+}
+
 }  // namespace collide::detail

@@ -46,4 +46,9 @@ ContactData makeContactData(const BodyStorage& bodies, const Contact& contact);
 std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& contacts, StepEvents& events,
                               bool persistEvents);
 
+// The step's contact events told to the listener in their order, each begin and persist with the
+// whole contact, after the step (a listener may then query the world).
+void tellContactListener(const StepEvents& events, const BodyStorage& bodies,
+                         const std::vector<Contact>& contacts, ContactListener& listener);
+
 }  // namespace collide::detail

@@ -247,7 +247,7 @@ bool growToTetrahedron(const ConvexSupport& a, const ConvexSupport& b, Polytope&
 }  // namespace
 
 EpaResult epaPenetration(const ConvexSupport& a, const ConvexSupport& b, const Simplex& simplex) {
-  // About 100 KB: kept per thread rather than on the stack.
+  // Its face and vertex arrays are too large for the stack: kept per thread.
   static thread_local Polytope polytope;
   polytope.reset();
   float scaleSquared = 1e-30f;

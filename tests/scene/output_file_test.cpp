@@ -1,7 +1,7 @@
 // The outputs of a run lose nothing the user owns: a path that is an input of the run or another
 // output is refused before the run, every write and the close are checked, and a target is replaced
 // only by a complete file.
-#include "temp_folder.h"
+#include "support/temp_folder.h"
 
 #include <collide/scene/output_file.h>
 #include <collide/scene/runner.h>

@@ -1,7 +1,7 @@
 // The files a scene reads: OBJ paths stay inside the scene's folder unless the loader is told
 // otherwise, and only regular files within the size limits are read (a directory, a device, a FIFO
 // or a huge file is refused with a message naming it, instead of a hang or exhausted memory).
-#include "temp_folder.h"
+#include "support/temp_folder.h"
 
 #include <collide/scene/limits.h>
 #include <collide/scene/obj_file.h>
