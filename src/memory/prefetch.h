@@ -26,15 +26,16 @@ COLLIDE_PREFETCH_INLINE void prefetchLine(const void* address) {
 #endif
 }
 
-// Every cache line that [data, data + bytes) touches, the last one included when the range does
-// not start on a line (a record of eight lines' length then spans nine).
+// Every cache line that [data, data + bytes) touches: one line every 64 bytes from the start, then
+// the last byte's (a range not starting on a line spans one line more). The count depends on the
+// size only, not on where the range lies, so that the work (and a fuzzer's view of it) is the same
+// wherever the allocator put the data.
 COLLIDE_PREFETCH_INLINE void prefetchBytes(const void* data, std::size_t bytes) {
   if (bytes == 0) return;
-  constexpr std::uintptr_t kLine = 64;
-  const auto begin = reinterpret_cast<std::uintptr_t>(data) & ~(kLine - 1);
-  const auto end = reinterpret_cast<std::uintptr_t>(data) + bytes;
-  for (std::uintptr_t line = begin; line < end; line += kLine)
-    prefetchLine(reinterpret_cast<const void*>(line));
+  constexpr std::size_t kLine = 64;
+  const char* first = static_cast<const char*>(data);
+  for (std::size_t offset = 0; offset < bytes; offset += kLine) prefetchLine(first + offset);
+  prefetchLine(first + bytes - 1);
 }
 
 // Both ends of a record: one not aligned to the cache lines straddles two.
