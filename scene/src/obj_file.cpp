@@ -79,8 +79,13 @@ std::vector<std::string_view> tokens(std::string_view rest) {
 
 // Lines end at "\n", "\r\n" or "\r" and at a NUL byte, as tinyobjloader reads them; a line is a
 // vertex ("v x y z [w]" or "v x y z r g b") or a face ("f v1 v2 v3 ...", each vertex "v", "v/vt",
-// "v//vn" or "v/vt/vn") when its keyword, after leading blanks, is followed by a blank.
-void checkObjText(std::string_view text, const std::string& who) {
+// "v//vn" or "v/vt/vn") when its keyword, after leading blanks, is followed by a blank. Returns the
+// text tinyobjloader is to read: the vertices and faces checked here, every other line made a comment
+// (its first character '#', so the line numbers stay). collide reads only the geometry, and
+// tinyobjloader converts the numbers of the other lines unchecked (a skin weight's joint of 1e300
+// to int, a normal's 1e300 to float: undefined behaviour, found by obj_fuzzer).
+std::string checkedGeometry(std::string_view text, const std::string& who) {
+  std::string geometry(text);
   std::size_t triangles = 0;
   std::size_t lineNumber = 0;
   std::size_t pos = 0;
@@ -94,7 +99,10 @@ void checkObjText(std::string_view text, const std::string& who) {
     std::size_t start = 0;
     while (start < line.size() && isBlank(line[start])) ++start;
     line.remove_prefix(start);
-    if (line.size() < 2 || !isBlank(line[1]) || (line[0] != 'v' && line[0] != 'f')) continue;
+    if (line.size() < 2 || !isBlank(line[1]) || (line[0] != 'v' && line[0] != 'f')) {
+      if (!line.empty()) geometry[static_cast<std::size_t>(line.data() - text.data())] = '#';
+      continue;
+    }
     const std::string where = who + ":" + std::to_string(lineNumber) + ": ";
     const std::vector<std::string_view> items = tokens(line.substr(2));
     if (line[0] == 'v') {
@@ -146,6 +154,7 @@ void checkObjText(std::string_view text, const std::string& who) {
                   " triangles (the limit), reached at line " + std::to_string(lineNumber));
     }
   }
+  return geometry;
 }
 
 }  // namespace
@@ -157,12 +166,12 @@ ObjMesh readObjFile(const std::filesystem::path& path) {
 
 ObjMesh parseObj(std::string_view text, std::string_view name) {
   const std::string who(name);
-  checkObjText(text, who);
+  const std::string geometry = checkedGeometry(text, who);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(std::string(text), /*mtl_text=*/"", config)) {
+  if (!reader.ParseFromString(geometry, /*mtl_text=*/"", config)) {
     std::string why = reader.Error();
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
     throw Error(who + ": " + (why.empty() ? "cannot be parsed" : why));

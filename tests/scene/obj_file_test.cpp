@@ -55,6 +55,21 @@ TEST(ObjFile, ReadsIndexFormsObjectsAndPolygons) {
   EXPECT_EQ(mesh.vertices[7], Vec3(2.5f, 2.0f, 0.0f));
 }
 
+TEST(ObjFile, LinesOtherThanVerticesAndFacesAreNotConverted) {
+  // Skin weights with a joint of 1e300, a normal and a texture coordinate out of float range, a
+  // polyline and points with indices out of int range, a parameter-space vertex: collide reads only
+  // the vertices and faces, and tinyobjloader would convert these numbers to int and float unchecked
+  // (undefined behaviour, which the sanitized run of this test reports: obj_fuzzer's finding). They
+  // are comments to it, and the mesh is the one the vertices and faces give.
+  const ObjMesh mesh = parseObj(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e300 0.5\nvn 1e300 0 0\nvt -1e300 0\n"
+      "l 1 99999999999999999999\np -99999999999999999999\nvp 1e300\n  g  group\nf 1 2 3\n",
+      "extras.obj");
+  ASSERT_EQ(mesh.vertices.size(), 3u);
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(mesh.triangles[0].v, (std::array<std::uint32_t, 3>{0, 1, 2}));
+}
+
 TEST(ObjFile, BadTextIsRefusedWithTheFileName) {
   EXPECT_THAT(parseError(""), HasSubstr("test.obj: no triangles"));
   EXPECT_THAT(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\n"), HasSubstr("test.obj: no triangles"));
