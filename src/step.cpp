@@ -48,11 +48,13 @@ void World::Impl::step(float dt) {
   lastStats.narrowPhaseTests = tested.narrowPhaseTests;
   lastStats.reusedManifolds = tested.reusedManifolds;
 
-  impacts.run(bodies, contacts, def.impactModel, tuning, def.gravity, dt);
+  // Newton impacts need a bounciness above 0, from a body or a pre-solve callback.
+  if (def.impactModel != ImpactModel::Newton || bodies.bouncyCount > 0 || preSolve)
+    impacts.run(bodies, contacts, def.impactModel, tuning, def.gravity, dt);
   stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults);
   impacts.applyTimeShifts(bodies);
   detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
-  detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());
+  if (bodies.rollingCount > 0) detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());
   bodies.clearForces();
   if (def.ccd) detail::solveContinuous(bodies, *broadPhase, filters, tuning.linearSlop);
   if (def.penetrationResponse == PenetrationResponse::Revert)

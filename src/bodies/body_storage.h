@@ -50,7 +50,7 @@ struct BodyRecord {
   float bounciness = 0.0f;
   float friction = 0.5f;
   float rollingResistance = 0.0f;  // m
-  Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
+  Vec3 localCenterOfMass{0.0f};    // in the body frame, already scaled
   ProxyId proxy;
   float mass = 0.0f;
   float minExtent = 0.0f;  // half the smallest side of the local box, scaled: "fast" is relative to it
@@ -95,9 +95,19 @@ class BodyStorage {
   // Forces and torques act for one step: cleared once it is solved.
   void clearForces();
 
+  // The live bodies with a bounciness or a rolling resistance above 0 (World::createBody and
+  // destroyBody keep them; so must any setter of the two): the stages that only such bodies need
+  // (Newton impacts, rolling resistance) skip their scan of every contact when there are none.
+  void countMaterial(const BodyRecord& record, int sign) {
+    if (record.bounciness > 0.0f) bouncyCount += sign;
+    if (record.rollingResistance > 0.0f) rollingCount += sign;
+  }
+
   std::vector<BodyRecord> records;
   std::vector<BodyState> states;
   std::size_t aliveCount = 0;
+  std::size_t bouncyCount = 0;
+  std::size_t rollingCount = 0;
 
  private:
   std::vector<std::uint32_t> freeSlots_;

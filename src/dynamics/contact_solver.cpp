@@ -66,6 +66,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   // The contacts to solve and the solver bodies each may write.
   solvedContacts_.clear();
   writtenBodies_.clear();
+  bool unequalMasses = false;
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
     // The lines read here (ids, manifold count, flags) a few contacts ahead: a contact spans several
     // cache lines, a stride the hardware's prefetcher does not follow in time.
@@ -79,11 +80,17 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
     const std::int32_t a = solverOf[contact.bodyA];
     const std::int32_t b = solverOf[contact.bodyB];
     solvedContacts_.push_back(ci);
-    writtenBodies_.push_back(
-        {a >= 0 && infos[a].dynamic ? a : kNoSolverBody, b >= 0 && infos[b].dynamic ? b : kNoSolverBody});
+    const std::int32_t writtenA = a >= 0 && infos[a].dynamic ? a : kNoSolverBody;
+    const std::int32_t writtenB = b >= 0 && infos[b].dynamic ? b : kNoSolverBody;
+    writtenBodies_.push_back({writtenA, writtenB});
+    unequalMasses = unequalMasses || (writtenA != kNoSolverBody && writtenB != kNoSolverBody &&
+                                      infos[writtenA].inverseMass != infos[writtenB].inverseMass);
   }
   colorConstraints(writtenBodies_, bodies.size(), colorOf_, colorBits_);
-  if (settings.tuning.supportMasses) {
+  // Support masses need a body resting on a lighter one: none where every contact between two
+  // dynamic bodies joins equal masses (a pile of equal boxes), and their scan of the contacts is
+  // skipped.
+  if (settings.tuning.supportMasses && unequalMasses) {
     supportMasses_.compute(contacts, solvedContacts_, solverOf, infos, bodies, storage, settings.gravity,
                            settings.tuning.restitutionThreshold);
   } else {
