@@ -64,7 +64,8 @@ void World::Impl::step(float dt) {
 
   detail::refreshEscapedProxies(bodies, *broadPhase, tuning.speculativeDistance);
   touchingCount = detail::emitContactEvents(bodies, contacts, events, def.persistEvents);
-  detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, filters, events);
+  if (bodies.sensorCount > 0)
+    detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, filters, events);
   lastStats.contactPairs = touchingCount;
   if (def.sleeping) islands.updateSleep(bodies, contacts, joints, def.sleep, dt);
   totalStats += lastStats;

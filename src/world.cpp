@@ -113,7 +113,7 @@ BodyId World::createBody(const BodyDef& def) {
     throw Error(detail::bodyLabel(def) + ": " + e.what());
   }
   slot.keep = true;
-  w.bodies.countMaterial(r, +1);
+  w.bodies.tally(r, +1);
   return w.bodies.idOf(index);
 }
 
@@ -136,7 +136,7 @@ void World::destroyBody(BodyId id) {
     w.events.endWithDestroyedBody(w.bodies, c);
   }
   std::erase_if(w.contacts, [&](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
-  w.bodies.countMaterial(w.bodies.records[index], -1);
+  w.bodies.tally(w.bodies.records[index], -1);
   w.bodies.free(index);
 }
 

@@ -95,12 +95,14 @@ class BodyStorage {
   // Forces and torques act for one step: cleared once it is solved.
   void clearForces();
 
-  // The live bodies with a bounciness or a rolling resistance above 0 (World::createBody and
-  // destroyBody keep them; so must any setter of the two): the stages that only such bodies need
-  // (Newton impacts, rolling resistance) skip their scan of every contact when there are none.
-  void countMaterial(const BodyRecord& record, int sign) {
+  // The live bodies with a bounciness or a rolling resistance above 0, and the sensors
+  // (World::createBody and destroyBody keep them; so must any setter of these fields): the stages
+  // that only such bodies need (Newton impacts, rolling resistance, sensor crossings) skip their
+  // scan of every contact or pair when there are none.
+  void tally(const BodyRecord& record, int sign) {
     if (record.bounciness > 0.0f) bouncyCount += sign;
     if (record.rollingResistance > 0.0f) rollingCount += sign;
+    if (record.sensor) sensorCount += sign;
   }
 
   std::vector<BodyRecord> records;
@@ -108,6 +110,7 @@ class BodyStorage {
   std::size_t aliveCount = 0;
   std::size_t bouncyCount = 0;
   std::size_t rollingCount = 0;
+  std::size_t sensorCount = 0;
 
  private:
   std::vector<std::uint32_t> freeSlots_;
