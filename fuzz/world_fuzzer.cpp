@@ -177,7 +177,7 @@ struct Story {
   }
 
   void call(int& steps) {
-    switch (in.choice(12)) {
+    switch (in.choice(13)) {
       case 0:
       case 1: {
         if (live() >= kMaxBodies) break;
@@ -268,6 +268,33 @@ struct Story {
         (void)world.mass(id);
         const JointId joint = anyJoint();
         (void)world.constraintCurrentLength(joint);
+        break;
+      }
+      case 11: {
+        // What a game changes after creation (extreme and non-finite values included: refused).
+        const BodyId id = anyBody();
+        const BodyMaterial material{in.value(0.0f, 2.0f), in.value(0.0f, 1.0f), in.value(0.0f, 0.1f)};
+        const float gravityScale = in.value(-2.0f, 2.0f);
+        const float linear = in.value(0.0f, 5.0f), angular = in.value(0.0f, 5.0f);
+        const Vec3 position = in.vec(-6.0f, 6.0f);
+        const Quat rotation = in.rotation();
+        trace("setMaterial(" + describe(id) + ", " + describe(material.friction) + ", " +
+              describe(material.bounciness) + ", " + describe(material.rollingResistance) +
+              "), setGravityScale(" + describe(gravityScale) + "), setDamping(" + describe(linear) + ", " +
+              describe(angular) + "), setTransform without waking (" + describe(position) + ", " +
+              describe(rotation) + ")");
+        const auto attempt = [&](auto&& change) {
+          try {
+            change();
+          } catch (const Error& e) {
+            trace(std::string("  refused: ") + e.what());
+          }
+        };
+        attempt([&] { world.setMaterial(id, material); });
+        attempt([&] { world.setGravityScale(id, gravityScale); });
+        attempt([&] { world.setDamping(id, linear, angular); });
+        attempt([&] { world.setTransform(id, position, rotation, /*wake=*/false); });
+        (void)world.bodies();
         break;
       }
       default: {

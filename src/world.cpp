@@ -157,6 +157,10 @@ Transform World::transform(BodyId id) const {
 }
 
 void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) {
+  setTransform(id, position, rotation, true);
+}
+
+void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation, bool wake) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setTransform");
   if (!isFinite(position))
@@ -172,7 +176,11 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) 
   r.validCenterOfMass = s.centerOfMass;  // placed by the user: where revert goes back to from now
   r.validRotation = s.rotation;
   w.broadPhase->update(r.proxy, detail::proxyBounds(w.bodies, i, 0.0f, w.def.contact.speculativeDistance));
-  detail::wakeByUser(w.bodies, i);
+  if (wake) {
+    detail::wakeByUser(w.bodies, i);
+  } else {
+    detail::unfreezeBody(r, s);
+  }
 }
 
 Vec3 World::linearVelocity(BodyId id) const {
@@ -256,6 +264,72 @@ std::uint64_t World::userData(BodyId id) const {
 }
 const std::string& World::name(BodyId id) const {
   return impl_->bodies.records[impl_->resolve(id, "name")].name;
+}
+
+BodyMaterial World::material(BodyId id) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "material")];
+  return {r.friction, r.bounciness, r.rollingResistance};
+}
+
+void World::setMaterial(BodyId id, const BodyMaterial& material) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "setMaterial");
+  if (!isFinite(material.friction) || material.friction < 0.0f)
+    throw Error("world: setMaterial: friction must be finite and >= 0, got " +
+                formatFloat(material.friction));
+  if (!isFinite(material.bounciness) || material.bounciness < 0.0f || material.bounciness > 1.0f)
+    throw Error("world: setMaterial: bounciness must be in [0, 1], got " + formatFloat(material.bounciness));
+  if (!isFinite(material.rollingResistance) || material.rollingResistance < 0.0f) {
+    throw Error("world: setMaterial: rollingResistance must be finite and >= 0, got " +
+                formatFloat(material.rollingResistance));
+  }
+  BodyRecord& r = w.bodies.records[i];
+  w.bodies.tally(r, -1);
+  r.friction = material.friction;
+  r.bounciness = material.bounciness;
+  r.rollingResistance = material.rollingResistance;
+  w.bodies.tally(r, +1);
+  detail::wakeIsland(w.bodies, i);
+}
+
+float World::gravityScale(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "gravityScale")].gravityScale;
+}
+
+void World::setGravityScale(BodyId id, float scale) {
+  const std::uint32_t i = impl_->resolve(id, "setGravityScale");
+  if (!isFinite(scale))
+    throw Error("world: setGravityScale: scale must be finite, got " + formatFloat(scale));
+  impl_->bodies.records[i].gravityScale = scale;
+  detail::wakeIsland(impl_->bodies, i);
+}
+
+float World::linearDamping(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "linearDamping")].linearDamping;
+}
+float World::angularDamping(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "angularDamping")].angularDamping;
+}
+
+void World::setDamping(BodyId id, float linear, float angular) {
+  const std::uint32_t i = impl_->resolve(id, "setDamping");
+  if (!isFinite(linear) || linear < 0.0f)
+    throw Error("world: setDamping: linear damping must be finite and >= 0, got " + formatFloat(linear));
+  if (!isFinite(angular) || angular < 0.0f)
+    throw Error("world: setDamping: angular damping must be finite and >= 0, got " + formatFloat(angular));
+  BodyRecord& r = impl_->bodies.records[i];
+  r.linearDamping = linear;
+  r.angularDamping = angular;
+  detail::wakeIsland(impl_->bodies, i);
+}
+
+std::vector<BodyId> World::bodies() const {
+  std::vector<BodyId> ids;
+  ids.reserve(impl_->bodies.aliveCount);
+  for (std::uint32_t i = 0; i < impl_->bodies.records.size(); ++i) {
+    if (impl_->bodies.records[i].alive) ids.push_back(impl_->bodies.idOf(i));
+  }
+  return ids;
 }
 
 JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {

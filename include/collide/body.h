@@ -33,6 +33,14 @@ struct JointId {
   friend bool operator==(const JointId&, const JointId&) = default;
 };
 
+// What a body's contacts combine with their partner's (BodyDef's fields of the same names).
+struct BodyMaterial {
+  float friction = 0.5f;           // >= 0
+  float bounciness = 0.0f;         // [0, 1]
+  float rollingResistance = 0.0f;  // m, >= 0
+  friend bool operator==(const BodyMaterial&, const BodyMaterial&) = default;
+};
+
 struct BodyDef {
   BodyType type = BodyType::Dynamic;
   Shape shape{Sphere{0.5f}};
@@ -50,6 +58,13 @@ struct BodyDef {
   // contact, at most this length times the normal force (a ball of radius r on a surface with
   // rolling coefficient c: c r). 0 rolls freely; a pair takes the larger of its two bodies' values.
   float rollingResistance = 0.0f;
+  // Dynamic bodies: the share of the world's gravity the body feels (0 floats, -1 rises, 2 falls
+  // twice as fast; finite), and the damping of its linear and angular velocity (1/s, >= 0): each
+  // substep of length h multiplies the velocity by 1 / (1 + h damping), so a velocity decays by
+  // about e^(-damping t) (air drag in a game's sense, a wheel's bearing, a body under water).
+  float gravityScale = 1.0f;
+  float linearDamping = 0.0f;
+  float angularDamping = 0.0f;
   // Which bodies it collides with (docs/architecture.md, "Filtering"): two bodies of the same
   // non-zero group always collide (positive) or never do (negative); otherwise each body's layer must
   // be in the other's mask. Then a world's pair filter (World::setPairFilter), if set, has the last

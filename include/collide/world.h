@@ -140,6 +140,10 @@ class World {
   bool isParticle(BodyId id) const;
   Transform transform(BodyId id) const;
   void setTransform(BodyId id, const Vec3& position, const Quat& rotation);
+  // The same, waking the body only when `wake` is true: a sleeping body teleported with wake false
+  // stays asleep where it is put until something reaches it (a level streamed in, a respawn point).
+  // A body frozen by the fault guard takes the new state either way.
+  void setTransform(BodyId id, const Vec3& position, const Quat& rotation, bool wake);
   Vec3 linearVelocity(BodyId id) const;
   Vec3 angularVelocity(BodyId id) const;
   void setLinearVelocity(BodyId id, const Vec3& velocity);
@@ -161,6 +165,20 @@ class World {
   const Shape& shape(BodyId id) const;
   std::uint64_t userData(BodyId id) const;
   const std::string& name(BodyId id) const;
+  // The body's friction, bounciness and rolling resistance; a new material counts from the next
+  // step's contacts (ice under a slipping boot, a bumper switched on). Out of range (as BodyDef)
+  // throws Error and changes nothing.
+  BodyMaterial material(BodyId id) const;
+  void setMaterial(BodyId id, const BodyMaterial& material);
+  // BodyDef::gravityScale (finite) and the velocity damping (1/s, >= 0), from the next step; an
+  // invalid value throws Error and changes nothing. They act on dynamic bodies only. Wake the body.
+  float gravityScale(BodyId id) const;
+  void setGravityScale(BodyId id, float scale);
+  float linearDamping(BodyId id) const;
+  float angularDamping(BodyId id) const;
+  void setDamping(BodyId id, float linear, float angular);
+  // Every live body, in slot order (the order of the step's stages).
+  std::vector<BodyId> bodies() const;
 
   // ---- Constraints. Stale ids throw Error; destroying a body destroys its constraints. ----
   // Throws Error naming the field for a bad definition (stale body, a == b, no dynamic body, ...).

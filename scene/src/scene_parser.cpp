@@ -252,17 +252,30 @@ BodyType readBodyType(const JsonNode& node) {
 }
 
 Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
-  node.expectObject({"name",          "type",
-                     "shape",         "position",
-                     "rotation",      "scale",
-                     "velocity",      "angular_velocity",
-                     "mass",          "density",
-                     "material",      "bounciness",
-                     "friction",      "rolling_resistance",
-                     "ccd",           "sensor",
-                     "break_impulse", "particle",
-                     "layer",         "mask",
-                     "group"});
+  node.expectObject({"name",
+                     "type",
+                     "shape",
+                     "position",
+                     "rotation",
+                     "scale",
+                     "velocity",
+                     "angular_velocity",
+                     "mass",
+                     "density",
+                     "material",
+                     "bounciness",
+                     "friction",
+                     "rolling_resistance",
+                     "ccd",
+                     "sensor",
+                     "break_impulse",
+                     "particle",
+                     "layer",
+                     "mask",
+                     "group",
+                     "gravity_scale",
+                     "linear_damping",
+                     "angular_damping"});
   Body body;
   BodyDef& d = body.def;
   d.name = node.at("name").string();
@@ -299,6 +312,9 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   if (auto n = node.find("bounciness")) d.bounciness = n->unitInterval();
   if (auto n = node.find("friction")) d.friction = n->nonNegative();
   if (auto n = node.find("rolling_resistance")) d.rollingResistance = n->nonNegative();
+  if (auto n = node.find("gravity_scale")) d.gravityScale = n->number();
+  if (auto n = node.find("linear_damping")) d.linearDamping = n->nonNegative();
+  if (auto n = node.find("angular_damping")) d.angularDamping = n->nonNegative();
   if (auto n = node.find("ccd")) body.def.ccd = n->boolean();
   if (auto n = node.find("sensor")) d.sensor = n->boolean();
   if (auto n = node.find("layer")) d.layer = n->bits();

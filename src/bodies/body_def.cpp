@@ -131,6 +131,11 @@ void validateBodyDef(const BodyDef& def) {
     fail("friction must be finite and >= 0, got " + formatFloat(def.friction));
   if (!isFinite(def.rollingResistance) || def.rollingResistance < 0.0f)
     fail("rollingResistance must be finite and >= 0, got " + formatFloat(def.rollingResistance));
+  if (!isFinite(def.gravityScale)) fail("gravityScale must be finite, got " + formatFloat(def.gravityScale));
+  if (!isFinite(def.linearDamping) || def.linearDamping < 0.0f)
+    fail("linearDamping must be finite and >= 0, got " + formatFloat(def.linearDamping));
+  if (!isFinite(def.angularDamping) || def.angularDamping < 0.0f)
+    fail("angularDamping must be finite and >= 0, got " + formatFloat(def.angularDamping));
   if (def.shape.type() == ShapeType::Plane && def.type != BodyType::Static) {
     fail("shape: a plane is an infinite half-space and can only be on a static body");
   }
@@ -159,6 +164,9 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   r.bounciness = def.bounciness;
   r.friction = def.friction;
   r.rollingResistance = def.rollingResistance;
+  r.gravityScale = def.gravityScale;
+  r.linearDamping = def.linearDamping;
+  r.angularDamping = def.angularDamping;
   r.layer = def.layer;
   r.mask = def.mask;
   r.group = def.group;

@@ -50,7 +50,10 @@ struct BodyRecord {
   float bounciness = 0.0f;
   float friction = 0.5f;
   float rollingResistance = 0.0f;  // m
-  Vec3 localCenterOfMass{0.0f};    // in the body frame, already scaled
+  float gravityScale = 1.0f;
+  float linearDamping = 0.0f;    // 1/s
+  float angularDamping = 0.0f;   // 1/s
+  Vec3 localCenterOfMass{0.0f};  // in the body frame, already scaled
   ProxyId proxy;
   float mass = 0.0f;
   float minExtent = 0.0f;  // half the smallest side of the local box, scaled: "fast" is relative to it

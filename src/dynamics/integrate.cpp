@@ -61,8 +61,11 @@ void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<Solv
     const SolverBodyInfo& info = infos[j];
     if (!info.dynamic || info.faulted) continue;
     SolverBody& b = bodies[j];
+    // Damping as Box2D applies it, v <- v / (1 + h c) + h a: stable for any c and h.
+    if (info.linearDamping > 0.0f) b.linearVelocity *= 1.0f / (1.0f + h * info.linearDamping);
     b.linearVelocity += h * info.linearAcceleration;
     if (info.particle) continue;
+    if (info.angularDamping > 0.0f) b.angularVelocity *= 1.0f / (1.0f + h * info.angularDamping);
     b.angularVelocity += h * info.angularAcceleration;
     const float turn2 = h * h * glm::dot(b.angularVelocity, b.angularVelocity);
     if (info.gyroscopic && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {

@@ -41,7 +41,9 @@ void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity) {
     if (info.dynamic) {
       info.inverseMass = s.inverseMass;
       info.inverseInertiaWorld = s.inverseInertiaWorld;
-      info.linearAcceleration = gravity + info.inverseMass * r.force;
+      info.linearAcceleration = r.gravityScale * gravity + info.inverseMass * r.force;
+      info.linearDamping = r.linearDamping;
+      info.angularDamping = r.particle ? 0.0f : r.angularDamping;
       info.angularAcceleration = info.inverseInertiaWorld * r.torque;
       info.gyroscopic = !r.particle && !r.isotropicInertia;
     }

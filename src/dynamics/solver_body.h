@@ -36,6 +36,9 @@ struct SolverBodyInfo {
   // term.
   Vec3 linearAcceleration{0.0f};
   Vec3 angularAcceleration{0.0f};
+  // Velocity damping (BodyDef::linearDamping, angularDamping, 1/s); 0 for none, the common case.
+  float linearDamping = 0.0f;
+  float angularDamping = 0.0f;
   bool gyroscopic = false;  // a rigid body whose inertia is not isotropic
   bool dynamic = false;     // false: kinematic (moves by its velocity, infinite mass)
   bool particle = false;

@@ -120,8 +120,10 @@ bool ImpactStage::resolve(BodyStorage& bodies, Contact& c, const Entry& entry, I
   // then, and acts on for the rest of the step (the solver integrates it over the whole step).
   const bool dynamicA = bodies.records[c.bodyA].type == BodyType::Dynamic;
   const bool dynamicB = bodies.records[c.bodyB].type == BodyType::Dynamic;
-  if (dynamicA) a.linearVelocity += t * gravity;
-  if (dynamicB) b.linearVelocity += t * gravity;
+  const Vec3 gravityA = bodies.records[c.bodyA].gravityScale * gravity;
+  const Vec3 gravityB = bodies.records[c.bodyB].gravityScale * gravity;
+  if (dynamicA) a.linearVelocity += t * gravityA;
+  if (dynamicB) b.linearVelocity += t * gravityB;
   float impulse = 0.0f;
   try {
     if (model == ImpactModel::Newton) {
@@ -134,8 +136,8 @@ bool ImpactStage::resolve(BodyStorage& bodies, Contact& c, const Entry& entry, I
     return false;
   }
   if (!std::isfinite(impulse)) return false;
-  if (dynamicA) a.linearVelocity -= t * gravity;
-  if (dynamicB) b.linearVelocity -= t * gravity;
+  if (dynamicA) a.linearVelocity -= t * gravityA;
+  if (dynamicB) b.linearVelocity -= t * gravityB;
   // Integration over the step moves a body by its velocity after the stage; one whose velocity
   // changed at time t should have moved by the old velocity until then: the difference, the change
   // times t, is taken back once the step has moved it (applyTimeShifts), so that an impact found a

@@ -152,6 +152,26 @@ TEST(SceneParser, BodiesReachTheWorld) {
   EXPECT_FLOAT_EQ(sw.world.constraintLength(sw.constraints[0]), 2.5f);
 }
 
+TEST(SceneParser, GravityScaleAndDampingReachTheWorld) {
+  const Scene s = parseScene(withBody(R"({"name": "b", "type": "dynamic", "gravity_scale": -0.5,
+      "linear_damping": 0.25, "angular_damping": 2, "shape": {"type": "sphere", "radius": 1}})"));
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].def.gravityScale, -0.5f);
+  EXPECT_EQ(s.bodies[0].def.linearDamping, 0.25f);
+  EXPECT_EQ(s.bodies[0].def.angularDamping, 2.0f);
+  SceneWorld sw = buildWorld(s);
+  const BodyId b = sw.world.bodies().front();
+  EXPECT_EQ(sw.world.gravityScale(b), -0.5f);
+  EXPECT_EQ(sw.world.linearDamping(b), 0.25f);
+  EXPECT_EQ(sw.world.angularDamping(b), 2.0f);
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "angular_damping": -1,
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].angular_damping: must be >= 0, got -1"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "gravity_scale": "heavy",
+      "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].gravity_scale: must be a number"));
+}
+
 TEST(SceneParser, DefaultsAreTheEngines) {
   const Scene s = parseScene(R"({"format": "collide-scene/1"})");
   const WorldDef defaults;
