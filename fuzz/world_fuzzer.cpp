@@ -42,7 +42,7 @@ WorldDef decodeWorldDef(FuzzInput& in) {
   def.frictionCombine = static_cast<CombineRule>(in.choice(4));
   def.impactModel = static_cast<ImpactModel>(in.choice(2));
   def.frictionModel = static_cast<FrictionModel>(in.choice(4));
-  def.penetrationResponse = static_cast<PenetrationResponse>(in.choice(2));
+  def.penetrationResponse = static_cast<PenetrationResponse>(in.choice(3));
   def.sleeping = in.flag();
   def.ccd = in.flag();
   if (in.byte() >= 240) {

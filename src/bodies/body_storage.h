@@ -9,6 +9,7 @@
 #include <collide/narrowphase.h>
 #include <collide/shapes.h>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -118,6 +119,15 @@ class BodyStorage {
  private:
   std::vector<std::uint32_t> freeSlots_;
 };
+
+// A pose every query on the body's shape takes: a finite centre and a finite unit rotation (the
+// tolerance of isValid(Transform)). A step can leave a body without one (an overflowing velocity, a
+// spin that integrates to a zero quaternion); the stages between the solve and the fault guard,
+// which then freezes it, pass such a body by.
+inline bool hasValidPose(const BodyState& state) {
+  return isFinite(state.centerOfMass) && isFinite(state.rotation) &&
+         std::abs(glm::dot(state.rotation, state.rotation) - 1.0f) < 1e-3f;
+}
 
 // The body origin (what the user places) from the centre of mass and rotation.
 inline Vec3 bodyOrigin(const BodyRecord& record, const BodyState& state) {

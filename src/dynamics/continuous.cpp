@@ -31,6 +31,7 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
     const float turn = angle * record.boundingRadius;
     const float motion = glm::length(sweep.center1 - sweep.center0) + turn;
     if (motion < 0.5f * record.minExtent) continue;
+    if (!hasValidPose(state)) continue;  // the fault guard, next, freezes it
     ++stats.fastBodies;
 
     Aabb swept = worldBounds(record.shape, sweep.at(0.0f));
@@ -45,6 +46,7 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
       if (other.sensor || !pairAllowed(bodies, filters, i, j)) return true;
       // Every body against static geometry; a body flagged ccd (a bullet) against moving ones too.
       if (!record.ccd && other.type != BodyType::Static) return true;
+      if (!hasValidPose(bodies.states[j])) return true;  // frozen by the fault guard, next
       ++stats.candidates;
       const Sweep otherSweep = bodySweep(other, bodies.states[j]);
       ToiResult toi = timeOfImpact(record.shape, sweep, other.shape, otherSweep, settings);

@@ -27,6 +27,7 @@ bool RevertResponse::pass(BodyStorage& bodies, float linearSlop) {
     const BodyRecord& rb = bodies.records[pair.b];
     BodyState& sa = bodies.states[pair.a];
     BodyState& sb = bodies.states[pair.b];
+    if (!hasValidPose(sa) || !hasValidPose(sb)) continue;  // the fault guard, next, freezes it
     Manifold now;
     if (!collide::collide(ra.shape, bodyTransform(ra, sa), rb.shape, bodyTransform(rb, sb), now)) continue;
     if (now.maxDepth() <= linearSlop) continue;
