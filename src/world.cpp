@@ -6,6 +6,7 @@
 #include "base/format.h"
 #include "bodies/body_bounds.h"
 #include "bodies/body_def.h"
+#include "bodies/body_parts.h"
 #include "dynamics/fault_guard.h"
 #include "queries/world_queries.h"
 #include "response/revert.h"
@@ -106,7 +107,7 @@ BodyId World::createBody(const BodyDef& def) {
   proxy.bounds = detail::proxyBounds(w.bodies, index, 0.0f, w.def.contact.speculativeDistance);
   proxy.motion = def.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
   proxy.userValue = index;
-  proxy.layer = def.layer;
+  proxy.layer = r.layer;  // a body made of parts: the union of its parts' layers
   try {
     r.proxy = w.broadPhase->add(proxy);
   } catch (const Error& e) {
@@ -288,6 +289,7 @@ void World::setMaterial(BodyId id, const BodyMaterial& material) {
   r.friction = material.friction;
   r.bounciness = material.bounciness;
   r.rollingResistance = material.rollingResistance;
+  for (detail::PartRecord& part : r.parts) part.material = material;
   w.bodies.tally(r, +1);
   detail::wakeIsland(w.bodies, i);
 }
@@ -434,7 +436,12 @@ void World::setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mas
   BodyRecord& r = w.bodies.records[index];
   r.layer = layer;
   r.mask = mask;
-  r.group = group;
+  r.group = detail::hasParts(r) ? 0 : group;  // a body made of parts: every part's, the summary 0
+  for (detail::PartRecord& part : r.parts) {
+    part.layer = layer;
+    part.mask = mask;
+    part.group = group;
+  }
   w.broadPhase->setLayer(r.proxy, layer);
   detail::wakeIsland(w.bodies, index);
 }

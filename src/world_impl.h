@@ -58,6 +58,11 @@ struct World::Impl {
   std::uint32_t resolve(JointId id, const char* operation) const;
   void freeJoint(std::uint32_t index);
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
+  // Gives body `index` these parts (World::addPart, removePart): setBodyParts, then the tallies, the
+  // constraint anchors, the proxy and waking follow. Throws Error and changes nothing for parts the
+  // body cannot have.
+  void replaceParts(std::uint32_t index, std::vector<Compound::Child> children,
+                    std::vector<detail::PartRecord> parts);
 
   void step(float dt);
 };

@@ -95,6 +95,10 @@ class ShapeMaker {
 
   btCollisionShape* make(const scene::Scene& scene, std::size_t index, Vec3& localCenter) {
     const BodyDef& def = scene.bodies[index].def;
+    if (!def.parts.empty()) {
+      throw Error("bullet: body \"" + def.name +
+                  "\" is made of parts, which the Bullet reference does not build");
+    }
     const Shape& shape = def.shape;
     const float s = def.scale;
     localCenter = Vec3(0.0f);

@@ -57,7 +57,7 @@ Figures computeFigures(const scene::Scene& scene, const std::vector<BodyPose>& p
     const double speed = glm::length(pose.linearVelocity);
     speedSum += speed;
     f.maxSpeed = std::max(f.maxSpeed, speed);
-    if (!def.shape.isConvex()) continue;
+    if (!def.parts.empty() || !def.shape.isConvex()) continue;
     const Vec3 low = lowestPoint(def.shape, pose, def.scale);
     f.lowestPointY = std::min(f.lowestPointY, static_cast<double>(low.y));
     // The terrain straight under the lowest point: a ray down from well above it.

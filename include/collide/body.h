@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace collide {
 
@@ -39,6 +40,36 @@ struct BodyMaterial {
   float bounciness = 0.0f;         // [0, 1]
   float rollingResistance = 0.0f;  // m, >= 0
   friend bool operator==(const BodyMaterial&, const BodyMaterial&) = default;
+};
+
+// Which parts a part collides with (BodyDef::layer, mask and group, per part): two parts of the same
+// non-zero group always collide (positive) or never do (negative); otherwise each one's layer must be
+// in the other's mask.
+struct CollisionFilter {
+  std::uint32_t layer = 1;
+  std::uint32_t mask = kAllLayers;
+  std::int32_t group = 0;
+  friend bool operator==(const CollisionFilter&, const CollisionFilter&) = default;
+};
+
+// One collision part of a body made of several (BodyDef::parts, World::addPart): a shape placed in
+// the body's frame, with its own material, density, sensor flag, collision filter and user data.
+// The body's mass, centre of mass and inertia are the sum of its parts' (each of uniform density);
+// its contacts are kept per pair of parts, each with the two parts' materials combined; contacts,
+// events and query hits name the part by its index in the body (docs/parts.md).
+struct PartDef {
+  Shape shape{Sphere{0.5f}};  // any shape but a plane; a mesh only on a static or kinematic body
+  Vec3 position{0.0f};        // in the body frame, before the body's scale
+  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  BodyMaterial material{};
+  // kg/m^3, >= 0. A part of density 0 has no mass (a sensor, a decoration); a dynamic body needs
+  // one part with mass unless BodyDef::mass is given (the densities then weigh the parts).
+  float density = 1000.0f;
+  bool sensor = false;  // reports overlaps of this part, takes no response
+  std::uint32_t layer = 1;
+  std::uint32_t mask = kAllLayers;
+  std::int32_t group = 0;
+  std::uint64_t userData = 0;
 };
 
 struct BodyDef {
@@ -86,6 +117,11 @@ struct BodyDef {
   bool ccd = false;
   std::uint64_t userData = 0;
   std::string name;
+  // A body made of parts: when not empty, the body is these parts (in this order: part i is index i)
+  // and the single-part fields above (shape, density, bounciness, friction, rollingResistance,
+  // sensor, layer, mask, group) are not read; position, rotation, scale, velocities, mass and the
+  // rest still are. A particle has no parts.
+  std::vector<PartDef> parts;
 };
 
 }  // namespace collide

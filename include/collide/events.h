@@ -24,6 +24,10 @@ struct ContactEvent {
   Type type = Type::Begin;
   BodyId a;
   BodyId b;
+  // The parts in contact (World::partCount; 0 for a body of one shape): a body made of parts has a
+  // contact, and events, per pair of parts that touch.
+  std::uint32_t partA = 0;
+  std::uint32_t partB = 0;
   Vec3 point{0.0f};
   Vec3 normal{0.0f, 1.0f, 0.0f};
   float impulse = 0.0f;
@@ -38,6 +42,8 @@ struct ContactEvent {
 struct ContactData {
   BodyId a;
   BodyId b;
+  std::uint32_t partA = 0;  // as ContactEvent
+  std::uint32_t partB = 0;
   Manifold manifold;
   std::array<float, Manifold::kMaxPoints> normalImpulses{};
   float impactImpulse = 0.0f;
@@ -69,6 +75,9 @@ struct SensorEvent {
   Type type = Type::Begin;
   BodyId sensor;
   BodyId visitor;
+  // The sensor part and the part of the visitor that crossed it (0 for a body of one shape).
+  std::uint32_t sensorPart = 0;
+  std::uint32_t visitorPart = 0;
 };
 
 // A body whose state stopped being finite during the last step (an accumulated force that

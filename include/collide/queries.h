@@ -13,7 +13,8 @@
 namespace collide {
 
 // Which bodies a query sees. A body takes part when its layer passes the mask ((layer & mask) != 0),
-// it is not a sensor (unless includeSensors) and `accept`, when set, returns true for it. Sensors are
+// it is not a sensor (unless includeSensors) and `accept`, when set, returns true for it. For a body
+// made of parts the layer and sensor tests are each part's. Sensors are
 // left out by default: they are trigger volumes without a surface, so a picking ray or a character's
 // sweep should pass through them; set includeSensors to ask which sensors a ray or shape reaches.
 // An unset `accept` costs nothing (no allocation, no call).
@@ -29,8 +30,9 @@ struct RayCastResult {
   float distance = 0.0f;  // along the ray (its direction normalised)
   Vec3 point{0.0f};
   Vec3 normal{0.0f};           // unit, the surface normal at the hit, facing the ray's origin side
-  std::uint32_t subShape = 0;  // the part hit: triangle index for a mesh, child index for a compound
+  std::uint32_t subShape = 0;  // within the part hit: triangle index for a mesh, child index for a compound
   float fraction = 0.0f;       // distance / ray.maxDistance; 0 for an infinite or zero maxDistance
+  std::uint32_t part = 0;      // the body's part hit (BodyDef::parts; 0 for a body of one shape)
 };
 
 // Called by World::castRayCollect for each body the ray hits, in no particular order (the broad
@@ -46,7 +48,8 @@ struct ShapeCastResult {
   float distance = 0.0f;       // fraction * |translation|
   Vec3 point{0.0f};            // on the contact, midway between the two surfaces
   Vec3 normal{0.0f};           // unit, from the hit body's surface towards the cast shape
-  std::uint32_t subShape = 0;  // the compound child hit (0 for other shapes)
+  std::uint32_t subShape = 0;  // the compound child hit within the part (0 for other shapes)
+  std::uint32_t part = 0;      // the body's part hit (0 for a body of one shape)
   // The shape already overlaps the body at the start of the cast: fraction 0, and normal is the
   // direction that separates the cast shape from the body.
   bool initiallyOverlapping = false;
@@ -55,7 +58,8 @@ struct ShapeCastResult {
 // A body that a shape placed in the world overlaps (World::overlapShape).
 struct OverlapResult {
   BodyId body;
-  std::uint32_t subShape = 0;  // the first compound child overlapped (0 for other shapes)
+  std::uint32_t subShape = 0;  // the first compound child overlapped within the part (0 for other shapes)
+  std::uint32_t part = 0;      // the part overlapped: a body made of parts has a result per part touched
   friend bool operator==(const OverlapResult&, const OverlapResult&) = default;
 };
 

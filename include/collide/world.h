@@ -180,6 +180,32 @@ class World {
   // Every live body, in slot order (the order of the step's stages).
   std::vector<BodyId> bodies() const;
 
+  // ---- Parts (BodyDef::parts, docs/parts.md). A body of one shape has one part, index 0: its shape
+  // at the body origin with the body's material, sensor flag and filter. A part index out of range
+  // throws Error. ----
+  std::uint32_t partCount(BodyId id) const;
+  const Shape& partShape(BodyId id, std::uint32_t part) const;
+  Transform partLocalPose(BodyId id, std::uint32_t part) const;  // in the body frame, before its scale
+  bool partIsSensor(BodyId id, std::uint32_t part) const;
+  std::uint64_t partUserData(BodyId id, std::uint32_t part) const;
+  // As setMaterial and setCollisionFilter, for one part; on a body made of parts, setMaterial and
+  // setCollisionFilter set every part, and material, layer, mask and group read part 0 (layer and
+  // mask: the union of the parts'; group: 0).
+  BodyMaterial partMaterial(BodyId id, std::uint32_t part) const;
+  void setPartMaterial(BodyId id, std::uint32_t part, const BodyMaterial& material);
+  CollisionFilter partFilter(BodyId id, std::uint32_t part) const;
+  void setPartFilter(BodyId id, std::uint32_t part, const CollisionFilter& filter);
+  // Adds a part (checked as BodyDef::parts; Error and no change for a bad one) and returns its
+  // index, the last. A body of one shape becomes a body made of parts, its shape part 0. Removes a
+  // part: those after it move down one index; a body keeps at least one part. Both recompute the
+  // body's mass, centre of mass and inertia from its parts (scaled to BodyDef::mass if it was given),
+  // keep the body origin where it is and the velocity of every point of the body, move the anchors
+  // of its constraints with the centre of mass, and wake it. Contacts of the removed part end
+  // (their End events open the next step's events); other contacts go on. Not for a particle, nor a
+  // body of one plane.
+  std::uint32_t addPart(BodyId id, const PartDef& part);
+  void removePart(BodyId id, std::uint32_t part);
+
   // ---- Constraints. Stale ids throw Error; destroying a body destroys its constraints. ----
   // Throws Error naming the field for a bad definition (stale body, a == b, no dynamic body, ...).
   JointId createDistanceConstraint(const DistanceConstraintDef& def);

@@ -251,10 +251,57 @@ BodyType readBodyType(const JsonNode& node) {
   node.fail("unknown body type " + node.shown() + " (expected static, kinematic or dynamic)");
 }
 
+const Material& namedMaterial(const JsonNode& n, const Scene& scene) {
+  const auto it = scene.materials.find(n.string());
+  if (it == scene.materials.end()) n.fail("unknown material " + n.shown());
+  return it->second;
+}
+
+// A part of a body (docs/scene-format.md, "Parts"): its defaults are the body's own values (its
+// material, friction, bounciness, rolling resistance, density, sensor flag, layer, mask and group),
+// then the part's material, then the part's own fields.
+PartDef readPart(const JsonNode& node, const BodyDef& body, const Scene& scene, const LoadContext& context) {
+  node.expectObject({"shape", "position", "rotation", "material", "bounciness", "friction",
+                     "rolling_resistance", "density", "sensor", "layer", "mask", "group"});
+  PartDef part;
+  const JsonNode shapeNode = node.at("shape");
+  part.shape = readShape(shapeNode, context, 0);
+  if (part.shape.type() == ShapeType::Plane)
+    shapeNode.fail("a plane cannot be a part; make it a body of its own");
+  if (part.shape.type() == ShapeType::Mesh && body.type == BodyType::Dynamic) {
+    shapeNode.fail("a mesh part can only be on a static or kinematic body, got a dynamic body");
+  }
+  if (auto n = node.find("position")) part.position = n->vec3();
+  if (auto n = node.find("rotation")) part.rotation = n->quaternion();
+  part.material = {body.friction, body.bounciness, body.rollingResistance};
+  part.density = body.density;
+  part.sensor = body.sensor;
+  part.layer = body.layer;
+  part.mask = body.mask;
+  part.group = body.group;
+  if (auto n = node.find("material")) {
+    const Material& m = namedMaterial(*n, scene);
+    if (m.bounciness) part.material.bounciness = *m.bounciness;
+    if (m.friction) part.material.friction = *m.friction;
+    if (m.rollingResistance) part.material.rollingResistance = *m.rollingResistance;
+    if (m.density) part.density = *m.density;
+  }
+  if (auto n = node.find("bounciness")) part.material.bounciness = n->unitInterval();
+  if (auto n = node.find("friction")) part.material.friction = n->nonNegative();
+  if (auto n = node.find("rolling_resistance")) part.material.rollingResistance = n->nonNegative();
+  if (auto n = node.find("density")) part.density = n->nonNegative();
+  if (auto n = node.find("sensor")) part.sensor = n->boolean();
+  if (auto n = node.find("layer")) part.layer = n->bits();
+  if (auto n = node.find("mask")) part.mask = n->bits();
+  if (auto n = node.find("group")) part.group = n->integer(std::numeric_limits<int>::min());
+  return part;
+}
+
 Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
   node.expectObject({"name",
                      "type",
                      "shape",
+                     "parts",
                      "position",
                      "rotation",
                      "scale",
@@ -281,13 +328,17 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   d.name = node.at("name").string();
   if (d.name.empty()) node.at("name").fail("must not be empty");
   d.type = readBodyType(node.at("type"));
-  const JsonNode shapeNode = node.at("shape");
-  d.shape = readShape(shapeNode, context, 0);
-  if (d.shape.type() == ShapeType::Plane && d.type != BodyType::Static) {
-    shapeNode.fail("a plane can only be on a static body, got a " + std::string(toString(d.type)) + " body");
-  }
-  if (d.shape.type() == ShapeType::Mesh && d.type == BodyType::Dynamic) {
-    shapeNode.fail("a mesh can only be on a static or kinematic body, got a dynamic body");
+  if (node.has("shape") && node.has("parts")) node.at("parts").fail("give shape or parts, not both");
+  if (!node.has("parts")) {
+    const JsonNode shapeNode = node.at("shape");
+    d.shape = readShape(shapeNode, context, 0);
+    if (d.shape.type() == ShapeType::Plane && d.type != BodyType::Static) {
+      shapeNode.fail("a plane can only be on a static body, got a " + std::string(toString(d.type)) +
+                     " body");
+    }
+    if (d.shape.type() == ShapeType::Mesh && d.type == BodyType::Dynamic) {
+      shapeNode.fail("a mesh can only be on a static or kinematic body, got a dynamic body");
+    }
   }
   if (auto n = node.find("position")) d.position = n->vec3();
   if (auto n = node.find("rotation")) d.rotation = n->quaternion();
@@ -298,9 +349,7 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   // Material values first, then the body's own.
   if (auto n = node.find("material")) {
     body.material = n->string();
-    const auto it = scene.materials.find(body.material);
-    if (it == scene.materials.end()) n->fail("unknown material " + n->shown());
-    const Material& m = it->second;
+    const Material& m = namedMaterial(*n, scene);
     if (m.bounciness) d.bounciness = *m.bounciness;
     if (m.friction) d.friction = *m.friction;
     if (m.rollingResistance) d.rollingResistance = *m.rollingResistance;
@@ -323,6 +372,18 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   if (auto n = node.find("break_impulse")) body.breakImpulse = n->positive();
   // Our extension: a point mass (BodyDef::particle), the links of chains and nets.
   if (auto n = node.find("particle")) d.particle = n->boolean();
+  if (auto partsNode = node.find("parts")) {
+    if (d.particle) node.at("particle").fail("a particle is a point mass of one sphere and has no parts");
+    const std::vector<JsonNode> elements = partsNode->elements();
+    if (elements.empty()) partsNode->fail("must hold at least one part");
+    bool anyMass = false;
+    for (const JsonNode& partNode : elements) {
+      d.parts.push_back(readPart(partNode, d, scene, context));
+      anyMass = anyMass || d.parts.back().density > 0.0f;
+    }
+    if (d.type == BodyType::Dynamic && !anyMass)
+      partsNode->fail("a dynamic body needs a part with density > 0");
+  }
   if (d.particle) {
     const JsonNode n = node.at("particle");
     if (d.type != BodyType::Dynamic)

@@ -4,9 +4,13 @@
 #include <collide/error.h>
 
 #include "base/format.h"
+#include "shapes/shape_functions.h"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
+#include <vector>
 
 namespace collide::detail {
 
@@ -32,21 +36,56 @@ void validateParticle(const BodyDef& def, const std::string& who) {
   }
 }
 
-// Mass, centre of mass and inertia of a dynamic body; a particle is a point mass (zero inverse
-// inertia, so no impulse ever turns it). Errors start with the field to blame: "shape: " or, for a
-// given mass that the shape's inertia cannot carry in float, "mass: ".
-void initMass(const BodyDef& def, BodyRecord& r, BodyState& s) {
-  MassProperties props;
-  try {
-    props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
-  } catch (const Error& e) {
-    throw Error(std::string("shape: ") + e.what());
+// The parts' mass properties in the body frame at the body's scale: each part of density > 0 at
+// its pose (centre placed, inertia rotated R I R^T), then every inertia moved to the common centre
+// (parallel-axis theorem). Parts are taken not to overlap, as compound children.
+MassProperties partsMassProperties(const Compound& compound, const std::vector<PartRecord>& parts,
+                                   float scale) {
+  struct Placed {
+    float mass;
+    Vec3 center;
+    Mat3 inertia;
+  };
+  std::vector<Placed> placed;
+  MassProperties total;
+  Vec3 weighted(0.0f);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (parts[i].density == 0.0f) continue;
+    const Compound::Child& child = compound.children()[i];
+    MassProperties m;
+    try {
+      m = massProperties(child.shape, parts[i].density, scale);
+    } catch (const Error& e) {
+      throw Error("parts[" + std::to_string(i) + "]: shape: " + e.what());
+    }
+    const Mat3 rotation = glm::mat3_cast(child.transform.rotation);
+    const Vec3 center = scale * child.transform.position + rotation * m.centerOfMass;
+    placed.push_back({m.mass, center, rotation * m.inertia * glm::transpose(rotation)});
+    total.mass += m.mass;
+    total.volume += m.volume;
+    weighted += m.mass * center;
   }
+  if (placed.empty()) throw Error("parts: a dynamic body needs a part with density > 0");
+  total.centerOfMass = weighted / total.mass;
+  for (const Placed& p : placed)
+    total.inertia += shiftInertia(p.inertia, p.mass, p.center - total.centerOfMass);
+  return total;
+}
+
+// Mass, centre of mass and inertia of a dynamic body from its shape's (or parts') mass properties
+// at density 1 when the mass is given, else at the body's densities; a particle is a point mass
+// (zero inverse inertia, so no impulse ever turns it). Errors start with the field to blame:
+// "shape: " (or "parts..."), or, for a given mass that the shape's inertia cannot carry in float,
+// "mass: ".
+void initMass(const MassProperties& props, const std::optional<float>& givenMass, bool particle,
+              BodyRecord& r, BodyState& s) {
   float massScale = 1.0f;
-  if (def.mass) massScale = *def.mass / props.mass;
+  if (givenMass) massScale = *givenMass / props.mass;
   r.mass = props.mass * massScale;
   r.localCenterOfMass = props.centerOfMass;
-  if (!def.particle) {
+  r.inertiaLocal = Mat3(0.0f);
+  r.inverseInertiaLocal = Mat3(0.0f);
+  if (!particle) {
     r.inertiaLocal = props.inertia * massScale;
     r.inverseInertiaLocal = glm::inverse(r.inertiaLocal);
     r.isotropicInertia = isIsotropic(r.inertiaLocal);
@@ -59,8 +98,8 @@ void initMass(const BodyDef& def, BodyRecord& r, BodyState& s) {
   if (!(std::isfinite(r.mass) && r.mass > 0.0f && std::isfinite(s.inverseMass) &&
         isFinite(r.localCenterOfMass) && isFiniteMatrix(r.inverseInertiaLocal))) {
     const bool shapeFits = std::isfinite(props.mass) && props.mass > 0.0f && isFinite(props.centerOfMass);
-    if (def.mass && shapeFits) {
-      throw Error("mass: mass properties not representable in float with mass " + formatFloat(*def.mass) +
+    if (givenMass && shapeFits) {
+      throw Error("mass: mass properties not representable in float with mass " + formatFloat(*givenMass) +
                   ": the mass is too large or too small for this shape at this scale");
     }
     throw Error("shape: mass properties not representable in float (mass " + formatFloat(r.mass) +
@@ -70,26 +109,43 @@ void initMass(const BodyDef& def, BodyRecord& r, BodyState& s) {
 
 // The radii and extent that the speculative margin, the manifold cache and continuous collision
 // read.
-void initShapeExtents(const BodyDef& def, BodyRecord& r) {
-  if (def.type != BodyType::Static) {
-    const Vec3 half = localBounds(def.shape).halfExtents() * def.scale;
+void initShapeExtents(BodyRecord& r) {
+  if (r.type != BodyType::Static) {
+    const Vec3 half = localBounds(r.shape).halfExtents() * r.scale;
     r.minExtent = std::min({half.x, half.y, half.z});
-    const BoundingSphere sphere = localBoundingSphere(def.shape);
-    r.boundingRadius =
-        glm::length(sphere.center * def.scale - r.localCenterOfMass) + sphere.radius * def.scale;
+    const BoundingSphere sphere = localBoundingSphere(r.shape);
+    r.boundingRadius = glm::length(sphere.center * r.scale - r.localCenterOfMass) + sphere.radius * r.scale;
   }
-  const BoundingSphere sphere = localBoundingSphere(def.shape);
-  r.originRadius = (glm::length(sphere.center) + sphere.radius) * def.scale;
+  const BoundingSphere sphere = localBoundingSphere(r.shape);
+  r.originRadius = (glm::length(sphere.center) + sphere.radius) * r.scale;
 }
 
 // What the shape's size gives the record: mass (dynamic bodies), radii and extent.
 void initShapeMeasures(const BodyDef& def, BodyRecord& r, BodyState& s) {
-  if (def.type == BodyType::Dynamic) initMass(def, r, s);  // its errors name their field
+  if (def.type == BodyType::Dynamic) {
+    MassProperties props;
+    try {
+      props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
+    } catch (const Error& e) {
+      throw Error(std::string("shape: ") + e.what());
+    }
+    initMass(props, def.mass, def.particle, r, s);  // its errors name their field
+  }
   try {
-    initShapeExtents(def, r);
+    initShapeExtents(r);
   } catch (const Error& e) {
     throw Error(std::string("shape: ") + e.what());
   }
+}
+
+void validateMaterial(const BodyMaterial& m, const std::function<void(const std::string&)>& fail) {
+  if (!isFinite(m.bounciness) || m.bounciness < 0.0f || m.bounciness > 1.0f) {
+    fail("bounciness must be in [0, 1], got " + formatFloat(m.bounciness));
+  }
+  if (!isFinite(m.friction) || m.friction < 0.0f)
+    fail("friction must be finite and >= 0, got " + formatFloat(m.friction));
+  if (!isFinite(m.rollingResistance) || m.rollingResistance < 0.0f)
+    fail("rollingResistance must be finite and >= 0, got " + formatFloat(m.rollingResistance));
 }
 
 }  // namespace
@@ -124,18 +180,25 @@ void validateBodyDef(const BodyDef& def) {
   if (!isFinite(def.angularVelocity)) {
     fail("angularVelocity must be finite, got " + formatVec(def.angularVelocity));
   }
-  if (!isFinite(def.bounciness) || def.bounciness < 0.0f || def.bounciness > 1.0f) {
-    fail("bounciness must be in [0, 1], got " + formatFloat(def.bounciness));
-  }
-  if (!isFinite(def.friction) || def.friction < 0.0f)
-    fail("friction must be finite and >= 0, got " + formatFloat(def.friction));
-  if (!isFinite(def.rollingResistance) || def.rollingResistance < 0.0f)
-    fail("rollingResistance must be finite and >= 0, got " + formatFloat(def.rollingResistance));
+  validateMaterial({def.friction, def.bounciness, def.rollingResistance}, fail);
   if (!isFinite(def.gravityScale)) fail("gravityScale must be finite, got " + formatFloat(def.gravityScale));
   if (!isFinite(def.linearDamping) || def.linearDamping < 0.0f)
     fail("linearDamping must be finite and >= 0, got " + formatFloat(def.linearDamping));
   if (!isFinite(def.angularDamping) || def.angularDamping < 0.0f)
     fail("angularDamping must be finite and >= 0, got " + formatFloat(def.angularDamping));
+  if (!def.parts.empty()) {
+    if (def.particle) fail("parts: a particle is a point mass of one sphere and has no parts");
+    if (def.type == BodyType::Dynamic && def.mass && (!isFinite(*def.mass) || *def.mass <= 0.0f))
+      fail("mass must be finite and > 0, got " + formatFloat(*def.mass));
+    bool anyMass = false;
+    for (std::size_t i = 0; i < def.parts.size(); ++i) {
+      validatePartDef(def.parts[i], def.type, who + ": parts[" + std::to_string(i) + "]");
+      anyMass = anyMass || def.parts[i].density > 0.0f;
+    }
+    if (def.type == BodyType::Dynamic && !anyMass)
+      fail("parts: a dynamic body needs a part with density > 0");
+    return;  // the single-part fields are not read
+  }
   if (def.shape.type() == ShapeType::Plane && def.type != BodyType::Static) {
     fail("shape: a plane is an infinite half-space and can only be on a static body");
   }
@@ -152,6 +215,72 @@ void validateBodyDef(const BodyDef& def) {
       fail("density must be finite and > 0, got " + formatFloat(def.density));
     }
   }
+}
+
+void validatePartDef(const PartDef& part, BodyType type, const std::string& who) {
+  const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
+  if (part.shape.type() == ShapeType::Plane)
+    fail("shape: a plane is an infinite half-space and cannot be a part; make it a body of its own");
+  if (part.shape.type() == ShapeType::Mesh && type == BodyType::Dynamic)
+    fail("shape: a triangle mesh part is for static and kinematic bodies");
+  if (!isFinite(part.position)) fail("position must be finite, got " + formatVec(part.position));
+  if (!isFinite(part.rotation) || std::abs(glm::length(part.rotation) - 1.0f) > 1e-3f) {
+    fail("rotation must be a finite unit quaternion, got length " + formatFloat(glm::length(part.rotation)));
+  }
+  validateMaterial(part.material, fail);
+  if (!isFinite(part.density) || part.density < 0.0f)
+    fail("density must be finite and >= 0, got " + formatFloat(part.density));
+}
+
+PartRecord makePartRecord(const PartDef& part) {
+  return {part.material, part.density, part.sensor, part.layer, part.mask, part.group, part.userData};
+}
+
+Compound::Child makePartChild(const PartDef& part) {
+  return {part.shape, Transform{part.position, glm::normalize(part.rotation), 1.0f}};
+}
+
+void setBodyParts(BodyRecord& r, BodyState& s, std::vector<Compound::Child> children,
+                  std::vector<PartRecord> parts) {
+  const Vec3 origin = bodyOrigin(r, s);
+  const Vec3 oldCenter = s.centerOfMass;
+  Shape shape = Compound::fromChildren(std::move(children));
+  BodyRecord next = r;  // the record changes only once everything below has succeeded
+  next.shape = std::move(shape);
+  next.parts = std::move(parts);
+  next.sensor = true;
+  next.layer = next.mask = 0;
+  next.group = 0;
+  for (const PartRecord& p : next.parts) {
+    next.sensor = next.sensor && p.sensor;
+    next.layer |= p.layer;
+    next.mask |= p.mask;
+  }
+  next.friction = next.parts[0].material.friction;
+  next.bounciness = next.parts[0].material.bounciness;
+  next.rollingResistance = next.parts[0].material.rollingResistance;
+  next.ccd = next.ccd && !next.sensor;
+  BodyState nextState = s;
+  if (next.type == BodyType::Dynamic) {
+    const MassProperties props = partsMassProperties(next.shape.compound(), next.parts, next.scale);
+    initMass(props, next.givenMass, false, next, nextState);
+  }
+  try {
+    initShapeExtents(next);
+  } catch (const Error& e) {
+    throw Error(std::string("shape: ") + e.what());
+  }
+  nextState.centerOfMass = origin + s.rotation * next.localCenterOfMass;
+  nextState.centerOfMass0 = nextState.centerOfMass;
+  nextState.rotation0 = s.rotation;
+  // The velocity field of the body is kept: its new centre moves as that point of the body did.
+  nextState.linearVelocity += glm::cross(s.angularVelocity, nextState.centerOfMass - oldCenter);
+  nextState.inverseInertiaWorld = worldInverseInertia(next.inverseInertiaLocal, s.rotation);
+  next.validCenterOfMass = nextState.centerOfMass;
+  next.validRotation = s.rotation;
+  next.boundsValid = false;
+  r = std::move(next);
+  s = nextState;
 }
 
 void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
@@ -173,12 +302,31 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   r.sensor = def.sensor;
   r.particle = def.particle;
   r.ccd = def.ccd && !def.sensor;
-  try {
-    initShapeMeasures(def, r, s);
-  } catch (const Error& e) {
-    throw Error(who + ": " + e.what());  // "shape: ..." or "mass: ..."
-  }
+  r.givenMass = def.mass;
+  r.density = def.density;
   s.rotation = glm::normalize(def.rotation);
+  if (def.parts.empty()) {
+    try {
+      initShapeMeasures(def, r, s);
+    } catch (const Error& e) {
+      throw Error(who + ": " + e.what());  // "shape: ..." or "mass: ..."
+    }
+  } else {
+    std::vector<Compound::Child> children;
+    std::vector<PartRecord> parts;
+    for (const PartDef& part : def.parts) {
+      children.push_back(makePartChild(part));
+      parts.push_back(makePartRecord(part));
+    }
+    r.ccd = def.ccd;
+    s.centerOfMass = def.position;  // the origin, until the parts' centre of mass is known
+    r.localCenterOfMass = Vec3(0.0f);
+    try {
+      setBodyParts(r, s, std::move(children), std::move(parts));
+    } catch (const Error& e) {
+      throw Error(who + ": " + e.what());
+    }
+  }
   s.centerOfMass = def.position + s.rotation * r.localCenterOfMass;
   s.centerOfMass0 = s.centerOfMass;
   s.rotation0 = s.rotation;

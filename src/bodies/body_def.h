@@ -9,6 +9,7 @@
 #include "bodies/body_storage.h"
 
 #include <string>
+#include <vector>
 
 namespace collide::detail {
 
@@ -21,6 +22,20 @@ std::string bodyLabel(const BodyDef& def);
 
 // Throws Error, prefixed with the body's label, for a definition no body can be made from.
 void validateBodyDef(const BodyDef& def);
+
+// Throws Error, prefixed with `who` ("body \"crate\": parts[2]"), for a part no body of this type
+// can have.
+void validatePartDef(const PartDef& part, BodyType type, const std::string& who);
+PartRecord makePartRecord(const PartDef& part);
+Compound::Child makePartChild(const PartDef& part);
+
+// Gives a body made of parts its parts (at creation, World::addPart, removePart): the compound shape,
+// the part records and the record's summaries of them, the mass properties (dynamic bodies: from
+// the parts' densities, scaled to BodyRecord::givenMass if set), the radii and extent. The body's
+// origin stays where it is and its velocity field is kept. Throws Error (and changes nothing) when
+// they cannot be computed; at least one child.
+void setBodyParts(BodyRecord& record, BodyState& state, std::vector<Compound::Child> children,
+                  std::vector<PartRecord> parts);
 
 // Fills a freshly allocated slot from a valid definition. Throws Error (prefixed with the body's
 // label) when the shape's mass properties or bounds are not representable at this scale and place.

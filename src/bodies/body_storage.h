@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,18 @@ struct BodyState {
   // "relative positions": anchors move with the body's change of pose, not re-queried).
   Vec3 centerOfMass0{0.0f};
   Quat rotation0{1.0f, 0.0f, 0.0f, 0.0f};
+};
+
+// What a part of a body made of parts holds besides its shape and local pose (those are the body
+// shape's compound child of the same index).
+struct PartRecord {
+  BodyMaterial material;
+  float density = 1000.0f;
+  bool sensor = false;
+  std::uint32_t layer = 1;
+  std::uint32_t mask = kAllLayers;
+  std::int32_t group = 0;
+  std::uint64_t userData = 0;
 };
 
 struct BodyRecord {
@@ -75,6 +88,13 @@ struct BodyRecord {
   Vec3 torque{0.0f};
   std::string name;
   std::uint64_t userData = 0;
+  // A body made of parts (BodyDef::parts): one record per child of `shape`, a compound; empty for a
+  // body of one shape, whose part 0 is the shape and the fields above. For a body made of parts, the
+  // fields above summarise the parts: sensor when every part is one, layer and mask the union of the
+  // parts', group 0, the material part 0's.
+  std::vector<PartRecord> parts;
+  std::optional<float> givenMass;  // BodyDef::mass: kept when parts are added or removed
+  float density = 1000.0f;         // BodyDef::density: a body of one shape's part 0, if parts are added
 };
 
 class BodyStorage {
@@ -99,14 +119,21 @@ class BodyStorage {
   // Forces and torques act for one step: cleared once it is solved.
   void clearForces();
 
-  // The live bodies with a bounciness or a rolling resistance above 0, and the sensors
+  // The live bodies with a bounciness or a rolling resistance above 0, and the sensors (a part of
+  // the body counts)
   // (World::createBody and destroyBody keep them; so must any setter of these fields): the stages
   // that only such bodies need (Newton impacts, rolling resistance, sensor crossings) skip their
   // scan of every contact or pair when there are none.
   void tally(const BodyRecord& record, int sign) {
-    if (record.bounciness > 0.0f) bouncyCount += sign;
-    if (record.rollingResistance > 0.0f) rollingCount += sign;
-    if (record.sensor) sensorCount += sign;
+    bool bouncy = record.bounciness > 0.0f, rolling = record.rollingResistance > 0.0f, sensor = record.sensor;
+    for (const PartRecord& part : record.parts) {
+      bouncy = bouncy || part.material.bounciness > 0.0f;
+      rolling = rolling || part.material.rollingResistance > 0.0f;
+      sensor = sensor || part.sensor;
+    }
+    if (bouncy) bouncyCount += sign;
+    if (rolling) rollingCount += sign;
+    if (sensor) sensorCount += sign;
   }
 
   std::vector<BodyRecord> records;

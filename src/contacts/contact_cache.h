@@ -66,23 +66,27 @@ struct Contact {
   std::uint64_t key = 0;  // proxy a index << 32 | proxy b index
   std::uint32_t bodyA = 0;
   std::uint32_t bodyB = 0;
+  // The parts in contact (bodies made of parts have a contact per pair of parts that touch, in the
+  // order of their indices; bodies of one shape, part 0).
+  std::uint32_t partA = 0;
+  std::uint32_t partB = 0;
   std::uint32_t generationA = 0;
   std::uint32_t generationB = 0;
   Manifold manifold;
   std::array<ContactPointState, Manifold::kMaxPoints> points{};
   float friction = 0.0f;
   float rollingResistance = 0.0f;  // m: the larger of the two bodies' (contact_response.h)
-  float restitution = 0.0f;       // what the solver applies (Newton); 0 under the interpolated model
-  float impactBounciness = 0.0f;  // the combined bounciness, for the lecture's interpolated impact
-  Vec3 surfaceVelocity{0.0f};     // of B relative to A in the contact plane (pre-solve: a belt)
-  bool sensor = false;            // overlap only, no response
-  bool enabled = true;            // the pre-solve callback may disable it for this step
-  bool asleep = false;            // no awake dynamic body: kept as it was, not solved (sleeping)
-  bool touching = false;          // after this step's narrow phase
-  bool wasTouching = false;       // after last step's
-  int consecutiveSteps = 0;       // steps in a row with points (lecture: friction from the second step)
-  float impactSpeed = 0.0f;       // the approach speed the impact stage resolved this step (events)
-  float impactImpulse = 0.0f;     // the normal impulse it gave (events, and the contact touched)
+  float restitution = 0.0f;        // what the solver applies (Newton); 0 under the interpolated model
+  float impactBounciness = 0.0f;   // the combined bounciness, for the lecture's interpolated impact
+  Vec3 surfaceVelocity{0.0f};      // of B relative to A in the contact plane (pre-solve: a belt)
+  bool sensor = false;             // overlap only, no response
+  bool enabled = true;             // the pre-solve callback may disable it for this step
+  bool asleep = false;             // no awake dynamic body: kept as it was, not solved (sleeping)
+  bool touching = false;           // after this step's narrow phase
+  bool wasTouching = false;        // after last step's
+  int consecutiveSteps = 0;        // steps in a row with points (lecture: friction from the second step)
+  float impactSpeed = 0.0f;        // the approach speed the impact stage resolved this step (events)
+  float impactImpulse = 0.0f;      // the normal impulse it gave (events, and the contact touched)
   // The friction patch (dynamics/contact_solver.h), kept across steps: its impulse as a world vector
   // (the tangent basis is rebuilt every step), the twist about the normal, and the static anchor in
   // each body's frame (from the centre of mass) with whether it holds.
@@ -111,11 +115,21 @@ inline std::uint64_t pairKey(std::uint32_t proxyA, std::uint32_t proxyB) {
   return (static_cast<std::uint64_t>(proxyA) << 32) | proxyB;
 }
 
-// The contact of the pair with this key, if the step kept one (contacts are in key order).
-inline const Contact* findContact(std::span<const Contact> contacts, std::uint64_t key) {
-  const auto it = std::lower_bound(contacts.begin(), contacts.end(), key,
-                                   [](const Contact& c, std::uint64_t k) { return c.key < k; });
-  return it != contacts.end() && it->key == key ? &*it : nullptr;
+// A contact's place in the contacts' order after its key: its two parts.
+inline std::uint64_t partsKey(std::uint32_t partA, std::uint32_t partB) {
+  return (static_cast<std::uint64_t>(partA) << 32) | partB;
+}
+inline std::uint64_t partsKey(const Contact& c) { return partsKey(c.partA, c.partB); }
+
+// The contact of the pair with this key and these parts, if the step kept one (contacts are in key
+// order, then parts order).
+inline const Contact* findContact(std::span<const Contact> contacts, std::uint64_t key,
+                                  std::uint32_t partA = 0, std::uint32_t partB = 0) {
+  const std::uint64_t parts = partsKey(partA, partB);
+  const auto it = std::lower_bound(
+      contacts.begin(), contacts.end(), key,
+      [&](const Contact& c, std::uint64_t k) { return c.key < k || (c.key == k && partsKey(c) < parts); });
+  return it != contacts.end() && it->key == key && partsKey(*it) == parts ? &*it : nullptr;
 }
 
 }  // namespace collide::detail

@@ -1,6 +1,8 @@
 // Contact and sensor events and their buffers: the step's events stage (contact_events.h).
 #include "contacts/contact_events.h"
 
+#include "bodies/body_parts.h"
+
 #include <algorithm>
 
 namespace collide::detail {
@@ -8,9 +10,10 @@ namespace collide::detail {
 namespace {
 
 SensorEvent makeSensorEvent(const BodyStorage& bodies, const Contact& contact, SensorEvent::Type type) {
-  const bool aIsSensor = bodies.records[contact.bodyA].sensor;
+  const bool aIsSensor = partIsSensor(bodies.records[contact.bodyA], contact.partA);
   return {type, bodies.idOf(aIsSensor ? contact.bodyA : contact.bodyB),
-          bodies.idOf(aIsSensor ? contact.bodyB : contact.bodyA)};
+          bodies.idOf(aIsSensor ? contact.bodyB : contact.bodyA), aIsSensor ? contact.partA : contact.partB,
+          aIsSensor ? contact.partB : contact.partA};
 }
 
 }  // namespace
@@ -52,6 +55,8 @@ ContactEvent makeContactEvent(const BodyStorage& bodies, const Contact& c, Conta
   e.type = type;
   e.a = bodies.idOf(c.bodyA);
   e.b = bodies.idOf(c.bodyB);
+  e.partA = c.partA;
+  e.partB = c.partB;
   e.normal = c.manifold.normal;
   int deepest = 0;
   for (int i = 0; i < c.manifold.count; ++i) {
@@ -70,6 +75,8 @@ ContactData makeContactData(const BodyStorage& bodies, const Contact& c) {
   ContactData d;
   d.a = bodies.idOf(c.bodyA);
   d.b = bodies.idOf(c.bodyB);
+  d.partA = c.partA;
+  d.partB = c.partB;
   d.manifold = c.manifold;
   for (int i = 0; i < c.manifold.count; ++i) d.normalImpulses[i] = c.points[i].totalNormalImpulse;
   d.frictionImpulse = c.frictionImpulse;

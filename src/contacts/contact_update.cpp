@@ -5,6 +5,7 @@
 #include <collide/narrowphase.h>
 
 #include "base/format.h"
+#include "bodies/body_parts.h"
 #include "memory/prefetch.h"
 #include "shapes/shape_functions.h"
 
@@ -96,49 +97,62 @@ class PairPass {
 
   std::uint32_t bodyOf(ProxyId proxy) const { return s_.proxyBodies_[proxy.index]; }
 
-  // Last step's contact of this pair, if it was between these very bodies (not a reused slot);
-  // contacts of pairs that came before it and are gone now end.
-  const Contact* takePrevious(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
+  // Last step's contacts of this pair (one, or one per pair of parts for bodies made of parts), if
+  // they were between these very bodies (not a reused slot); contacts of pairs that came before it
+  // and are gone now end.
+  std::span<const Contact> takePrevious(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
     while (next_ < previous_.size() && previous_[next_].key < key)
       events_.endVanished(bodies_, previous_[next_++]);
-    if (next_ == previous_.size() || previous_[next_].key != key) return nullptr;
-    const Contact& old = previous_[next_++];
+    const std::size_t first = next_;
+    while (next_ < previous_.size() && previous_[next_].key == key) ++next_;
+    if (first == next_) return {};
+    const Contact& old = previous_[first];
     const bool same = old.bodyA == ia && old.bodyB == ib &&
                       old.generationA == bodies_.records[ia].generation &&
                       old.generationB == bodies_.records[ib].generation;
-    return same ? &old : nullptr;
+    return same ? std::span<const Contact>(previous_).subspan(first, next_ - first)
+                : std::span<const Contact>{};
+  }
+
+  void endAll(std::span<const Contact> previous) {
+    for (const Contact& old : previous) events_.endVanished(bodies_, old);
   }
 
   void updatePair(const ProxyPair& pair) {
     const std::uint64_t key = pairKey(pair.a.index, pair.b.index);
     const std::uint32_t ia = bodyOf(pair.a);
     const std::uint32_t ib = bodyOf(pair.b);
-    const Contact* previous = takePrevious(key, ia, ib);
+    const std::span<const Contact> previousRange = takePrevious(key, ia, ib);
     const BodyRecord& ra = bodies_.records[ia];
     const BodyRecord& rb = bodies_.records[ib];
     // Only a dynamic body responds: kinematic-kinematic and kinematic-static pairs are never tested
     // (static-static never reaches us: the broad phase does not produce them).
     if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) return;
     if (ra.sensor && rb.sensor) {
-      if (previous) events_.endVanished(bodies_, *previous);
+      endAll(previousRange);
       return;
     }
     if (!pairAllowed(bodies_, filters_, ia, ib)) {
       ++counts_.filteredPairs;
-      if (previous) events_.endVanished(bodies_, *previous);
+      endAll(previousRange);
       return;
     }
     if (!bodies_.isAwakeDynamic(ia) && !bodies_.isAwakeDynamic(ib)) {
       // Sleeping against static, sleeping or still kinematic: nothing moves, so last step's contact
       // is kept as it was (touching state, impulses for the warm start on waking), unsolved.
-      if (previous) {
-        Contact& kept = contacts_.emplace_back(*previous);
+      for (const Contact& old : previousRange) {
+        Contact& kept = contacts_.emplace_back(old);
         kept.asleep = true;
         kept.wasTouching = kept.touching;
         kept.impactSpeed = kept.impactImpulse = 0.0f;
       }
       return;
     }
+    if (hasParts(ra) || hasParts(rb)) {
+      updatePartPairs(key, ia, ib, previousRange);
+      return;
+    }
+    const Contact* previous = previousRange.empty() ? nullptr : &previousRange.front();
     Contact& c = contacts_.emplace_back();
     ++counts_.narrowPhaseTests;
     const bool reused = computeManifold(ia, ib, previous, c);
@@ -151,11 +165,65 @@ class PairPass {
       keepApart(key, ia, ib, c);
       return;
     }
-    fillContact(key, ia, ib, previous, reused, c);
+    fillContact(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), ra.sensor || rb.sensor, previous,
+                reused, c);
+    finishContact(ia, ib, c);
+  }
+
+  // The pre-solve callback, then whether the contact touches.
+  void finishContact(std::uint32_t ia, std::uint32_t ib, Contact& c) const {
     if (!c.sensor && preSolve_) applyPreSolve(ia, ib, c);
     const float deepest = c.manifold.maxDepth();
     c.touching = c.enabled && (c.sensor ? deepest >= 0.0f : deepest >= -settings_.tuning.linearSlop);
     if (!c.enabled) c.points = {};
+  }
+
+  // A pair with a body made of parts: a contact per pair of parts that the parts' filters allow,
+  // not both sensors, whose boxes (grown by the margin) overlap and whose manifold has points, in
+  // the order of the parts. Each is computed every step (no manifold cache) and carried over from
+  // last step's contact of the same parts.
+  void updatePartPairs(std::uint64_t key, std::uint32_t ia, std::uint32_t ib,
+                       std::span<const Contact> previous) {
+    const BodyRecord& ra = bodies_.records[ia];
+    const BodyRecord& rb = bodies_.records[ib];
+    const Transform& ta = s_.poses_[ia];
+    const Transform& tb = s_.poses_[ib];
+    const float speculative =
+        speculativeMargin(s_.velocities_[ia], s_.velocities_[ib], s_.spinReaches_[ia], s_.spinReaches_[ib],
+                          dt_, settings_.tuning.speculativeDistance);
+    std::size_t k = 0;  // last step's contacts before k are matched or ended
+    forEachAllowedPartPair(ra, rb, [&](std::uint32_t i, std::uint32_t j) {
+      const bool sensor = partIsSensor(ra, i) || partIsSensor(rb, j);
+      if (partIsSensor(ra, i) && partIsSensor(rb, j)) return;
+      const std::uint64_t parts = partsKey(i, j);
+      while (k < previous.size() && partsKey(previous[k]) < parts)
+        events_.endVanished(bodies_, previous[k++]);
+      const Contact* old = k < previous.size() && partsKey(previous[k]) == parts ? &previous[k++] : nullptr;
+      const Shape& shapeA = partShape(ra, i);
+      const Shape& shapeB = partShape(rb, j);
+      const Transform pa = ta * partLocalPose(ra, i);
+      const Transform pb = tb * partLocalPose(rb, j);
+      const float margin = sensor ? 0.0f : speculative;
+      // A body of one plane against parts: the plane's box is everywhere.
+      const bool plane = shapeA.type() == ShapeType::Plane || shapeB.type() == ShapeType::Plane;
+      if (!plane && !worldBounds(shapeA, pa).expanded(margin).overlaps(worldBounds(shapeB, pb))) {
+        if (old) events_.endVanished(bodies_, *old);
+        return;
+      }
+      ++counts_.narrowPhaseTests;
+      Contact& c = contacts_.emplace_back();
+      collide::collide(shapeA, pa, shapeB, pb, c.manifold, margin);
+      if (c.manifold.count == 0) {
+        if (old) events_.endVanished(bodies_, *old);
+        contacts_.pop_back();
+        return;
+      }
+      c.partA = i;
+      c.partB = j;
+      fillContact(key, ia, ib, partMaterial(ra, i), partMaterial(rb, j), sensor, old, false, c);
+      finishContact(ia, ib, c);
+    });
+    while (k < previous.size()) events_.endVanished(bodies_, previous[k++]);
   }
 
   // The pair's manifold in c.manifold and what the next step may reuse of it in c.cache, by the
@@ -227,21 +295,20 @@ class PairPass {
     c.enabled = false;
   }
 
-  // A touching or speculative contact: the pair's materials combined, and last step's points and
+  // A touching or speculative contact: the two parts' materials combined, and last step's points and
   // friction patch carried over (new vs prolonged contact).
-  void fillContact(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const Contact* previous,
-                   bool reused, Contact& c) const {
-    const BodyRecord& ra = bodies_.records[ia];
-    const BodyRecord& rb = bodies_.records[ib];
+  void fillContact(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
+                   const BodyMaterial& mb, bool sensor, const Contact* previous, bool reused,
+                   Contact& c) const {
     c.key = key;
     c.bodyA = ia;
     c.bodyB = ib;
-    c.generationA = ra.generation;
-    c.generationB = rb.generation;
-    c.sensor = ra.sensor || rb.sensor;
-    c.friction = combine(settings_.frictionCombine, ra.friction, rb.friction);
-    c.rollingResistance = std::max(ra.rollingResistance, rb.rollingResistance);
-    c.restitution = combine(settings_.bouncinessCombine, ra.bounciness, rb.bounciness);
+    c.generationA = bodies_.records[ia].generation;
+    c.generationB = bodies_.records[ib].generation;
+    c.sensor = sensor;
+    c.friction = combine(settings_.frictionCombine, ma.friction, mb.friction);
+    c.rollingResistance = std::max(ma.rollingResistance, mb.rollingResistance);
+    c.restitution = combine(settings_.bouncinessCombine, ma.bounciness, mb.bounciness);
     c.impactBounciness = c.restitution;
     c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;
     c.wasTouching = previous ? previous->touching : false;

@@ -5,6 +5,7 @@
 
 #include <collide/events.h>
 
+#include "bodies/body_parts.h"
 #include "bodies/body_storage.h"
 
 #include <cstdint>
@@ -24,17 +25,12 @@ inline std::uint64_t bodyPairKey(std::uint32_t a, std::uint32_t b) {
   return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
 }
 
-// Groups first (the same non-zero group: positive always, negative never), then each body's layer in
-// the other's mask.
-inline bool filtersAllow(const BodyRecord& a, const BodyRecord& b) {
-  if (a.group != 0 && a.group == b.group) return a.group > 0;
-  return (a.layer & b.mask) != 0 && (b.layer & a.mask) != 0;
-}
-
-// The whole test for bodies ia and ib: their filters, the constraints between them, the callback last.
+// The whole test for bodies ia and ib: their filters (for bodies made of parts: some pair of their
+// parts passes; each stage then tests the pairs of parts, forEachAllowedPartPair), the constraints
+// between them, the callback last.
 inline bool pairAllowed(const BodyStorage& bodies, const PairFilters& filters, std::uint32_t ia,
                         std::uint32_t ib) {
-  if (!filtersAllow(bodies.records[ia], bodies.records[ib])) return false;
+  if (!anyPartPairAllowed(bodies.records[ia], bodies.records[ib])) return false;
   if (filters.jointedApart != nullptr && !filters.jointedApart->empty() &&
       filters.jointedApart->contains(bodyPairKey(ia, ib)))
     return false;

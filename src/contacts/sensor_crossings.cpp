@@ -3,6 +3,8 @@
 
 #include <collide/narrowphase.h>
 
+#include "bodies/body_parts.h"
+
 namespace collide::detail {
 
 namespace {
@@ -22,24 +24,37 @@ void reportSensorCrossings(const BodyStorage& bodies, const BroadPhase& broadPha
     const auto ib = static_cast<std::uint32_t>(broadPhase.userValue(pair.b));
     const BodyRecord& ra = bodies.records[ia];
     const BodyRecord& rb = bodies.records[ib];
-    if (ra.sensor == rb.sensor || !ra.alive || !rb.alive) continue;  // exactly one sensor
+    if (!ra.alive || !rb.alive) continue;
+    const bool parts = hasParts(ra) || hasParts(rb);
+    if (!parts && ra.sensor == rb.sensor) continue;  // exactly one sensor
     if (!pairAllowed(bodies, filters, ia, ib)) continue;
     const BodyState& sa = bodies.states[ia];
     const BodyState& sb = bodies.states[ib];
     if (!moved(sa) && !moved(sb)) continue;
-    const Contact* contact = findContact(contacts, pairKey(pair.a.index, pair.b.index));
-    if (contact && contact->touching) continue;  // inside at the start: its own events
+    const std::uint64_t key = pairKey(pair.a.index, pair.b.index);
     const Sweep sweepA = bodySweep(ra, sa);
     const Sweep sweepB = bodySweep(rb, sb);
-    if (!timeOfImpact(ra.shape, sweepA, rb.shape, sweepB, touch).hit()) continue;
-    Manifold atEnd;
-    if (collide::collide(ra.shape, sweepA.at(1.0f), rb.shape, sweepB.at(1.0f), atEnd) &&
-        atEnd.maxDepth() >= 0.0f)
-      continue;  // inside at the end: the next step's contact begins the overlap
-    const BodyId sensor = bodies.idOf(ra.sensor ? ia : ib);
-    const BodyId visitor = bodies.idOf(ra.sensor ? ib : ia);
-    events.sensors.push_back({SensorEvent::Type::Begin, sensor, visitor});
-    events.sensors.push_back({SensorEvent::Type::End, sensor, visitor});
+    forEachAllowedPartPair(ra, rb, [&](std::uint32_t partA, std::uint32_t partB) {
+      const bool sensorA = partIsSensor(ra, partA);
+      if (sensorA == partIsSensor(rb, partB)) return;  // exactly one sensor part
+      const Contact* contact = findContact(contacts, key, partA, partB);
+      if (contact && contact->touching) return;  // inside at the start: its own events
+      const Shape& shapeA = partShape(ra, partA);
+      const Shape& shapeB = partShape(rb, partB);
+      const Sweep partSweepA = partSweep(sweepA, partLocalPose(ra, partA));
+      const Sweep partSweepB = partSweep(sweepB, partLocalPose(rb, partB));
+      if (!timeOfImpact(shapeA, partSweepA, shapeB, partSweepB, touch).hit()) return;
+      Manifold atEnd;
+      if (collide::collide(shapeA, partSweepA.at(1.0f), shapeB, partSweepB.at(1.0f), atEnd) &&
+          atEnd.maxDepth() >= 0.0f)
+        return;  // inside at the end: the next step's contact begins the overlap
+      const BodyId sensor = bodies.idOf(sensorA ? ia : ib);
+      const BodyId visitor = bodies.idOf(sensorA ? ib : ia);
+      const std::uint32_t sensorPart = sensorA ? partA : partB;
+      const std::uint32_t visitorPart = sensorA ? partB : partA;
+      events.sensors.push_back({SensorEvent::Type::Begin, sensor, visitor, sensorPart, visitorPart});
+      events.sensors.push_back({SensorEvent::Type::End, sensor, visitor, sensorPart, visitorPart});
+    });
   }
 }
 

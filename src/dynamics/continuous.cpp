@@ -2,12 +2,33 @@
 #include "dynamics/continuous.h"
 
 #include "bodies/body_bounds.h"
+#include "bodies/body_parts.h"
 
 #include <collide/narrowphase.h>
 
 #include <algorithm>
 
 namespace collide::detail {
+
+namespace {
+
+// The first time of impact of the two sweeps within the step (1 for none).
+float impactTime(const Shape& a, const Sweep& sweepA, const Shape& b, const Sweep& sweepB,
+                 const ToiSettings& settings, float linearSlop) {
+  ToiResult toi = timeOfImpact(a, sweepA, b, sweepB, settings);
+  if (toi.state == ToiResult::State::Overlapping) {
+    // Touching at the start: stopping there would freeze a body sliding fast along a floor, so the
+    // pair may go on as long as it gets no deeper than the slop below where it started (the solver's
+    // contact should hold it; this catches a contact that gave way, e.g. a fast-spinning ball whose
+    // turning anchor the solver's linearised separation misreads).
+    ToiSettings touching = settings;
+    touching.targetSeparation = std::min(toi.separation, linearSlop) - linearSlop;
+    toi = timeOfImpact(a, sweepA, b, sweepB, touching);
+  }
+  return toi.hit() ? toi.t : 1.0f;
+}
+
+}  // namespace
 
 ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, const PairFilters& filters,
                                 float linearSlop) {
@@ -49,17 +70,20 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
       if (!hasValidPose(bodies.states[j])) return true;  // frozen by the fault guard, next
       ++stats.candidates;
       const Sweep otherSweep = bodySweep(other, bodies.states[j]);
-      ToiResult toi = timeOfImpact(record.shape, sweep, other.shape, otherSweep, settings);
-      if (toi.state == ToiResult::State::Overlapping) {
-        // Touching at the start: stopping there would freeze a body sliding fast along a floor, so
-        // the pair may go on as long as it gets no deeper than the slop below where it started (the
-        // solver's contact should hold it; this catches a contact that gave way, e.g. a fast-spinning
-        // ball whose turning anchor the solver's linearised separation misreads).
-        ToiSettings touching = settings;
-        touching.targetSeparation = std::min(toi.separation, linearSlop) - linearSlop;
-        toi = timeOfImpact(record.shape, sweep, other.shape, otherSweep, touching);
+      if (!hasParts(record) && !hasParts(other)) {
+        first =
+            std::min(first, impactTime(record.shape, sweep, other.shape, otherSweep, settings, linearSlop));
+      } else {
+        // Bodies made of parts: each pair of solid parts the filters allow, each part turning with
+        // its body.
+        forEachAllowedPartPair(record, other, [&](std::uint32_t a, std::uint32_t b) {
+          if (partIsSensor(record, a) || partIsSensor(other, b)) return;
+          const Sweep sweepA = partSweep(sweep, partLocalPose(record, a));
+          const Sweep sweepB = partSweep(otherSweep, partLocalPose(other, b));
+          first = std::min(first, impactTime(partShape(record, a), sweepA, partShape(other, b), sweepB,
+                                             settings, linearSlop));
+        });
       }
-      if (toi.hit() && toi.t < first) first = toi.t;
       return true;
     });
     if (first >= 1.0f) continue;

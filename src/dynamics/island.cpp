@@ -3,6 +3,7 @@
 
 #include <collide/narrowphase.h>
 
+#include "bodies/body_parts.h"
 #include "contacts/contact_update.h"
 #include "dynamics/fault_guard.h"
 
@@ -57,9 +58,10 @@ void wakeTouchedIslands(BodyStorage& bodies, const BroadPhase& broadPhase, std::
       const BodyRecord& rb = bodies.records[ib];
       if (ra.sensor || rb.sensor || (ra.layer & rb.mask) == 0 || (rb.layer & ra.mask) == 0) continue;
       Manifold manifold;
-      collide::collide(ra.shape, bodyTransform(ra, bodies.states[ia]), rb.shape,
-                       bodyTransform(rb, bodies.states[ib]), manifold, margin(ia, ib));
-      if (manifold.count == 0) continue;
+      if (!collideSolidParts(ra, bodyTransform(ra, bodies.states[ia]), rb,
+                             bodyTransform(rb, bodies.states[ib]), margin(ia, ib), manifold,
+                             [](std::uint32_t, std::uint32_t) { return false; }))
+        continue;
       // Only what actually woke repeats the pass: a frozen body touched by a mover never wakes, and
       // counting it would repeat the pass forever.
       if (wakeIsland(bodies, sleepA ? ia : ib)) woke = true;

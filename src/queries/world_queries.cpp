@@ -6,6 +6,7 @@
 #include <collide/shapes.h>
 
 #include "base/format.h"
+#include "bodies/body_parts.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,14 @@ namespace {
 bool passes(const QueryFilter& filter, const BodyStorage& bodies, std::uint32_t index) {
   if (bodies.records[index].sensor && !filter.includeSensors) return false;
   return !filter.accept || filter.accept(bodies.idOf(index));
+}
+
+// A part of a body made of parts is seen when its own layer passes the mask and it is not a sensor
+// (unless includeSensors); a body of one shape is its only part, which `passes` judged.
+bool partPasses(const QueryFilter& filter, const BodyRecord& r, std::uint32_t part) {
+  if (!hasParts(r)) return true;
+  const PartRecord& p = r.parts[part];
+  return (p.layer & filter.mask) != 0 && (!p.sensor || filter.includeSensors);
 }
 
 std::uint32_t bodyIndex(const BroadPhase& broadPhase, ProxyId proxy) {
@@ -46,10 +55,15 @@ float fractionOf(float distance, float maxDistance) {
   return maxDistance > 0.0f && std::isfinite(maxDistance) ? distance / maxDistance : 0.0f;
 }
 
-RayCastResult rayResult(const BodyStorage& bodies, std::uint32_t index, const RayHit& hit,
-                        float maxDistance) {
-  return {bodies.idOf(index), hit.distance, hit.point,
-          hit.normal,         hit.subShape, fractionOf(hit.distance, maxDistance)};
+RayCastResult rayResult(const BodyStorage& bodies, std::uint32_t index, const RayHit& hit, float maxDistance,
+                        std::uint32_t part) {
+  return {bodies.idOf(index),
+          hit.distance,
+          hit.point,
+          hit.normal,
+          hit.subShape,
+          fractionOf(hit.distance, maxDistance),
+          part};
 }
 
 // Body `index`'s hit by `ray` if the filter lets the body through; the fraction is of `reach`, the
@@ -58,9 +72,20 @@ std::optional<RayCastResult> bodyRayHit(const BodyStorage& bodies, std::uint32_t
                                         float reach, const QueryFilter& filter) {
   if (!passes(filter, bodies, index)) return std::nullopt;
   const BodyRecord& r = bodies.records[index];
-  const std::optional<RayHit> hit = rayCast(r.shape, bodyTransform(r, bodies.states[index]), ray);
-  if (!hit) return std::nullopt;
-  return rayResult(bodies, index, *hit, reach);
+  const Transform pose = bodyTransform(r, bodies.states[index]);
+  if (!hasParts(r)) {
+    const std::optional<RayHit> hit = rayCast(r.shape, pose, ray);
+    if (!hit) return std::nullopt;
+    return rayResult(bodies, index, *hit, reach, 0);
+  }
+  // The nearest part the filter sees (ties to the lower part).
+  std::optional<RayCastResult> best;
+  for (std::uint32_t part = 0; part < partCount(r); ++part) {
+    if (!partPasses(filter, r, part)) continue;
+    const std::optional<RayHit> hit = rayCast(partShape(r, part), pose * partLocalPose(r, part), ray);
+    if (hit && (!best || hit->distance < best->distance)) best = rayResult(bodies, index, *hit, reach, part);
+  }
+  return best;
 }
 
 bool nearerRay(const RayCastResult& a, const RayCastResult& b) {
@@ -94,11 +119,12 @@ ToiSettings castSettings() {
   return settings;
 }
 
-std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint32_t index, const Shape& shape,
-                                           const Sweep& sweep, const Vec3& translation) {
-  const BodyRecord& r = bodies.records[index];
-  const Transform bodyPose = bodyTransform(r, bodies.states[index]);
-  const ToiResult toi = timeOfImpact(shape, sweep, r.shape, Sweep::fixed(bodyPose), castSettings());
+// The sweep's first contact with one shape of body `index` placed at `target`.
+std::optional<ShapeCastResult> castAgainstShape(const BodyStorage& bodies, std::uint32_t index,
+                                                const Shape& shape, const Sweep& sweep,
+                                                const Vec3& translation, const Shape& targetShape,
+                                                const Transform& target) {
+  const ToiResult toi = timeOfImpact(shape, sweep, targetShape, Sweep::fixed(target), castSettings());
   if (toi.state == ToiResult::State::Separated) return std::nullopt;
   ShapeCastResult hit;
   hit.body = bodies.idOf(index);
@@ -107,13 +133,13 @@ std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint3
   hit.distance = hit.fraction * glm::length(translation);
   hit.point = toi.point;
   hit.normal = -toi.normal;  // ToiResult's normal points from the cast shape (A) to the body (B)
-  if (r.shape.type() == ShapeType::Compound) {
+  if (targetShape.type() == ShapeType::Compound) {
     // The child reached first (ties to the lower child), as the compound's own sweep takes the earliest.
     float earliest = std::numeric_limits<float>::infinity();
-    const auto children = r.shape.compound().children();
+    const auto children = targetShape.compound().children();
     for (std::size_t c = 0; c < children.size(); ++c) {
       const ToiResult child = timeOfImpact(shape, sweep, children[c].shape,
-                                           Sweep::fixed(bodyPose * children[c].transform), castSettings());
+                                           Sweep::fixed(target * children[c].transform), castSettings());
       if (child.state != ToiResult::State::Separated && child.t < earliest) {
         earliest = child.t;
         hit.subShape = static_cast<std::uint32_t>(c);
@@ -121,6 +147,27 @@ std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint3
     }
   }
   return hit;
+}
+
+// The sweep's first contact with body `index`: its shape, or the earliest of the parts the filter
+// sees (ties to the lower part).
+std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint32_t index, const Shape& shape,
+                                           const Sweep& sweep, const Vec3& translation,
+                                           const QueryFilter& filter) {
+  const BodyRecord& r = bodies.records[index];
+  const Transform bodyPose = bodyTransform(r, bodies.states[index]);
+  if (!hasParts(r)) return castAgainstShape(bodies, index, shape, sweep, translation, r.shape, bodyPose);
+  std::optional<ShapeCastResult> best;
+  for (std::uint32_t part = 0; part < partCount(r); ++part) {
+    if (!partPasses(filter, r, part)) continue;
+    std::optional<ShapeCastResult> hit = castAgainstShape(
+        bodies, index, shape, sweep, translation, partShape(r, part), bodyPose * partLocalPose(r, part));
+    if (hit && (!best || hit->fraction < best->fraction)) {
+      best = hit;
+      best->part = part;
+    }
+  }
+  return best;
 }
 
 std::vector<ShapeCastResult> castShapeCandidates(const BodyStorage& bodies, const BroadPhase& broadPhase,
@@ -146,7 +193,7 @@ std::vector<ShapeCastResult> castShapeCandidates(const BodyStorage& bodies, cons
   std::vector<ShapeCastResult> hits;
   for (const std::uint32_t index : candidates(broadPhase, swept, filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
-    if (std::optional<ShapeCastResult> hit = castAgainst(bodies, index, shape, sweep, translation)) {
+    if (std::optional<ShapeCastResult> hit = castAgainst(bodies, index, shape, sweep, translation, filter)) {
       hits.push_back(*hit);
     }
   }
@@ -251,7 +298,14 @@ std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPh
     if (!passes(filter, bodies, index)) continue;
     const BodyRecord& r = bodies.records[index];
     const Transform bodyPose = bodyTransform(r, bodies.states[index]);
-    if (r.shape.type() == ShapeType::Compound) {
+    if (hasParts(r)) {
+      // Every part the shape touches.
+      for (std::uint32_t part = 0; part < partCount(r); ++part) {
+        if (partPasses(filter, r, part) &&
+            touches(shape, pose, partShape(r, part), bodyPose * partLocalPose(r, part)))
+          out.push_back({bodies.idOf(index), 0, part});
+      }
+    } else if (r.shape.type() == ShapeType::Compound) {
       // Child by child, so that the part overlapped is known; a compound's collide() is their union.
       const auto children = r.shape.compound().children();
       for (std::size_t c = 0; c < children.size(); ++c) {
@@ -274,8 +328,13 @@ std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& br
   for (const std::uint32_t index : candidates(broadPhase, Aabb{point, point}, filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
     const BodyRecord& r = bodies.records[index];
-    if (containsPoint(r.shape, bodyTransform(r, bodies.states[index]), point))
-      out.push_back(bodies.idOf(index));
+    const Transform pose = bodyTransform(r, bodies.states[index]);
+    bool inside = false;
+    for (std::uint32_t part = 0; part < partCount(r) && !inside; ++part) {
+      inside = partPasses(filter, r, part) &&
+               containsPoint(partShape(r, part), pose * partLocalPose(r, part), point);
+    }
+    if (inside) out.push_back(bodies.idOf(index));
   }
   return out;
 }

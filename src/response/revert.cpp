@@ -3,6 +3,8 @@
 
 #include <collide/narrowphase.h>
 
+#include "bodies/body_parts.h"
+
 #include <algorithm>
 
 namespace collide::detail {
@@ -29,7 +31,13 @@ bool RevertResponse::pass(BodyStorage& bodies, float linearSlop) {
     BodyState& sb = bodies.states[pair.b];
     if (!hasValidPose(sa) || !hasValidPose(sb)) continue;  // the fault guard, next, freezes it
     Manifold now;
-    if (!collide::collide(ra.shape, bodyTransform(ra, sa), rb.shape, bodyTransform(rb, sb), now)) continue;
+    const auto disabled = [&](std::uint32_t partA, std::uint32_t partB) {
+      if (!hasParts(ra) && !hasParts(rb)) return false;  // ruled out before the passes
+      const Contact* contact = findContact(contacts_, pair.key, partA, partB);
+      return contact && contact->manifold.count > 0 && !contact->enabled;
+    };
+    if (!collideSolidParts(ra, bodyTransform(ra, sa), rb, bodyTransform(rb, sb), 0.0f, now, disabled))
+      continue;
     if (now.maxDepth() <= linearSlop) continue;
     penetrating_[pair.a] = penetrating_[pair.b] = 1;
     const Vec3 n = now.normal;  // from A to B
@@ -64,10 +72,14 @@ void RevertResponse::apply(BodyStorage& bodies, const BroadPhase& broadPhase,
     if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) continue;
     if (!pairAllowed(bodies, filters, a, b)) continue;
     if (!bodies.isAwakeDynamic(a) && !bodies.isAwakeDynamic(b)) continue;
-    const Contact* contact = findContact(contacts, pairKey(pair.a.index, pair.b.index));
-    if (contact && contact->manifold.count > 0 && !contact->enabled) continue;
-    candidates_.push_back({a, b});
+    const std::uint64_t key = pairKey(pair.a.index, pair.b.index);
+    if (!hasParts(ra) && !hasParts(rb)) {  // bodies made of parts: per pair of parts, in the pass
+      const Contact* contact = findContact(contacts, key);
+      if (contact && contact->manifold.count > 0 && !contact->enabled) continue;
+    }
+    candidates_.push_back({a, b, key});
   }
+  contacts_ = contacts;
   reverted_.assign(bodies.records.size(), 0);
   penetrating_.assign(bodies.records.size(), 0);
   while (pass(bodies, linearSlop)) {

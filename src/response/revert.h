@@ -37,7 +37,9 @@ class RevertResponse {
   struct Candidate {
     std::uint32_t a;
     std::uint32_t b;
+    std::uint64_t key;  // the contacts' pair key
   };
+  std::span<const Contact> contacts_;      // this step's, during apply
   std::vector<Candidate> candidates_;      // the pairs that can respond this step
   std::vector<std::uint8_t> reverted_;     // per body: went back this step
   std::vector<std::uint8_t> penetrating_;  // per body: penetrates something (last pass)

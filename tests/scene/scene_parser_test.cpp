@@ -172,6 +172,54 @@ TEST(SceneParser, GravityScaleAndDampingReachTheWorld) {
               HasSubstr("bodies[0].gravity_scale: must be a number"));
 }
 
+TEST(SceneParser, PartsTakeTheBodysValuesThenTheirOwn) {
+  const Scene s = parseScene(R"({"format": "collide-scene/1",
+      "materials": {"ice": {"friction": 0.02, "density": 900}},
+      "bodies": [{"name": "b", "type": "dynamic", "friction": 0.8, "layer": 3, "position": [0, 2, 0],
+        "parts": [
+          {"shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}, "position": [-1, 0, 0]},
+          {"shape": {"type": "sphere", "radius": 0.5}, "position": [1, 0, 0], "material": "ice",
+           "bounciness": 0.5, "group": -2},
+          {"shape": {"type": "sphere", "radius": 1}, "sensor": true, "density": 0, "mask": 4}]}]})");
+  ASSERT_EQ(s.bodies.size(), 1u);
+  const std::vector<PartDef>& parts = s.bodies[0].def.parts;
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(parts[0].position, Vec3(-1.0f, 0.0f, 0.0f));
+  EXPECT_EQ(parts[0].material.friction, 0.8f);  // the body's
+  EXPECT_EQ(parts[0].layer, 3u);
+  EXPECT_EQ(parts[1].material.friction, 0.02f);  // the material's
+  EXPECT_EQ(parts[1].density, 900.0f);
+  EXPECT_EQ(parts[1].material.bounciness, 0.5f);  // its own
+  EXPECT_EQ(parts[1].group, -2);
+  EXPECT_TRUE(parts[2].sensor);
+  EXPECT_EQ(parts[2].density, 0.0f);
+  EXPECT_EQ(parts[2].mask, 4u);
+  SceneWorld sw = buildWorld(s);
+  const BodyId b = sw.world.bodies().front();
+  EXPECT_EQ(sw.world.partCount(b), 3u);
+  // 1000 kg of box and 900 kg/m^3 of a 0.5 m ball; the sensor weighs nothing.
+  const float ball = 900.0f * 4.0f / 3.0f * 3.14159265f * 0.125f;
+  EXPECT_NEAR(sw.world.mass(b), 1000.0f + ball, 1e-2f);
+  EXPECT_TRUE(sw.world.partIsSensor(b, 2));
+
+  EXPECT_THAT(
+      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1},
+      "parts": [{"shape": {"type": "sphere", "radius": 1}}]})")),
+      HasSubstr("bodies[0].parts: give shape or parts, not both"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "parts": []})")),
+              HasSubstr("bodies[0].parts: must hold at least one part"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "parts": [{"shape": {"type": "sphere", "radius": 1}, "frictoin": 1}]})")),
+              HasSubstr("bodies[0].parts[0]"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "static",
+      "parts": [{"shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}}]})")),
+              HasSubstr("bodies[0].parts[0].shape: a plane cannot be a part"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+      "parts": [{"shape": {"type": "sphere", "radius": 1}, "density": 0}]})")),
+              HasSubstr("bodies[0].parts: a dynamic body needs a part with density > 0"));
+  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic"})")), HasSubstr("shape"));
+}
+
 TEST(SceneParser, DefaultsAreTheEngines) {
   const Scene s = parseScene(R"({"format": "collide-scene/1"})");
   const WorldDef defaults;

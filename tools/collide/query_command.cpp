@@ -94,7 +94,7 @@ int queryCommand(const QueryArguments& arguments) {
       hits.push_back(*hit);
     }
     for (const RayCastResult& h : hits)
-      lines.push_back(hitLine(world, h.body, h.subShape, h.fraction, h.distance, h.point, h.normal) + "}");
+      lines.push_back(hitLine(world, h.body, h.part, h.fraction, h.distance, h.point, h.normal) + "}");
   } else if (!arguments.cast.empty()) {
     const Shape shape = scene::loadShapeFile(arguments.cast[0], options);
     const Transform pose{parseVec3(arguments.cast[1], "--cast position")};
@@ -106,14 +106,14 @@ int queryCommand(const QueryArguments& arguments) {
       hits.push_back(*hit);
     }
     for (const ShapeCastResult& h : hits) {
-      lines.push_back(hitLine(world, h.body, h.subShape, h.fraction, h.distance, h.point, h.normal) +
+      lines.push_back(hitLine(world, h.body, h.part, h.fraction, h.distance, h.point, h.normal) +
                       ", \"initially_overlapping\": " + (h.initiallyOverlapping ? "true" : "false") + "}");
     }
   } else {
     const Shape shape = scene::loadShapeFile(arguments.overlap[0], options);
     const Transform pose{parseVec3(arguments.overlap[1], "--overlap position")};
     for (const OverlapResult& o : world.overlapShape(shape, pose)) {
-      lines.push_back("{\"body\": " + bodyLabel(world, o.body) + ", \"part\": " + std::to_string(o.subShape) +
+      lines.push_back("{\"body\": " + bodyLabel(world, o.body) + ", \"part\": " + std::to_string(o.part) +
                       "}");
     }
   }

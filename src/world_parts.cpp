@@ -1,0 +1,215 @@
+// The world's API for the parts of a body (docs/parts.md): reading them, changing a part's material
+// and filter, adding and removing parts at run time.
+#include "world_impl.h"
+
+#include "base/format.h"
+#include "bodies/body_bounds.h"
+#include "bodies/body_def.h"
+#include "bodies/body_parts.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace collide {
+
+using detail::BodyRecord;
+using detail::BodyState;
+using detail::Contact;
+using detail::PartRecord;
+
+namespace {
+
+std::uint32_t checkPart(const BodyRecord& r, std::uint32_t part, const char* operation) {
+  const std::uint32_t count = detail::partCount(r);
+  if (part >= count) {
+    throw Error(std::string("world: ") + operation + ": part " + std::to_string(part) +
+                " out of range (the body has " + std::to_string(count) + (count == 1 ? " part)" : " parts)"));
+  }
+  return part;
+}
+
+void checkMaterial(const BodyMaterial& material, const char* operation) {
+  const std::string where = std::string("world: ") + operation + ": ";
+  if (!isFinite(material.friction) || material.friction < 0.0f)
+    throw Error(where + "friction must be finite and >= 0, got " + detail::formatFloat(material.friction));
+  if (!isFinite(material.bounciness) || material.bounciness < 0.0f || material.bounciness > 1.0f)
+    throw Error(where + "bounciness must be in [0, 1], got " + detail::formatFloat(material.bounciness));
+  if (!isFinite(material.rollingResistance) || material.rollingResistance < 0.0f) {
+    throw Error(where + "rollingResistance must be finite and >= 0, got " +
+                detail::formatFloat(material.rollingResistance));
+  }
+}
+
+// The record's summaries of its parts (BodyRecord::parts) after a part's material or filter changed.
+void summariseParts(BodyRecord& r) {
+  r.layer = r.mask = 0;
+  r.group = 0;
+  for (const PartRecord& p : r.parts) {
+    r.layer |= p.layer;
+    r.mask |= p.mask;
+  }
+  r.friction = r.parts[0].material.friction;
+  r.bounciness = r.parts[0].material.bounciness;
+  r.rollingResistance = r.parts[0].material.rollingResistance;
+}
+
+}  // namespace
+
+std::uint32_t World::partCount(BodyId id) const {
+  return detail::partCount(impl_->bodies.records[impl_->resolve(id, "partCount")]);
+}
+
+const Shape& World::partShape(BodyId id, std::uint32_t part) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partShape")];
+  return detail::partShape(r, checkPart(r, part, "partShape"));
+}
+
+Transform World::partLocalPose(BodyId id, std::uint32_t part) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partLocalPose")];
+  return detail::partLocalPose(r, checkPart(r, part, "partLocalPose"));
+}
+
+bool World::partIsSensor(BodyId id, std::uint32_t part) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partIsSensor")];
+  return detail::partIsSensor(r, checkPart(r, part, "partIsSensor"));
+}
+
+std::uint64_t World::partUserData(BodyId id, std::uint32_t part) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partUserData")];
+  return detail::partUserData(r, checkPart(r, part, "partUserData"));
+}
+
+BodyMaterial World::partMaterial(BodyId id, std::uint32_t part) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partMaterial")];
+  return detail::partMaterial(r, checkPart(r, part, "partMaterial"));
+}
+
+void World::setPartMaterial(BodyId id, std::uint32_t part, const BodyMaterial& material) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "setPartMaterial");
+  BodyRecord& r = w.bodies.records[i];
+  checkPart(r, part, "setPartMaterial");
+  checkMaterial(material, "setPartMaterial");
+  if (!detail::hasParts(r)) {
+    setMaterial(id, material);
+    return;
+  }
+  w.bodies.tally(r, -1);
+  r.parts[part].material = material;
+  summariseParts(r);
+  w.bodies.tally(r, +1);
+  detail::wakeIsland(w.bodies, i);
+}
+
+CollisionFilter World::partFilter(BodyId id, std::uint32_t part) const {
+  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partFilter")];
+  const detail::PartFilter f = detail::partFilter(r, checkPart(r, part, "partFilter"));
+  return {f.layer, f.mask, f.group};
+}
+
+void World::setPartFilter(BodyId id, std::uint32_t part, const CollisionFilter& filter) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "setPartFilter");
+  BodyRecord& r = w.bodies.records[i];
+  checkPart(r, part, "setPartFilter");
+  if (!detail::hasParts(r)) {
+    setCollisionFilter(id, filter.layer, filter.mask, filter.group);
+    return;
+  }
+  r.parts[part].layer = filter.layer;
+  r.parts[part].mask = filter.mask;
+  r.parts[part].group = filter.group;
+  summariseParts(r);
+  w.broadPhase->setLayer(r.proxy, r.layer);
+  detail::wakeIsland(w.bodies, i);
+}
+
+void World::Impl::replaceParts(std::uint32_t index, std::vector<Compound::Child> children,
+                               std::vector<PartRecord> parts) {
+  BodyRecord& r = bodies.records[index];
+  BodyState& s = bodies.states[index];
+  const Vec3 oldLocalCenter = r.localCenterOfMass;
+  BodyRecord before = r;
+  detail::setBodyParts(r, s, std::move(children), std::move(parts));  // throws before any change
+  bodies.tally(before, -1);
+  bodies.tally(r, +1);
+  // Constraint anchors are kept from the centre of mass: they stay at the same material points.
+  const Vec3 shift = r.localCenterOfMass - oldLocalCenter;
+  for (detail::DistanceJoint& joint : joints) {
+    if (!joint.alive) continue;
+    if (joint.bodyA == index) joint.localAnchorA -= shift;
+    if (joint.bodyB == index) joint.localAnchorB -= shift;
+  }
+  for (Contact& c : contacts) {
+    if (c.bodyA == index || c.bodyB == index) c.stuck = false;  // its friction anchors were from the centre
+  }
+  broadPhase->setLayer(r.proxy, r.layer);
+  broadPhase->update(r.proxy, detail::proxyBounds(bodies, index, 0.0f, def.contact.speculativeDistance));
+  detail::wakeByUser(bodies, index);
+}
+
+std::uint32_t World::addPart(BodyId id, const PartDef& part) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "addPart");
+  const BodyRecord& r = w.bodies.records[i];
+  if (r.particle) throw Error("world: addPart: a particle is a point mass of one sphere and has no parts");
+  if (r.shape.type() == ShapeType::Plane)
+    throw Error("world: addPart: a body of one plane cannot have parts; make the part a body of its own");
+  detail::validatePartDef(part, r.type, "world: addPart");
+  std::vector<Compound::Child> children;
+  std::vector<PartRecord> parts;
+  if (detail::hasParts(r)) {
+    const auto current = r.shape.compound().children();
+    children.assign(current.begin(), current.end());
+    parts = r.parts;
+  } else {
+    // The body's one shape becomes part 0, with the body's material, density, sensor flag and filter.
+    children.push_back({r.shape, Transform{}});
+    parts.push_back(
+        {{r.friction, r.bounciness, r.rollingResistance}, r.density, r.sensor, r.layer, r.mask, r.group, 0});
+  }
+  children.push_back(detail::makePartChild(part));
+  parts.push_back(detail::makePartRecord(part));
+  const auto index = static_cast<std::uint32_t>(parts.size() - 1);
+  try {
+    w.replaceParts(i, std::move(children), std::move(parts));
+  } catch (const Error& e) {
+    throw Error(std::string("world: addPart: ") + e.what());
+  }
+  return index;
+}
+
+void World::removePart(BodyId id, std::uint32_t part) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "removePart");
+  const BodyRecord& r = w.bodies.records[i];
+  checkPart(r, part, "removePart");
+  if (detail::partCount(r) == 1) throw Error("world: removePart: a body keeps at least one part");
+  const auto current = r.shape.compound().children();
+  std::vector<Compound::Child> children(current.begin(), current.end());
+  std::vector<PartRecord> parts = r.parts;
+  children.erase(children.begin() + part);
+  parts.erase(parts.begin() + part);
+  try {
+    w.replaceParts(i, std::move(children), std::move(parts));
+  } catch (const Error& e) {
+    throw Error(std::string("world: removePart: ") + e.what());
+  }
+  // The removed part's contacts end (with the next step's events); the later parts' move down.
+  const auto ofRemoved = [&](const Contact& c) {
+    return (c.bodyA == i && c.partA == part) || (c.bodyB == i && c.partB == part);
+  };
+  for (const Contact& c : w.contacts) {
+    if (!ofRemoved(c)) continue;
+    detail::wakeIsland(w.bodies, c.bodyA == i ? c.bodyB : c.bodyA);
+    w.events.endWithDestroyedBody(w.bodies, c);
+  }
+  std::erase_if(w.contacts, ofRemoved);
+  for (Contact& c : w.contacts) {
+    if (c.bodyA == i && c.partA > part) --c.partA;
+    if (c.bodyB == i && c.partB > part) --c.partB;
+  }
+}
+
+}  // namespace collide
