@@ -73,6 +73,35 @@ TEST(Parts, MassCentreAndInertiaAreTheSumOfTheParts) {
   EXPECT_NEAR(world.angularVelocity(twin).x, kDt, 1e-4f * kDt);
 }
 
+TEST(Parts, TheTableOfTheDocsStandsOnItsFourLegs) {
+  // docs/parts.md's example: a top and four legs, placed with its feet 5 cm above the ground. It settles on its four legs: four contacts, one per leg part
+  // (1 to 4), none for the top, and its mass is the five parts' at 1000 kg/m^3.
+  World world;
+  world.createBody(test::groundBox());
+  BodyDef table;
+  table.position = Vec3(0.0f, 0.8f, 0.0f);
+  PartDef top;
+  top.shape = Box{Vec3(1.0f, 0.05f, 0.6f)};
+  top.material.friction = 0.3f;
+  table.parts.push_back(top);
+  for (const Vec3 leg : {Vec3(-0.9f, -0.4f, -0.5f), Vec3(0.9f, -0.4f, -0.5f), Vec3(-0.9f, -0.4f, 0.5f),
+                         Vec3(0.9f, -0.4f, 0.5f)}) {
+    PartDef part;
+    part.shape = Box{Vec3(0.05f, 0.35f, 0.05f)};
+    part.position = leg;
+    part.material.friction = 0.9f;
+    table.parts.push_back(part);
+  }
+  const BodyId id = world.createBody(table);
+  const float volume = 2.0f * 0.1f * 1.2f + 4.0f * (0.1f * 0.7f * 0.1f);
+  EXPECT_NEAR(world.mass(id), 1000.0f * volume, 1e-2f);
+  for (int s = 0; s < 120; ++s) world.step(kDt);
+  std::set<std::uint32_t> parts;
+  world.visitContacts(id, [&](const ContactData& c) { parts.insert(c.a == id ? c.partA : c.partB); });
+  EXPECT_EQ(parts, (std::set<std::uint32_t>{1, 2, 3, 4}));
+  EXPECT_NEAR(world.transform(id).position.y, 0.75f, 0.01f);  // the feet at 0.75 - 0.4 - 0.35 = 0
+}
+
 TEST(Parts, AGivenMassIsSharedByTheDensities) {
   World world(test::zeroGravityWorld());
   BodyDef def;
