@@ -55,6 +55,24 @@ WorldDef decodeWorldDef(FuzzInput& in) {
   return def;
 }
 
+// A part, now and then one no body can have (a plane, a negative density, a bad material).
+PartDef decodePartDef(FuzzInput& in) {
+  PartDef part;
+  part.shape = collide::fuzz::decodeShape(in, /*allowPlane=*/in.byte() >= 248);
+  part.position = in.vec(-1.5f, 1.5f);
+  part.rotation = in.rotation();
+  part.material = {in.range(0.0f, 1.0f), in.range(0.0f, 1.0f), 0.0f};
+  if (in.byte() >= 240) part.material.friction = in.value(-1.0f, 2.0f);
+  part.density = in.byte() >= 232 ? in.value(-10.0f, 10000.0f) : 1000.0f;
+  part.sensor = in.byte() >= 232;
+  if (in.byte() >= 224) {
+    part.layer = in.byte();
+    part.mask = in.byte();
+    part.group = static_cast<std::int8_t>(in.byte());
+  }
+  return part;
+}
+
 BodyDef decodeBodyDef(FuzzInput& in) {
   BodyDef def;
   def.type = static_cast<BodyType>(in.choice(3));
@@ -77,6 +95,10 @@ BodyDef decodeBodyDef(FuzzInput& in) {
   }
   def.sensor = in.byte() >= 224;
   def.ccd = in.flag();
+  if (!def.particle && in.byte() >= 216) {
+    const int count = 1 + in.choice(3);
+    for (int k = 0; k < count; ++k) def.parts.push_back(decodePartDef(in));
+  }
   return def;
 }
 
@@ -108,7 +130,7 @@ std::string describe(const BodyDef& d) {
          ", density " + describe(d.density) + ", bounciness " + describe(d.bounciness) + ", friction " +
          describe(d.friction) + ", layer " + std::to_string(d.layer) + ", mask " + std::to_string(d.mask) +
          ", sensor " + std::to_string(d.sensor) + ", particle " + std::to_string(d.particle) + ", ccd " +
-         std::to_string(d.ccd) + "}";
+         std::to_string(d.ccd) + ", parts " + std::to_string(d.parts.size()) + "}";
 }
 
 void trace(const std::string& line) {
@@ -177,7 +199,7 @@ struct Story {
   }
 
   void call(int& steps) {
-    switch (in.choice(13)) {
+    switch (in.choice(15)) {
       case 0:
       case 1: {
         if (live() >= kMaxBodies) break;
@@ -295,6 +317,46 @@ struct Story {
         attempt([&] { world.setDamping(id, linear, angular); });
         attempt([&] { world.setTransform(id, position, rotation, /*wake=*/false); });
         (void)world.bodies();
+        break;
+      }
+      case 12: {
+        // Parts at run time: added, removed, their material and filter changed (bad ones refused).
+        const BodyId id = anyBody();
+        const int what = in.choice(4);
+        const auto part = static_cast<std::uint32_t>(in.choice(4));
+        trace("part call " + std::to_string(what) + " on " + describe(id) + ", part " + std::to_string(part));
+        try {
+          if (what == 0) {
+            world.addPart(id, decodePartDef(in));
+          } else if (what == 1) {
+            world.removePart(id, part);
+          } else if (what == 2) {
+            world.setPartMaterial(id, part, {in.value(0.0f, 2.0f), in.range(0.0f, 1.0f), 0.0f});
+          } else {
+            world.setPartFilter(id, part, {in.byte(), in.byte(), static_cast<std::int8_t>(in.byte())});
+          }
+          (void)world.partCount(id);
+        } catch (const Error& e) {
+          trace(std::string("  refused: ") + e.what());
+        }
+        break;
+      }
+      case 13: {
+        const BodyId id = anyBody();
+        const bool typeChange = in.flag();
+        const auto type = static_cast<BodyType>(in.choice(3));
+        const bool enabled = in.flag();
+        trace((typeChange ? "setType(" + describe(id) + ", " + std::string(toString(type)) + ")"
+                          : "setEnabled(" + describe(id) + ", " + std::to_string(enabled) + ")"));
+        try {
+          if (typeChange) {
+            world.setType(id, type);
+          } else {
+            world.setEnabled(id, enabled);
+          }
+        } catch (const Error& e) {
+          trace(std::string("  refused: ") + e.what());
+        }
         break;
       }
       default: {

@@ -103,13 +103,8 @@ BodyId World::createBody(const BodyDef& def) {
   } slot{w.bodies, index};
   BodyRecord& r = w.bodies.records[index];
   detail::initBody(def, r, w.bodies.states[index]);
-  ProxyDef proxy;
-  proxy.bounds = detail::proxyBounds(w.bodies, index, 0.0f, w.def.contact.speculativeDistance);
-  proxy.motion = def.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
-  proxy.userValue = index;
-  proxy.layer = r.layer;  // a body made of parts: the union of its parts' layers
   try {
-    r.proxy = w.broadPhase->add(proxy);
+    w.addProxy(index);
   } catch (const Error& e) {
     throw Error(detail::bodyLabel(def) + ": " + e.what());
   }
@@ -121,7 +116,7 @@ BodyId World::createBody(const BodyDef& def) {
 void World::destroyBody(BodyId id) {
   Impl& w = *impl_;
   const std::uint32_t index = w.resolve(id, "destroyBody");
-  w.broadPhase->remove(w.bodies.records[index].proxy);
+  if (w.bodies.records[index].enabled) w.broadPhase->remove(w.bodies.records[index].proxy);
   for (std::uint32_t j = 0; j < w.joints.size(); ++j) {
     if (w.joints[j].alive && (w.joints[j].bodyA == index || w.joints[j].bodyB == index)) {
       detail::wakeIsland(w.bodies, w.joints[j].bodyA == index ? w.joints[j].bodyB : w.joints[j].bodyA);
@@ -129,14 +124,7 @@ void World::destroyBody(BodyId id) {
     }
   }
   detail::wakeIsland(w.bodies, index);
-  // Its contacts go with it: touching ones end now, reported with the next step's events (the
-  // step's event lists are "what happened in the last step", so they are not changed in between).
-  for (const Contact& c : w.contacts) {
-    if (c.bodyA != index && c.bodyB != index) continue;
-    detail::wakeIsland(w.bodies, c.bodyA == index ? c.bodyB : c.bodyA);  // what rested on it must fall
-    w.events.endWithDestroyedBody(w.bodies, c);
-  }
-  std::erase_if(w.contacts, [&](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
+  w.endBodyContacts(index);
   w.bodies.tally(w.bodies.records[index], -1);
   w.bodies.free(index);
 }
@@ -176,11 +164,111 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation, 
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
   r.validCenterOfMass = s.centerOfMass;  // placed by the user: where revert goes back to from now
   r.validRotation = s.rotation;
-  w.broadPhase->update(r.proxy, detail::proxyBounds(w.bodies, i, 0.0f, w.def.contact.speculativeDistance));
+  w.updateProxy(i);
   if (wake) {
     detail::wakeByUser(w.bodies, i);
   } else {
     detail::unfreezeBody(r, s);
+  }
+}
+
+void World::Impl::endBodyContacts(std::uint32_t index) {
+  // Touching contacts end now, reported with the next step's events (the step's event lists are
+  // "what happened in the last step", so they are not changed in between).
+  for (const Contact& c : contacts) {
+    if (c.bodyA != index && c.bodyB != index) continue;
+    detail::wakeIsland(bodies, c.bodyA == index ? c.bodyB : c.bodyA);  // what rested on it must fall
+    events.endWithDestroyedBody(bodies, c);
+  }
+  std::erase_if(contacts, [&](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
+}
+
+void World::Impl::addProxy(std::uint32_t index) {
+  BodyRecord& r = bodies.records[index];
+  ProxyDef proxy;
+  proxy.bounds = detail::proxyBounds(bodies, index, 0.0f, def.contact.speculativeDistance);
+  proxy.motion = r.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
+  proxy.userValue = index;
+  proxy.layer = r.layer;  // a body made of parts: the union of its parts' layers
+  r.proxy = broadPhase->add(proxy);
+}
+
+void World::Impl::updateProxy(std::uint32_t index) {
+  const BodyRecord& r = bodies.records[index];
+  if (!r.enabled) return;  // a disabled body has none; enabling it computes its box
+  broadPhase->setLayer(r.proxy, r.layer);
+  broadPhase->update(r.proxy, detail::proxyBounds(bodies, index, 0.0f, def.contact.speculativeDistance));
+}
+
+void World::setEnabled(BodyId id, bool enabled) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "setEnabled");
+  BodyRecord& r = w.bodies.records[i];
+  if (r.enabled == enabled) return;
+  if (!enabled) {
+    detail::wakeIsland(w.bodies, i);  // its island goes on without it
+    w.endBodyContacts(i);
+    w.broadPhase->remove(r.proxy);
+    r.proxy = ProxyId{};
+    r.enabled = false;
+    r.awake = false;
+    r.sleepTime = 0.0f;
+    return;
+  }
+  r.enabled = true;
+  try {
+    w.addProxy(i);
+  } catch (const Error& e) {
+    r.enabled = false;
+    throw Error(std::string("world: setEnabled: ") + e.what());
+  }
+  r.awake = true;
+  detail::wakeByUser(w.bodies, i);
+}
+
+bool World::isEnabled(BodyId id) const {
+  return impl_->bodies.records[impl_->resolve(id, "isEnabled")].enabled;
+}
+
+void World::Impl::centerMoved(std::uint32_t index, const Vec3& shift) {
+  if (shift == Vec3(0.0f)) return;
+  for (DistanceJoint& joint : joints) {
+    if (!joint.alive) continue;
+    if (joint.bodyA == index) joint.localAnchorA -= shift;
+    if (joint.bodyB == index) joint.localAnchorB -= shift;
+  }
+  for (Contact& c : contacts) {
+    if (c.bodyA == index || c.bodyB == index) c.stuck = false;  // its friction anchors were from the centre
+  }
+}
+
+void World::setType(BodyId id, BodyType type) {
+  Impl& w = *impl_;
+  const std::uint32_t i = w.resolve(id, "setType");
+  BodyRecord& r = w.bodies.records[i];
+  if (type == r.type) return;
+  const Vec3 oldLocalCenter = r.localCenterOfMass;
+  const bool wasStatic = r.type == BodyType::Static;
+  try {
+    detail::setBodyType(r, w.bodies.states[i], type);
+  } catch (const Error& e) {
+    throw Error(std::string("world: setType: ") + e.what());
+  }
+  w.centerMoved(i, r.localCenterOfMass - oldLocalCenter);
+  if (r.enabled && (wasStatic || type == BodyType::Static)) {
+    // The broad phase keeps static and movable proxies apart: the proxy moves to the other side (its
+    // slot is reused, so the contacts' pair keys stay).
+    w.broadPhase->remove(r.proxy);
+    w.addProxy(i);
+  } else {
+    w.updateProxy(i);
+  }
+  r.faulted = false;  // its mass properties are new
+  r.sleepTime = 0.0f;
+  r.awake = r.enabled;
+  detail::wakeIsland(w.bodies, i);
+  for (const Contact& c : w.contacts) {  // what rested on it must feel the change
+    if (c.bodyA == i || c.bodyB == i) detail::wakeIsland(w.bodies, c.bodyA == i ? c.bodyB : c.bodyA);
   }
 }
 
@@ -442,7 +530,7 @@ void World::setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mas
     part.mask = mask;
     part.group = group;
   }
-  w.broadPhase->setLayer(r.proxy, layer);
+  if (r.enabled) w.broadPhase->setLayer(r.proxy, layer);
   detail::wakeIsland(w.bodies, index);
 }
 

@@ -58,6 +58,16 @@ struct World::Impl {
   std::uint32_t resolve(JointId id, const char* operation) const;
   void freeJoint(std::uint32_t index);
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
+  // Body `index`'s contacts end (touching ones: End events with the next step's), what they touched
+  // wakes (destroyBody, setEnabled).
+  void endBodyContacts(std::uint32_t index);
+  // Body `index`'s proxy: added with its box, layer and motion type; or, if it is enabled, given its
+  // box and layer anew.
+  void addProxy(std::uint32_t index);
+  void updateProxy(std::uint32_t index);
+  // Body `index`'s centre of mass moved by `shift` in its frame (new parts, a new type): the anchors
+  // kept from the centre (its constraints', its contacts' friction anchors) follow.
+  void centerMoved(std::uint32_t index, const Vec3& shift);
   // Gives body `index` these parts (World::addPart, removePart): setBodyParts, then the tallies, the
   // constraint anchors, the proxy and waking follow. Throws Error and changes nothing for parts the
   // body cannot have.

@@ -121,7 +121,7 @@ void World::setPartFilter(BodyId id, std::uint32_t part, const CollisionFilter& 
   r.parts[part].mask = filter.mask;
   r.parts[part].group = filter.group;
   summariseParts(r);
-  w.broadPhase->setLayer(r.proxy, r.layer);
+  if (r.enabled) w.broadPhase->setLayer(r.proxy, r.layer);
   detail::wakeIsland(w.bodies, i);
 }
 
@@ -134,18 +134,8 @@ void World::Impl::replaceParts(std::uint32_t index, std::vector<Compound::Child>
   detail::setBodyParts(r, s, std::move(children), std::move(parts));  // throws before any change
   bodies.tally(before, -1);
   bodies.tally(r, +1);
-  // Constraint anchors are kept from the centre of mass: they stay at the same material points.
-  const Vec3 shift = r.localCenterOfMass - oldLocalCenter;
-  for (detail::DistanceJoint& joint : joints) {
-    if (!joint.alive) continue;
-    if (joint.bodyA == index) joint.localAnchorA -= shift;
-    if (joint.bodyB == index) joint.localAnchorB -= shift;
-  }
-  for (Contact& c : contacts) {
-    if (c.bodyA == index || c.bodyB == index) c.stuck = false;  // its friction anchors were from the centre
-  }
-  broadPhase->setLayer(r.proxy, r.layer);
-  broadPhase->update(r.proxy, detail::proxyBounds(bodies, index, 0.0f, def.contact.speculativeDistance));
+  centerMoved(index, r.localCenterOfMass - oldLocalCenter);
+  updateProxy(index);
   detail::wakeByUser(bodies, index);
 }
 

@@ -137,6 +137,21 @@ class World {
 
   // ---- Between steps. Stale ids throw Error. ----
   BodyType type(BodyId id) const;
+  // A new type from the next step (a door unlocked, a crate frozen in place, a platform under script):
+  // a dynamic body gets its mass properties from its shape or parts (its density, or BodyDef::mass
+  // if it was given), the others none; the body origin stays where it is and the velocity of every
+  // point is kept (a static body stops). The body and what touches it wake; contacts go on where
+  // the new type still pairs (a body made static loses its contacts with static bodies). Error, and
+  // no change, for a plane or an open mesh made movable or dynamic, or a particle made static or
+  // kinematic.
+  void setType(BodyId id, BodyType type);
+  // A disabled body leaves the simulation but keeps its id, state and settings (a pickup in the
+  // player's pocket, a piece of a level not streamed in): it has no broad-phase proxy, so no contacts
+  // (touching ones end, their End events with the next step's), no query finds it, it does not move
+  // and nothing wakes it; its constraints rest. Enabling it puts it back where it is, awake. The
+  // setters work on a disabled body and count once it is enabled.
+  void setEnabled(BodyId id, bool enabled);
+  bool isEnabled(BodyId id) const;
   bool isParticle(BodyId id) const;
   Transform transform(BodyId id) const;
   void setTransform(BodyId id, const Vec3& position, const Quat& rotation);

@@ -4,6 +4,7 @@
 #include <collide/error.h>
 
 #include "base/format.h"
+#include "bodies/body_parts.h"
 #include "shapes/shape_functions.h"
 
 #include <algorithm>
@@ -240,10 +241,52 @@ Compound::Child makePartChild(const PartDef& part) {
   return {part.shape, Transform{part.position, glm::normalize(part.rotation), 1.0f}};
 }
 
+namespace {
+
+// The mass properties (a dynamic body: from its shape or parts; else none, its centre at its
+// origin), radii and extent of `next`, and its state placed with the body origin at `origin` and the
+// velocity field it had (`oldCenter` moved at nextState's velocities). Throws Error before writing
+// anything the caller keeps (next and nextState are the caller's copies).
+void remeasure(BodyRecord& next, BodyState& nextState, const Vec3& origin, const Vec3& oldCenter) {
+  next.mass = 0.0f;
+  next.localCenterOfMass = Vec3(0.0f);
+  next.inertiaLocal = next.inverseInertiaLocal = Mat3(0.0f);
+  next.isotropicInertia = true;
+  nextState.inverseMass = 0.0f;
+  if (next.type == BodyType::Dynamic) {
+    MassProperties props;
+    if (hasParts(next)) {
+      props = partsMassProperties(next.shape.compound(), next.parts, next.scale);
+    } else {
+      try {
+        props = massProperties(next.shape, next.givenMass ? 1.0f : next.density, next.scale);
+      } catch (const Error& e) {
+        throw Error(std::string("shape: ") + e.what());
+      }
+    }
+    initMass(props, next.givenMass, next.particle, next, nextState);
+  }
+  try {
+    initShapeExtents(next);
+  } catch (const Error& e) {
+    throw Error(std::string("shape: ") + e.what());
+  }
+  const Quat rotation = nextState.rotation;
+  nextState.centerOfMass = origin + rotation * next.localCenterOfMass;
+  nextState.centerOfMass0 = nextState.centerOfMass;
+  nextState.rotation0 = rotation;
+  // The velocity field of the body is kept: its new centre moves as that point of the body did.
+  nextState.linearVelocity += glm::cross(nextState.angularVelocity, nextState.centerOfMass - oldCenter);
+  nextState.inverseInertiaWorld = worldInverseInertia(next.inverseInertiaLocal, rotation);
+  next.validCenterOfMass = nextState.centerOfMass;
+  next.validRotation = rotation;
+  next.boundsValid = false;
+}
+
+}  // namespace
+
 void setBodyParts(BodyRecord& r, BodyState& s, std::vector<Compound::Child> children,
                   std::vector<PartRecord> parts) {
-  const Vec3 origin = bodyOrigin(r, s);
-  const Vec3 oldCenter = s.centerOfMass;
   Shape shape = Compound::fromChildren(std::move(children));
   BodyRecord next = r;  // the record changes only once everything below has succeeded
   next.shape = std::move(shape);
@@ -261,24 +304,30 @@ void setBodyParts(BodyRecord& r, BodyState& s, std::vector<Compound::Child> chil
   next.rollingResistance = next.parts[0].material.rollingResistance;
   next.ccd = next.ccd && !next.sensor;
   BodyState nextState = s;
-  if (next.type == BodyType::Dynamic) {
-    const MassProperties props = partsMassProperties(next.shape.compound(), next.parts, next.scale);
-    initMass(props, next.givenMass, false, next, nextState);
+  remeasure(next, nextState, bodyOrigin(r, s), s.centerOfMass);
+  r = std::move(next);
+  s = nextState;
+}
+
+void setBodyType(BodyRecord& r, BodyState& s, BodyType type) {
+  if (static_cast<int>(type) > static_cast<int>(BodyType::Dynamic)) throw Error("type: unknown body type");
+  if (r.particle && type != BodyType::Dynamic) throw Error("type: a particle is a dynamic body");
+  if (type != BodyType::Static && r.shape.type() == ShapeType::Plane)
+    throw Error("type: a plane is an infinite half-space and can only be on a static body");
+  if (type == BodyType::Dynamic) {
+    if (!hasParts(r) && !r.sensor && r.shape.type() == ShapeType::Mesh && !r.shape.mesh().isClosed())
+      throw Error("type: an open triangle mesh has no mass; it can be static or kinematic");
+    for (std::uint32_t k = 0; k < r.parts.size(); ++k) {
+      if (partShape(r, k).type() == ShapeType::Mesh)
+        throw Error("type: part " + std::to_string(k) +
+                    " is a triangle mesh, which is for static and kinematic bodies");
+    }
   }
-  try {
-    initShapeExtents(next);
-  } catch (const Error& e) {
-    throw Error(std::string("shape: ") + e.what());
-  }
-  nextState.centerOfMass = origin + s.rotation * next.localCenterOfMass;
-  nextState.centerOfMass0 = nextState.centerOfMass;
-  nextState.rotation0 = s.rotation;
-  // The velocity field of the body is kept: its new centre moves as that point of the body did.
-  nextState.linearVelocity += glm::cross(s.angularVelocity, nextState.centerOfMass - oldCenter);
-  nextState.inverseInertiaWorld = worldInverseInertia(next.inverseInertiaLocal, s.rotation);
-  next.validCenterOfMass = nextState.centerOfMass;
-  next.validRotation = s.rotation;
-  next.boundsValid = false;
+  BodyRecord next = r;
+  next.type = type;
+  BodyState nextState = s;
+  if (type == BodyType::Static) nextState.linearVelocity = nextState.angularVelocity = Vec3(0.0f);
+  remeasure(next, nextState, bodyOrigin(r, s), s.centerOfMass);
   r = std::move(next);
   s = nextState;
 }

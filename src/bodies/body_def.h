@@ -37,6 +37,12 @@ Compound::Child makePartChild(const PartDef& part);
 void setBodyParts(BodyRecord& record, BodyState& state, std::vector<Compound::Child> children,
                   std::vector<PartRecord> parts);
 
+// Changes a body's type (World::setType): mass properties from its shape or parts for a dynamic body
+// (its density, or BodyDef::mass if given), none for the others; the origin and the velocity field
+// kept, a static body stopped. Throws Error, changing nothing, for a type the body cannot have (a
+// plane or an open mesh made dynamic, a particle made anything else).
+void setBodyType(BodyRecord& record, BodyState& state, BodyType type);
+
 // Fills a freshly allocated slot from a valid definition. Throws Error (prefixed with the body's
 // label) when the shape's mass properties or bounds are not representable at this scale and place.
 void initBody(const BodyDef& def, BodyRecord& record, BodyState& state);

@@ -51,6 +51,7 @@ struct BodyRecord {
   bool alive = false;
   bool awake = true;
   bool faulted = false;          // frozen by the fault guard (dynamics/fault_guard.h)
+  bool enabled = true;           // World::setEnabled: a disabled body has no proxy and never wakes
   bool particle = false;         // point mass: no inertia, the rotation never changes
   bool ccd = false;              // BodyDef::ccd (never for sensors)
   bool isotropicInertia = true;  // I = lambda 1 (spheres, cubes...): w x (I w) = 0, no gyroscopic term

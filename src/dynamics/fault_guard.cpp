@@ -97,7 +97,7 @@ void unfreezeBody(BodyRecord& r, BodyState& s) {
   r.faulted = false;
   s.inverseMass = 1.0f / r.mass;
   s.inverseInertiaWorld = worldInverseInertia(r.inverseInertiaLocal, s.rotation);
-  r.awake = true;
+  r.awake = r.enabled;
 }
 
 }  // namespace collide::detail

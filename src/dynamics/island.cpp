@@ -14,12 +14,12 @@ namespace collide::detail {
 
 bool wakeIsland(BodyStorage& bodies, std::uint32_t index) {
   BodyRecord& r = bodies.records[index];
-  if (!r.alive || r.type != BodyType::Dynamic || r.faulted) return false;
+  if (!r.alive || !r.enabled || r.type != BodyType::Dynamic || r.faulted) return false;
   r.sleepTime = 0.0f;
   if (r.awake) return false;
   const std::uint32_t root = r.island;
   for (BodyRecord& other : bodies.records) {
-    if (other.alive && other.type == BodyType::Dynamic && !other.awake && !other.faulted &&
+    if (other.alive && other.enabled && other.type == BodyType::Dynamic && !other.awake && !other.faulted &&
         other.island == root) {
       other.awake = true;
       other.sleepTime = 0.0f;
@@ -103,7 +103,8 @@ void Islands::updateSleep(BodyStorage& bodies, std::span<const Contact> contacts
     if (!c.sensor && c.touching && !c.asleep) link(c.bodyA, c.bodyB);
   }
   for (const DistanceJoint& joint : joints) {
-    if (joint.alive) link(joint.bodyA, joint.bodyB);
+    if (joint.alive && bodies.records[joint.bodyA].enabled && bodies.records[joint.bodyB].enabled)
+      link(joint.bodyA, joint.bodyB);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!bodies.isAwakeDynamic(i)) continue;

@@ -89,8 +89,10 @@ bool isAwakeDynamic(const BodyRecord& r) { return r.alive && r.type == BodyType:
 
 void prepareJoints(const JointSolverView& view, std::vector<DistanceJoint>& joints) {
   for (DistanceJoint& joint : joints) {
-    joint.active = joint.alive && (isAwakeDynamic(view.storage.records[joint.bodyA]) ||
-                                   isAwakeDynamic(view.storage.records[joint.bodyB]));
+    const BodyRecord& a = view.storage.records[joint.bodyA];
+    const BodyRecord& b = view.storage.records[joint.bodyB];
+    // A disabled body takes no part in the step: its constraints rest with it.
+    joint.active = joint.alive && a.enabled && b.enabled && (isAwakeDynamic(a) || isAwakeDynamic(b));
   }
 }
 
