@@ -7,6 +7,7 @@
 #include <collide/narrowphase.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace collide::detail {
 
@@ -16,6 +17,9 @@ namespace {
 float impactTime(const Shape& a, const Sweep& sweepA, const Shape& b, const Sweep& sweepB,
                  const ToiSettings& settings, float linearSlop) {
   ToiResult toi = timeOfImpact(a, sweepA, b, sweepB, settings);
+  // Overlapping beyond float range (a half-space placed 3e38 m away holds the body infinitely deep):
+  // no depth to keep, so no stop; the contact pushes out what it can.
+  if (toi.state == ToiResult::State::Overlapping && !std::isfinite(toi.separation)) return 1.0f;
   if (toi.state == ToiResult::State::Overlapping) {
     // Touching at the start: stopping there would freeze a body sliding fast along a floor, so the
     // pair may go on as long as it gets no deeper than the slop below where it started (the solver's
