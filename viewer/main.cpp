@@ -45,7 +45,7 @@ struct Options {
   int width = 1280;
   int height = 720;
   bool noUi = false;
-  DebugDraw debug;
+  DebugLines debug;
 };
 
 // The same rule as `collide run`: an existing file or something path-like is a scene file,
@@ -189,7 +189,7 @@ struct App {
   }
 
   void debugDrawing() {
-    DebugDraw& debug = options.debug;
+    DebugLines& debug = options.debug;
     ImGui::Checkbox("contact points and normals", &debug.contacts);
     ImGui::Checkbox("bounding boxes", &debug.aabbs);
     ImGui::Checkbox("pairs the broad phase kept", &debug.pairs);

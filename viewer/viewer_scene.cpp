@@ -76,41 +76,18 @@ glm::vec4 bodyColour(BodyType type, ShapeType shape, std::size_t index) {
   return {kPalette[pick][0], kPalette[pick][1], kPalette[pick][2], 1.0f};
 }
 
-void addBox(std::vector<LineVertex>& lines, const Aabb& box, const Vec3& colour) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-    for (int corner = 0; corner < 4; ++corner) {
-      Vec3 from = box.min;
-      from[a] = (corner & 1) ? box.max[a] : box.min[a];
-      from[b] = (corner & 2) ? box.max[b] : box.min[b];
-      Vec3 to = from;
-      to[axis] = box.max[axis];
-      lines.push_back({from, colour});
-      lines.push_back({to, colour});
-    }
-  }
-}
-
-// Colours by tree depth: the root warm, deeper levels cycling through cooler hues.
-Vec3 depthColour(int depth) {
-  static constexpr float kLevels[][3] = {{1.00f, 0.45f, 0.25f}, {1.00f, 0.80f, 0.25f}, {0.55f, 0.95f, 0.30f},
-                                         {0.25f, 0.90f, 0.80f}, {0.35f, 0.60f, 1.00f}, {0.75f, 0.45f, 1.00f},
-                                         {1.00f, 0.45f, 0.80f}};
-  const auto& c = kLevels[static_cast<std::size_t>(depth) % std::size(kLevels)];
-  return {c[0], c[1], c[2]};
-}
-
 }  // namespace
 
 ViewerScene::ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& renderer)
     : scene_(std::move(scene)),
       renderer_(renderer),
       built_(std::make_unique<scene::SceneWorld>(std::move(built))) {
-  std::vector<float> radii, staticRadii;
+  std::vector<float> radii, staticRadii, masses;
   for (std::size_t i = 0; i < built_->bodies.size(); ++i) {
     const BodyId id = built_->bodies[i];
     const Shape& shape = built_->world.shape(id);
     addBody(id, bodyColour(built_->world.type(id), shape.type(), i));
+    if (built_->world.type(id) == BodyType::Dynamic) masses.push_back(built_->world.mass(id));
     if (shape.type() == ShapeType::Plane) continue;
     const Aabb box = worldBounds(shape, built_->world.transform(id));
     (built_->world.type(id) == BodyType::Static ? staticRadii : radii)
@@ -121,6 +98,12 @@ ViewerScene::ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& 
   if (!sizes.empty()) {
     std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
     typicalRadius_ = sizes[sizes.size() / 2];
+  }
+  // The median dynamic body's weight over a step, shared by four contact points: the impulse drawn
+  // as long as the typical radius.
+  if (!masses.empty()) {
+    std::nth_element(masses.begin(), masses.begin() + masses.size() / 2, masses.end());
+    typicalImpulse_ = 0.25f * masses[masses.size() / 2] * 9.81f * scene_.dt;
   }
 }
 
@@ -214,46 +197,40 @@ std::vector<std::vector<Instance>> ViewerScene::instances(int meshCount) const {
   return out;
 }
 
-std::vector<LineVertex> ViewerScene::debugLines(const DebugDraw& options) const {
-  std::vector<LineVertex> lines;
-  if (options.aabbs) {
-    for (const DrawnBody& body : bodies_) {
-      if (!world().isValid(body.id)) continue;
-      const Shape& shape = world().shape(body.id);
-      if (shape.type() == ShapeType::Plane) continue;
-      addBox(lines, worldBounds(shape, world().transform(body.id)), Vec3(0.2f, 0.9f, 0.3f));
-    }
-  }
-  if (options.broadPhaseNodes) addBroadPhaseLines(options, lines);
-  if (options.pairs) addPairLines(lines);
-  if (options.contacts) {
-    const Vec3 red(1.0f, 0.2f, 0.2f), yellow(1.0f, 0.9f, 0.2f);
-    // Sized by the bodies: a 30 cm normal hides a billiard ball and vanishes next to a house.
-    const float kNormal = 0.6f * typicalRadius_, kCross = 0.1f * typicalRadius_;
-    // The touching contacts the last step left, as the world hands them out.
-    built_->world.visitContacts([&](const ContactData& contact) {
-      for (int i = 0; i < contact.manifold.count; ++i) {
-        const Vec3 point = contact.manifold.points[i].midpoint();
-        for (int axis = 0; axis < 3; ++axis) {
-          Vec3 d(0.0f);
-          d[axis] = kCross;
-          lines.push_back({point - d, red});
-          lines.push_back({point + d, red});
-        }
-        lines.push_back({point, yellow});
-        lines.push_back({point + kNormal * contact.manifold.normal, yellow});
-      }
-    });
-  }
-  return lines;
-}
+namespace {
 
-void ViewerScene::addBroadPhaseLines(const DebugDraw& options, std::vector<LineVertex>& lines) const {
-  world().broadPhase().visitNodes([&](const BroadPhaseNode& node) {
-    if (node.tree == MotionType::Static && !options.staticTree) return;
-    if (node.depth < options.firstDepth || node.depth > options.lastDepth) return;
-    addBox(lines, node.box, depthColour(node.depth));
-  });
+// The library's debug drawing into the renderer's line list.
+class LineRecorder : public collide::DebugDraw {
+ public:
+  explicit LineRecorder(std::vector<LineVertex>& lines) : lines_(lines) {}
+  void drawLine(const Vec3& from, const Vec3& to, const DebugColor& color) override {
+    lines_.push_back({from, color});
+    lines_.push_back({to, color});
+  }
+
+ private:
+  std::vector<LineVertex>& lines_;
+};
+
+}  // namespace
+
+std::vector<LineVertex> ViewerScene::debugLines(const DebugLines& options) const {
+  std::vector<LineVertex> lines;
+  DebugDrawOptions draw;
+  draw.shapes = false;  // the bodies are drawn shaded
+  draw.bounds = options.aabbs;
+  draw.broadPhase = options.broadPhaseNodes;
+  draw.staticTree = options.staticTree;
+  draw.firstDepth = options.firstDepth;
+  draw.lastDepth = options.lastDepth;
+  draw.contacts = options.contacts;
+  // Sized by the bodies: a 30 cm normal hides a billiard ball and vanishes next to a house.
+  draw.normalLength = 0.6f * typicalRadius_;
+  draw.impulseScale = typicalRadius_ / typicalImpulse_;
+  LineRecorder recorder(lines);
+  world().draw(recorder, draw);
+  if (options.pairs) addPairLines(lines);
+  return lines;
 }
 
 int ViewerScene::broadPhaseDepth() const {

@@ -15,8 +15,10 @@
 
 namespace collide::viewer {
 
-struct DebugDraw {
-  bool contacts = false;  // contact points and normals (from the pre-solve callback)
+// What the viewer's debug lines show: the library's debug drawing (World::draw) of contacts, boxes
+// and the broad phase, and the broad phase's pairs.
+struct DebugLines {
+  bool contacts = false;  // touching contacts: points, normals and impulses (World::draw)
   bool aabbs = false;     // each body's world box
   // The broad phase's own boxes (BroadPhase::visitNodes): the tree's nodes from firstDepth to
   // lastDepth, coloured by depth, or the grid's occupied cells.
@@ -69,14 +71,13 @@ class ViewerScene {
 
   // This frame's placements, one list per renderer mesh.
   std::vector<std::vector<Instance>> instances(int meshCount) const;
-  std::vector<LineVertex> debugLines(const DebugDraw& options) const;
+  std::vector<LineVertex> debugLines(const DebugLines& options) const;
   // The deepest node of the broad phase's structure (0 when it has none), for the depth sliders.
   int broadPhaseDepth() const;
 
  private:
   void addBody(BodyId id, const glm::vec4& colour);
   void addParts(const Shape& shape, const glm::mat4& local, std::vector<DrawnBody::Part>& parts);
-  void addBroadPhaseLines(const DebugDraw& options, std::vector<LineVertex>& lines) const;
   void addPairLines(std::vector<LineVertex>& lines) const;
 
   scene::Scene scene_;
@@ -87,7 +88,8 @@ class ViewerScene {
   // Meshes shared by shapes with equal parameters (primitives) or the same polyhedron (pointer).
   std::unordered_map<std::string, int> meshKeys_;
   int steps_ = 0;
-  float typicalRadius_ = 0.5f;  // of the scene's bodies: sizes the contact marks
+  float typicalRadius_ = 0.5f;   // of the scene's bodies: sizes the contact marks
+  float typicalImpulse_ = 1.0f;  // N s, a typical body's share of its weight on a point over a step
 };
 
 }  // namespace collide::viewer

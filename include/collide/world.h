@@ -8,6 +8,7 @@
 
 #include <collide/body.h>
 #include <collide/broadphase.h>
+#include <collide/debug_draw.h>
 #include <collide/error.h>
 #include <collide/events.h>
 #include <collide/math.h>
@@ -312,6 +313,13 @@ class World {
   // proxy box holds its shape grown by the contact tuning's speculative distance (by the step's
   // predicted motion too, from the start of a step), so between steps it holds where the body is.
   const BroadPhase& broadPhase() const;
+
+  // Draws what `options` asks for through the engine's DebugDraw (collide/debug_draw.h,
+  // docs/debug-draw.md): every part's shape (coloured by body type and state: DebugColors), world
+  // boxes, the broad phase's structure, touching contacts with their normals and impulses, the
+  // constraints, centres of mass; in slot order, the same calls for the same world. Out-of-range
+  // lengths in the options throw Error before anything is drawn.
+  void draw(DebugDraw& draw, const DebugDrawOptions& options = {}) const;
 
   // Sum over dynamic bodies.
   Vec3 linearMomentum() const;
