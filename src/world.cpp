@@ -613,6 +613,25 @@ std::vector<BodyId> World::overlapPoint(const Vec3& point, const QueryFilter& fi
   return detail::overlapPoint(impl_->bodies, *impl_->broadPhase, point, filter);
 }
 
+void World::castShapeCollect(const Shape& shape, const Transform& pose, const Vec3& translation,
+                             const ShapeCastCollector& collector, const QueryFilter& filter) const {
+  detail::castShapeCollect(impl_->bodies, *impl_->broadPhase, shape, pose, translation, collector, filter);
+}
+
+void World::overlapShapeCollect(const Shape& shape, const Transform& pose, const OverlapCollector& collector,
+                                const QueryFilter& filter) const {
+  detail::overlapShapeCollect(impl_->bodies, *impl_->broadPhase, shape, pose, collector, filter);
+}
+
+void World::overlapPointCollect(const Vec3& point, const PointCollector& collector,
+                                const QueryFilter& filter) const {
+  detail::overlapPointCollect(impl_->bodies, *impl_->broadPhase, point, collector, filter);
+}
+
+bool World::hasLineOfSight(const Vec3& from, const Vec3& to, const QueryFilter& filter) const {
+  return detail::hasLineOfSight(impl_->bodies, *impl_->broadPhase, from, to, filter);
+}
+
 std::vector<BodyPair> World::broadPhasePairs() const {
   return detail::bodyPairs(impl_->bodies, *impl_->broadPhase, impl_->pairs);
 }

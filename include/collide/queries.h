@@ -63,6 +63,15 @@ struct OverlapResult {
   friend bool operator==(const OverlapResult&, const OverlapResult&) = default;
 };
 
+// Called by World::castShapeCollect for each body the swept shape reaches, by body index: return the
+// new largest fraction (hit.fraction to keep only hits no later than this one, a larger value such as
+// 1 to keep going) or a negative number to stop. Hits beyond the clip are not handed out.
+using ShapeCastCollector = std::function<float(const ShapeCastResult& hit)>;
+// Called by World::overlapShapeCollect for each part touched, and by World::overlapPointCollect for
+// each body holding the point, by body index: return false to stop.
+using OverlapCollector = std::function<bool(const OverlapResult& overlap)>;
+using PointCollector = std::function<bool(BodyId body)>;
+
 // Two bodies, as World::broadPhasePairs hands them out.
 struct BodyPair {
   BodyId a;

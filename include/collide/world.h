@@ -301,6 +301,20 @@ class World {
   // wholly inside a closed mesh does not overlap it. A plane query shape or an invalid pose throws Error.
   std::vector<OverlapResult> overlapShape(const Shape& shape, const Transform& pose,
                                           const QueryFilter& filter = {}) const;
+  // The same, each answer handed to a collector as it is found (by body index, then part), which may
+  // clip a cast or stop any of them early (queries.h); no list is built. An unset collector throws
+  // Error.
+  void castShapeCollect(const Shape& shape, const Transform& pose, const Vec3& translation,
+                        const ShapeCastCollector& collector, const QueryFilter& filter = {}) const;
+  void overlapShapeCollect(const Shape& shape, const Transform& pose, const OverlapCollector& collector,
+                           const QueryFilter& filter = {}) const;
+  void overlapPointCollect(const Vec3& point, const PointCollector& collector,
+                           const QueryFilter& filter = {}) const;
+  // Line of sight between two points, exact: true when no shape the filter sees (sensors aside,
+  // unless asked) touches the segment, by the shapes themselves, not their boxes (a ray cast that
+  // stops at the first hit). BroadPhase::hasLineOfSight is the conservative, cheaper test by boxes.
+  // Non-finite points throw Error.
+  bool hasLineOfSight(const Vec3& from, const Vec3& to, const QueryFilter& filter = {}) const;
   // Every body whose solid holds the point (collide::containsPoint: the boundary counts; a plane's solid
   // is its half-space; a closed mesh holds its inside, an open mesh no point), sorted by body index.
   // A non-finite point throws Error.

@@ -170,10 +170,11 @@ std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint3
   return best;
 }
 
-std::vector<ShapeCastResult> castShapeCandidates(const BodyStorage& bodies, const BroadPhase& broadPhase,
-                                                 const Shape& shape, const Transform& pose,
-                                                 const Vec3& translation, const QueryFilter& filter,
-                                                 const char* query) {
+// Each body the swept shape reaches, by body index, handed to `visit` until it returns false.
+template <typename Visit>
+void visitShapeCast(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                    const Transform& pose, const Vec3& translation, const QueryFilter& filter,
+                    const char* query, Visit&& visit) {
   if (!shape.isConvex()) {
     throw Error(std::string("world: ") + query +
                 ": the cast shape must be convex (sphere, capsule, box, k-DOP, ellipsoid, cylinder or convex "
@@ -190,13 +191,24 @@ std::vector<ShapeCastResult> castShapeCandidates(const BodyStorage& bodies, cons
   const Sweep sweep = Sweep::between(pose, end);
   const Aabb swept =
       merge(worldBounds(shape, pose), worldBounds(shape, end)).expanded(castSettings().tolerance);
-  std::vector<ShapeCastResult> hits;
   for (const std::uint32_t index : candidates(broadPhase, swept, filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
     if (std::optional<ShapeCastResult> hit = castAgainst(bodies, index, shape, sweep, translation, filter)) {
-      hits.push_back(*hit);
+      if (!visit(*hit)) return;
     }
   }
+}
+
+std::vector<ShapeCastResult> castShapeCandidates(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                                 const Shape& shape, const Transform& pose,
+                                                 const Vec3& translation, const QueryFilter& filter,
+                                                 const char* query) {
+  std::vector<ShapeCastResult> hits;
+  visitShapeCast(bodies, broadPhase, shape, pose, translation, filter, query,
+                 [&](const ShapeCastResult& hit) {
+                   hits.push_back(hit);
+                   return true;
+                 });
   return hits;
 }
 
@@ -286,14 +298,16 @@ std::vector<ShapeCastResult> castShapeAll(const BodyStorage& bodies, const Broad
   return hits;
 }
 
-std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPhase& broadPhase,
-                                        const Shape& shape, const Transform& pose,
-                                        const QueryFilter& filter) {
+namespace {
+
+// Each part the shape touches, by body index and part, handed to `visit` until it returns false.
+template <typename Visit>
+void visitOverlaps(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                   const Transform& pose, const QueryFilter& filter, const char* query, Visit&& visit) {
   if (shape.type() == ShapeType::Plane) {
-    throw Error("world: overlapShape: a plane has no finite extent to query with; use a box");
+    throw Error(std::string("world: ") + query + ": a plane has no finite extent to query with; use a box");
   }
-  checkPose(pose, "overlapShape");
-  std::vector<OverlapResult> out;
+  checkPose(pose, query);
   for (const std::uint32_t index : candidates(broadPhase, worldBounds(shape, pose), filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
     const BodyRecord& r = bodies.records[index];
@@ -302,29 +316,31 @@ std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPh
       // Every part the shape touches.
       for (std::uint32_t part = 0; part < partCount(r); ++part) {
         if (partPasses(filter, r, part) &&
-            touches(shape, pose, partShape(r, part), bodyPose * partLocalPose(r, part)))
-          out.push_back({bodies.idOf(index), 0, part});
+            touches(shape, pose, partShape(r, part), bodyPose * partLocalPose(r, part)) &&
+            !visit(OverlapResult{bodies.idOf(index), 0, part}))
+          return;
       }
     } else if (r.shape.type() == ShapeType::Compound) {
       // Child by child, so that the part overlapped is known; a compound's collide() is their union.
       const auto children = r.shape.compound().children();
       for (std::size_t c = 0; c < children.size(); ++c) {
         if (touches(shape, pose, children[c].shape, bodyPose * children[c].transform)) {
-          out.push_back({bodies.idOf(index), static_cast<std::uint32_t>(c)});
+          if (!visit(OverlapResult{bodies.idOf(index), static_cast<std::uint32_t>(c), 0})) return;
           break;
         }
       }
     } else if (touches(shape, pose, r.shape, bodyPose)) {
-      out.push_back({bodies.idOf(index), 0});
+      if (!visit(OverlapResult{bodies.idOf(index), 0, 0})) return;
     }
   }
-  return out;
 }
 
-std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
-                                 const QueryFilter& filter) {
-  if (!isFinite(point)) throw Error("world: overlapPoint: point must be finite, got " + formatVec(point));
-  std::vector<BodyId> out;
+// Each body whose solid holds the point, by body index, handed to `visit` until it returns false.
+template <typename Visit>
+void visitPoint(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
+                const QueryFilter& filter, const char* query, Visit&& visit) {
+  if (!isFinite(point))
+    throw Error(std::string("world: ") + query + ": point must be finite, got " + formatVec(point));
   for (const std::uint32_t index : candidates(broadPhase, Aabb{point, point}, filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
     const BodyRecord& r = bodies.records[index];
@@ -334,9 +350,71 @@ std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& br
       inside = partPasses(filter, r, part) &&
                containsPoint(partShape(r, part), pose * partLocalPose(r, part), point);
     }
-    if (inside) out.push_back(bodies.idOf(index));
+    if (inside && !visit(bodies.idOf(index))) return;
   }
+}
+
+}  // namespace
+
+std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPhase& broadPhase,
+                                        const Shape& shape, const Transform& pose,
+                                        const QueryFilter& filter) {
+  std::vector<OverlapResult> out;
+  visitOverlaps(bodies, broadPhase, shape, pose, filter, "overlapShape", [&](const OverlapResult& o) {
+    out.push_back(o);
+    return true;
+  });
   return out;
+}
+
+void overlapShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                         const Transform& pose, const OverlapCollector& collector,
+                         const QueryFilter& filter) {
+  if (!collector) throw Error("world: overlapShapeCollect: the collector must be set");
+  visitOverlaps(bodies, broadPhase, shape, pose, filter, "overlapShapeCollect", collector);
+}
+
+std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
+                                 const QueryFilter& filter) {
+  std::vector<BodyId> out;
+  visitPoint(bodies, broadPhase, point, filter, "overlapPoint", [&](BodyId id) {
+    out.push_back(id);
+    return true;
+  });
+  return out;
+}
+
+void overlapPointCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
+                         const PointCollector& collector, const QueryFilter& filter) {
+  if (!collector) throw Error("world: overlapPointCollect: the collector must be set");
+  visitPoint(bodies, broadPhase, point, filter, "overlapPointCollect", collector);
+}
+
+void castShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                      const Transform& pose, const Vec3& translation, const ShapeCastCollector& collector,
+                      const QueryFilter& filter) {
+  if (!collector) throw Error("world: castShapeCollect: the collector must be set");
+  float reach = 1.0f;
+  visitShapeCast(bodies, broadPhase, shape, pose, translation, filter, "castShapeCollect",
+                 [&](const ShapeCastResult& hit) {
+                   if (hit.fraction > reach) return true;  // beyond the clip: not handed out
+                   const float answer = collector(hit);
+                   if (answer < 0.0f) return false;
+                   if (!std::isnan(answer)) reach = std::min(answer, reach);
+                   return true;
+                 });
+}
+
+bool hasLineOfSight(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& from, const Vec3& to,
+                    const QueryFilter& filter) {
+  if (!isFinite(from) || !isFinite(to))
+    throw Error("world: hasLineOfSight: from and to must be finite, got " + formatVec(from) + " and " +
+                formatVec(to));
+  const Vec3 d = to - from;
+  const float length = glm::length(d);
+  if (!std::isfinite(length)) throw Error("world: hasLineOfSight: the segment is too long for float");
+  if (length == 0.0f) return overlapPoint(bodies, broadPhase, from, filter).empty();
+  return !castRayAny(bodies, broadPhase, Ray{from, d / length, length}, filter).has_value();
 }
 
 std::vector<BodyPair> bodyPairs(const BodyStorage& bodies, const BroadPhase& broadPhase,

@@ -51,6 +51,22 @@ std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPh
 std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
                                  const QueryFilter& filter);
 
+// The queries above, each answer handed to a collector as it is found (by body index, then part),
+// which may stop the query (collide/queries.h: ShapeCastCollector, OverlapCollector,
+// PointCollector). Throws Error for an unset collector and as the queries above.
+void castShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                      const Transform& pose, const Vec3& translation, const ShapeCastCollector& collector,
+                      const QueryFilter& filter);
+void overlapShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                         const Transform& pose, const OverlapCollector& collector, const QueryFilter& filter);
+void overlapPointCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
+                         const PointCollector& collector, const QueryFilter& filter);
+
+// Exact line of sight: no shape the filter sees touches the segment (a ray cast, the first hit
+// stops it); a zero-length segment: no solid holds the point.
+bool hasLineOfSight(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& from, const Vec3& to,
+                    const QueryFilter& filter);
+
 // The bodies of the proxy pairs the broad phase kept, leaving out pairs with a body destroyed since.
 std::vector<BodyPair> bodyPairs(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                 std::span<const ProxyPair> pairs);

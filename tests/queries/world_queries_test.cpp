@@ -302,6 +302,94 @@ TEST_P(WorldQueries, OverlapsAndPointsMatchBruteForceInRandomWorlds) {
   EXPECT_GT(found, 100);
 }
 
+TEST_P(WorldQueries, CollectorsSeeWhatTheListsHoldAndStopWhenAsked) {
+  // Each collector, let run, hands out exactly the list's answers (by body index); told to stop at
+  // the k-th answer, it is handed k; a cast clipped at a hit's fraction is handed no later hit.
+  const RandomWorld w(GetParam(), 3);
+  std::mt19937 rng(400);
+  int checked = 0;
+  for (int q = 0; q < 60; ++q) {
+    const Shape shape = randomShape(rng, q % 2 == 0 ? 0 : 3);
+    const Transform pose{randomPoint(rng, -7.0f, 7.0f), randomRotation(rng), 3.0f};  // large: many answers
+    std::vector<OverlapResult> all = w.world.overlapShape(shape, pose);
+    std::vector<OverlapResult> collected;
+    w.world.overlapShapeCollect(shape, pose, [&](const OverlapResult& o) {
+      collected.push_back(o);
+      return true;
+    });
+    EXPECT_EQ(collected, all) << "query " << q;
+    if (all.size() >= 2) {
+      std::size_t handed = 0;
+      w.world.overlapShapeCollect(shape, pose, [&](const OverlapResult&) { return ++handed < 2; });
+      EXPECT_EQ(handed, 2u);
+      ++checked;
+    }
+
+    const Vec3 translation = randomPoint(rng, -6.0f, 6.0f) - pose.position;
+    std::vector<ShapeCastResult> casts = w.world.castShapeAll(shape, pose, translation);
+    std::vector<std::uint32_t> castBodies;
+    w.world.castShapeCollect(shape, pose, translation, [&](const ShapeCastResult& hit) {
+      castBodies.push_back(hit.body.index);
+      return 1.0f;
+    });
+    std::vector<std::uint32_t> expectedBodies;
+    for (const ShapeCastResult& hit : casts) expectedBodies.push_back(hit.body.index);
+    std::sort(expectedBodies.begin(), expectedBodies.end());
+    EXPECT_EQ(castBodies, expectedBodies) << "cast " << q;
+    // Clipped at each hit as it comes: what is handed out never goes later than the clip so far, and
+    // the last clip is the earliest hit.
+    float clip = 1.0f;
+    w.world.castShapeCollect(shape, pose, translation, [&](const ShapeCastResult& hit) {
+      EXPECT_LE(hit.fraction, clip);
+      clip = hit.fraction;
+      return hit.fraction;
+    });
+    if (!casts.empty()) {
+      EXPECT_EQ(clip, casts.front().fraction) << "cast " << q;
+    }
+  }
+  EXPECT_GT(checked, 5);
+  for (int q = 0; q < 100; ++q) {
+    const Vec3 point = randomPoint(rng, -8.0f, 8.0f);
+    std::vector<BodyId> collected;
+    w.world.overlapPointCollect(point, [&](BodyId id) {
+      collected.push_back(id);
+      return true;
+    });
+    EXPECT_EQ(collected, w.world.overlapPoint(point));
+  }
+  EXPECT_THROW(w.world.overlapShapeCollect(Shape(Sphere{1.0f}), Transform{}, OverlapCollector{}), Error);
+  EXPECT_THROW(w.world.castShapeCollect(Shape(Sphere{1.0f}), Transform{}, Vec3(1.0f), ShapeCastCollector{}),
+               Error);
+  EXPECT_THROW(w.world.overlapPointCollect(Vec3(0.0f), PointCollector{}), Error);
+}
+
+TEST_P(WorldQueries, ExactLineOfSightIsTheShapesNotTheirBoxes) {
+  // Between random points: blocked exactly when the brute force finds a shape on the segment, and
+  // the boxes' test (BroadPhase::hasLineOfSight) never sees where the shapes block; some segments
+  // pass between shapes through their boxes, where the two differ.
+  const RandomWorld w(GetParam(), 4);
+  std::mt19937 rng(500);
+  int blocked = 0, boxesOnly = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Vec3 from = randomPoint(rng, -9.0f, 9.0f), to = randomPoint(rng, -9.0f, 9.0f);
+    const float length = glm::length(to - from);
+    const Ray ray{from, (to - from) / length, length};
+    const bool expected = bruteRayAll(w, ray).empty();
+    const bool sight = w.world.hasLineOfSight(from, to);
+    EXPECT_EQ(sight, expected) << "segment " << q;
+    const bool boxSight = w.world.broadPhase().hasLineOfSight(from, to);
+    if (!sight) {
+      ++blocked;
+      EXPECT_FALSE(boxSight) << "segment " << q;
+    }
+    if (sight && !boxSight) ++boxesOnly;
+  }
+  EXPECT_GT(blocked, 30);
+  EXPECT_GT(boxesOnly, 5);
+  EXPECT_THROW((void)w.world.hasLineOfSight(Vec3(NAN), Vec3(0.0f)), Error);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryBroadPhase, WorldQueries,
                          ::testing::Values(BroadPhaseType::Tree, BroadPhaseType::SweepAndPrune,
                                            BroadPhaseType::Grid, BroadPhaseType::BruteForce),
