@@ -168,12 +168,10 @@ class ShapeMaker {
 
 }  // namespace
 
-EngineRun runBullet(const scene::Scene& scene, int steps) {
-  using Clock = std::chrono::steady_clock;
-  if (scene.world.sleeping)
-    throw Error(scene.source + ": Bullet side: only scenes without sleeping are compared");
-  EngineRun run;
-  const auto buildStart = Clock::now();
+namespace {
+
+// The scene in Bullet: every body with its shape, mass, friction and restitution.
+std::unique_ptr<BulletWorld> buildBullet(const scene::Scene& scene) {
   auto w = std::make_unique<BulletWorld>();
   w->world.setGravity(toBt(scene.world.gravity));
   w->world.setInternalTickCallback(countTick, &w->ticks);
@@ -206,6 +204,18 @@ EngineRun runBullet(const scene::Scene& scene, int steps) {
     }
     w->world.addRigidBody(body.get());
   }
+  return w;
+}
+
+}  // namespace
+
+EngineRun runBullet(const scene::Scene& scene, int steps) {
+  using Clock = std::chrono::steady_clock;
+  if (scene.world.sleeping)
+    throw Error(scene.source + ": Bullet side: only scenes without sleeping are compared");
+  EngineRun run;
+  const auto buildStart = Clock::now();
+  std::unique_ptr<BulletWorld> w = buildBullet(scene);
   run.buildMs = std::chrono::duration<double, std::milli>(Clock::now() - buildStart).count();
 
   const btScalar dt = scene.dt;
@@ -228,6 +238,40 @@ EngineRun runBullet(const scene::Scene& scene, int steps) {
                     fromBt(body.getLinearVelocity())};
     run.masses[i] = body.getInvMass() > 0.0f ? 1.0 / body.getInvMass() : 0.0;
   }
+  return run;
+}
+
+QueryRun queryBullet(const scene::Scene& scene, int steps, const QueryBatch& batch, int repeats) {
+  std::unique_ptr<BulletWorld> w = buildBullet(scene);
+  for (int i = 0; i < steps; ++i) w->world.stepSimulation(scene.dt, 1, scene.dt);
+  w->world.updateAabbs();
+  QueryRun run;
+  run.rayDistances.assign(batch.rays.size(), kMiss);
+  run.sweepFractions.assign(batch.sweeps.size(), kMiss);
+  const double rayStart = processCpuSeconds();
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t k = 0; k < batch.rays.size(); ++k) {
+      const Ray& ray = batch.rays[k];
+      const btVector3 from = toBt(ray.origin), to = toBt(ray.origin + ray.maxDistance * ray.direction);
+      btCollisionWorld::ClosestRayResultCallback hit(from, to);
+      w->world.rayTest(from, to, hit);
+      if (hit.hasHit()) run.rayDistances[k] = hit.m_closestHitFraction * ray.maxDistance;
+    }
+  }
+  run.rayCpuSeconds = processCpuSeconds() - rayStart;
+  btSphereShape sphere(batch.sweepRadius);
+  const double sweepStart = processCpuSeconds();
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t k = 0; k < batch.sweeps.size(); ++k) {
+      const SweepQuery& q = batch.sweeps[k];
+      const btTransform from(btQuaternion::getIdentity(), toBt(q.from));
+      const btTransform to(btQuaternion::getIdentity(), toBt(q.from + q.translation));
+      btCollisionWorld::ClosestConvexResultCallback hit(from.getOrigin(), to.getOrigin());
+      w->world.convexSweepTest(&sphere, from, to, hit, 0.0f);
+      if (hit.hasHit()) run.sweepFractions[k] = hit.m_closestHitFraction;
+    }
+  }
+  run.sweepCpuSeconds = processCpuSeconds() - sweepStart;
   return run;
 }
 

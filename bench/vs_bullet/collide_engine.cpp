@@ -40,4 +40,30 @@ EngineRun runCollide(const scene::Scene& scene, int steps) {
   return run;
 }
 
+QueryRun queryCollide(const scene::Scene& scene, int steps, const QueryBatch& batch, int repeats) {
+  scene::SceneWorld sw = scene::buildWorld(scene);
+  for (int i = 0; i < steps; ++i) sw.world.step(scene.dt);
+  QueryRun run;
+  run.rayDistances.assign(batch.rays.size(), kMiss);
+  run.sweepFractions.assign(batch.sweeps.size(), kMiss);
+  const double rayStart = processCpuSeconds();
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t k = 0; k < batch.rays.size(); ++k) {
+      if (const auto hit = sw.world.castRay(batch.rays[k])) run.rayDistances[k] = hit->distance;
+    }
+  }
+  run.rayCpuSeconds = processCpuSeconds() - rayStart;
+  const Shape sphere(Sphere{batch.sweepRadius});
+  const double sweepStart = processCpuSeconds();
+  for (int r = 0; r < repeats; ++r) {
+    for (std::size_t k = 0; k < batch.sweeps.size(); ++k) {
+      const SweepQuery& q = batch.sweeps[k];
+      if (const auto hit = sw.world.castShape(sphere, Transform{q.from}, q.translation))
+        run.sweepFractions[k] = hit->fraction;
+    }
+  }
+  run.sweepCpuSeconds = processCpuSeconds() - sweepStart;
+  return run;
+}
+
 }  // namespace collide::bench

@@ -34,6 +34,29 @@ EngineRun runCollide(const scene::Scene& scene, int steps);
 // reproduce). Defined only when Bullet is available.
 EngineRun runBullet(const scene::Scene& scene, int steps);
 
+// The query benchmark (collide_query_vs_bullet): the same rays and sphere sweeps asked of both
+// engines' worlds of one scene.
+struct SweepQuery {
+  Vec3 from{0.0f};
+  Vec3 translation{0.0f};
+};
+struct QueryBatch {
+  std::vector<Ray> rays;  // unit directions, finite maxDistance
+  std::vector<SweepQuery> sweeps;
+  float sweepRadius = 0.25f;
+};
+inline constexpr float kMiss = -1.0f;
+struct QueryRun {
+  std::vector<float> rayDistances;    // per ray: the closest hit's distance, kMiss for none
+  std::vector<float> sweepFractions;  // per sweep: the first contact's fraction, kMiss for none
+  double rayCpuSeconds = 0.0;         // all rays, `repeats` times
+  double sweepCpuSeconds = 0.0;
+};
+// Build the scene, take `steps` steps, then ask every ray (castRay / rayTest with the closest-hit
+// callback) and every sweep (castShape / convexSweepTest of a sphere), `repeats` times over.
+QueryRun queryCollide(const scene::Scene& scene, int steps, const QueryBatch& batch, int repeats);
+QueryRun queryBullet(const scene::Scene& scene, int steps, const QueryBatch& batch, int repeats);
+
 // CPU time of this process, seconds.
 double processCpuSeconds();
 

@@ -156,6 +156,13 @@ class BroadPhase {
   // Rays must have a finite origin, a finite non-zero direction (normalised here) and a maximum
   // distance >= 0; otherwise collide::Error.
   void rayCast(const Ray& ray, LayerMask mask, const RayCastCallback& callback) const;
+  // A box moved along `translation` (a shape cast's broad phase): each proxy box it touches on the
+  // way, with the distance the box has moved when it first touches (0 if it starts touching), and
+  // the callback's clip-or-stop answer as for rayCast (distances along the normalised translation).
+  // A zero translation reports the boxes the box overlaps, at distance 0. A non-finite box or
+  // translation is an Error.
+  void boxCast(const Aabb& box, const Vec3& translation, LayerMask mask,
+               const RayCastCallback& callback) const;
   // The closest box hit (ties: the lowest proxy index), or nothing.
   std::optional<ProxyRayHit> rayCastClosest(const Ray& ray, LayerMask mask = kAllLayers) const;
   // Every box hit, sorted by (distance, index).

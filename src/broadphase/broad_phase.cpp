@@ -186,6 +186,33 @@ void BroadPhase::rayCast(const Ray& ray, LayerMask mask, const RayCastCallback& 
   rayCastImpl(query);
 }
 
+void BroadPhase::boxCast(const Aabb& box, const Vec3& translation, LayerMask mask,
+                         const RayCastCallback& callback) const {
+  if (!isFinite(box.min) || !isFinite(box.max) || !isFinite(translation)) {
+    throw Error("broad phase: box cast: box and translation must be finite, got box " + describe(box.min) +
+                " to " + describe(box.max) + ", translation " + describe(translation));
+  }
+  if (!callback) throw Error("broad phase: box cast: empty callback");
+  const float length = glm::length(translation);
+  if (!(length > 0.0f) || !std::isfinite(length)) {
+    queryAabb(box, mask, [&](ProxyId id) { return callback(id, 0.0f) >= 0.0f; });
+    return;
+  }
+  RayQuery query;
+  query.origin = box.center();
+  query.direction = translation / length;
+  for (int i = 0; i < 3; ++i) {
+    query.parallel[i] = std::abs(query.direction[i]) < 1e-12f;
+    query.inverse[i] = query.parallel[i] ? 0.0f : 1.0f / query.direction[i];
+  }
+  query.maxDistance = length;
+  query.extent = box.halfExtents();
+  query.mask = mask;
+  query.callback = &callback;
+  query.proxies = &proxies_;
+  rayCastImpl(query);
+}
+
 std::optional<ProxyRayHit> BroadPhase::rayCastClosest(const Ray& ray, LayerMask mask) const {
   std::optional<ProxyRayHit> best;
   rayCast(ray, mask, [&](ProxyId id, float distance) {

@@ -37,6 +37,9 @@ struct BroadPhase::RayQuery {
   Vec3 inverse{0.0f};
   bool parallel[3] = {false, false, false};
   float maxDistance = 0.0f;
+  // A box cast's half extents: each box is grown by them, so the ray from the moving box's centre
+  // enters it when the moving box first touches it (0 for a ray).
+  Vec3 extent{0.0f};
   LayerMask mask = kAllLayers;
   const RayCastCallback* callback = nullptr;
   const std::vector<ProxyRecord>* proxies = nullptr;
@@ -48,12 +51,13 @@ struct BroadPhase::RayQuery {
     float tMin = 0.0f;
     float tMax = maxDistance;
     for (int i = 0; i < 3; ++i) {
+      const float lo = box.min[i] - extent[i], hi = box.max[i] + extent[i];
       if (parallel[i]) {
-        if (origin[i] < box.min[i] || origin[i] > box.max[i]) return -1.0f;
+        if (origin[i] < lo || origin[i] > hi) return -1.0f;
         continue;
       }
-      float t0 = (box.min[i] - origin[i]) * inverse[i];
-      float t1 = (box.max[i] - origin[i]) * inverse[i];
+      float t0 = (lo - origin[i]) * inverse[i];
+      float t1 = (hi - origin[i]) * inverse[i];
       if (t0 > t1) std::swap(t0, t1);
       tMin = t0 > tMin ? t0 : tMin;
       tMax = t1 < tMax ? t1 : tMax;
@@ -81,7 +85,7 @@ struct BroadPhase::RayQuery {
 // Queries by a linear scan over every proxy: exact, and all that brute force has; sweep and prune
 // uses them too, since its lists are sorted only inside findPairs.
 class LinearScanBroadPhase : public BroadPhase {
-protected:
+ protected:
   explicit LinearScanBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
 
   void rayCastImpl(RayQuery& query) const override {
@@ -102,7 +106,7 @@ protected:
     scan(mask, callback, [&](const Aabb& b) { return frustum.intersects(b); });
   }
 
-private:
+ private:
   template <typename Test>
   void scan(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
     const auto count = static_cast<std::uint32_t>(proxies_.size());

@@ -30,7 +30,6 @@ class BruteForceBroadPhase final : public LinearScanBroadPhase {
     }
     return true;  // generated in (a, b) order
   }
-
 };
 
 }  // namespace

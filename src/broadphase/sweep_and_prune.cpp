@@ -168,7 +168,6 @@ class SweepAndPruneBroadPhase final : public LinearScanBroadPhase {
     return false;
   }
 
-
   List movables_;
   List statics_;
   int axis_ = 0;

@@ -330,7 +330,8 @@ class GridBroadPhase final : public BroadPhase {
   // (possibly clipped) ray. A proxy is reported in the first cell of its range the ray visits: the
   // cells of a box that a straight ray crosses come one after another.
   void rayCastImpl(RayQuery& query) const override {
-    if (!built_) {
+    // A box cast visits more than the cells the centre's ray crosses: scanned, exactly.
+    if (!built_ || query.extent != Vec3(0.0f)) {
       const auto count = static_cast<std::uint32_t>(proxies_.size());
       for (std::uint32_t i = 0; i < count; ++i) {
         if (proxies_[i].alive && !query.report(i)) return;

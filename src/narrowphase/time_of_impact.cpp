@@ -440,6 +440,26 @@ Sweep childSweep(const Sweep& parent, const Transform& child) {
   return sweep;
 }
 
+// The first fraction in [0, 1] at which `box` moved by `move` touches `target`, or -1 if it never
+// does: the slab test of the box's centre against the target grown by the box's half extents.
+float movingBoxEntry(const Aabb& box, const Vec3& move, const Aabb& target) {
+  const Vec3 c = box.center(), h = box.halfExtents();
+  float t0 = 0.0f, t1 = 1.0f;
+  for (int i = 0; i < 3; ++i) {
+    const float lo = target.min[i] - h[i], hi = target.max[i] + h[i];
+    if (move[i] == 0.0f) {
+      if (c[i] < lo || c[i] > hi) return -1.0f;
+      continue;
+    }
+    float a = (lo - c[i]) / move[i], b = (hi - c[i]) / move[i];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+    if (t0 > t1) return -1.0f;
+  }
+  return t0;
+}
+
 // The box, in the local frame of `frame` (a mesh's sweep), that the other shape covers over its
 // sweep relative to the mesh: its bounds at both ends, grown by what turning can add.
 Aabb sweptBoundsInFrame(const Shape& shape, const Sweep& sweep, const Sweep& frame) {
@@ -511,8 +531,32 @@ ToiResult meshToi(const Shape& mesh, const Sweep& meshSweep, const Shape& other,
     return best;
   }
   const Piece otherPiece = convexPiece(other, otherSweep);
+  const bool turning =
+      meshSweep.rotation0 != meshSweep.rotation1 || otherSweep.rotation0 != otherSweep.rotation1;
+  if (turning) {
+    triangles.forEachTriangleOverlapping(
+        sweptBoundsInFrame(other, otherSweep, meshSweep).expanded(margin), [&](std::uint32_t i) {
+          keepEarliest(best, piecesToi(trianglePiece(triangles, i, meshSweep), otherPiece, settings));
+        });
+    return best;
+  }
+  // Neither turns (a shape cast against a level): in the mesh's frame the other's box moves along a
+  // line, so a triangle whose box that moving box does not touch, or touches only after the earliest
+  // contact so far, cannot be hit first (the box, grown by the target and the tolerance, is touched
+  // no later than the contact is reported). A long sweep over a terrain passes most of the triangles
+  // its swept box holds by this test.
+  const Transform startFrame = meshSweep.at(0.0f).inverse() * otherSweep.at(0.0f);
+  const Transform endFrame = meshSweep.at(1.0f).inverse() * otherSweep.at(1.0f);
+  const Aabb start = transformAabb(localBounds(other), startFrame).expanded(margin);
+  const Vec3 move = endFrame.position - startFrame.position;
+  const auto vertices = triangles.vertices();
   triangles.forEachTriangleOverlapping(
       sweptBoundsInFrame(other, otherSweep, meshSweep).expanded(margin), [&](std::uint32_t i) {
+        const MeshTriangle& tri = triangles.triangles()[i];
+        Aabb box;
+        for (const std::uint32_t v : tri.v) box.grow(vertices[v]);
+        const float entry = movingBoxEntry(start, move, box);
+        if (entry < 0.0f || (best.state != ToiResult::State::Separated && entry > best.t)) return;
         keepEarliest(best, piecesToi(trianglePiece(triangles, i, meshSweep), otherPiece, settings));
       });
   return best;

@@ -170,11 +170,7 @@ std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint3
   return best;
 }
 
-// Each body the swept shape reaches, by body index, handed to `visit` until it returns false.
-template <typename Visit>
-void visitShapeCast(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
-                    const Transform& pose, const Vec3& translation, const QueryFilter& filter,
-                    const char* query, Visit&& visit) {
+void checkCast(const Shape& shape, const Transform& pose, const Vec3& translation, const char* query) {
   if (!shape.isConvex()) {
     throw Error(std::string("world: ") + query +
                 ": the cast shape must be convex (sphere, capsule, box, k-DOP, ellipsoid, cylinder or convex "
@@ -186,12 +182,38 @@ void visitShapeCast(const BodyStorage& bodies, const BroadPhase& broadPhase, con
     throw Error(std::string("world: ") + query + ": translation must be finite, got " +
                 formatVec(translation));
   }
+}
+
+// The cast's broad phase: the proxies the shape's box meets on its way (BroadPhase::boxCast: the
+// shape does not turn, so its box at any time is the start box moved), grown by the cast's
+// tolerance, each with the distance the box has moved when it first touches.
+template <typename Visit>
+void castCandidates(const BroadPhase& broadPhase, const Shape& shape, const Transform& pose,
+                    const Vec3& translation, LayerMask mask, Visit&& visit) {
+  broadPhase.boxCast(worldBounds(shape, pose).expanded(castSettings().tolerance), translation, mask,
+                     [&](ProxyId proxy, float entry) { return visit(bodyIndex(broadPhase, proxy), entry); });
+}
+
+Sweep castSweep(const Transform& pose, const Vec3& translation) {
   Transform end = pose;
   end.position += translation;
-  const Sweep sweep = Sweep::between(pose, end);
-  const Aabb swept =
-      merge(worldBounds(shape, pose), worldBounds(shape, end)).expanded(castSettings().tolerance);
-  for (const std::uint32_t index : candidates(broadPhase, swept, filter.mask)) {
+  return Sweep::between(pose, end);
+}
+
+// Each body the swept shape reaches, by body index, handed to `visit` until it returns false.
+template <typename Visit>
+void visitShapeCast(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
+                    const Transform& pose, const Vec3& translation, const QueryFilter& filter,
+                    const char* query, Visit&& visit) {
+  checkCast(shape, pose, translation, query);
+  const Sweep sweep = castSweep(pose, translation);
+  std::vector<std::uint32_t> indices;
+  castCandidates(broadPhase, shape, pose, translation, filter.mask, [&](std::uint32_t index, float) {
+    indices.push_back(index);
+    return std::numeric_limits<float>::infinity();
+  });
+  std::sort(indices.begin(), indices.end());
+  for (const std::uint32_t index : indices) {
     if (!passes(filter, bodies, index)) continue;
     if (std::optional<ShapeCastResult> hit = castAgainst(bodies, index, shape, sweep, translation, filter)) {
       if (!visit(*hit)) return;
@@ -282,11 +304,23 @@ std::vector<RayCastResult> castRayAll(const BodyStorage& bodies, const BroadPhas
 std::optional<ShapeCastResult> castShapeClosest(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                                 const Shape& shape, const Transform& pose,
                                                 const Vec3& translation, const QueryFilter& filter) {
-  const std::vector<ShapeCastResult> hits =
-      castShapeCandidates(bodies, broadPhase, shape, pose, translation, filter, "castShape");
-  const auto first = std::min_element(hits.begin(), hits.end(), earlierCast);
-  if (first == hits.end()) return std::nullopt;
-  return *first;
+  checkCast(shape, pose, translation, "castShape");
+  const Sweep sweep = castSweep(pose, translation);
+  const float length = glm::length(translation);
+  // Twice the time of impact's tolerance: a contact it reports that much early must not hide a body
+  // whose box the moving box meets just beyond it.
+  const float slack = 2.0f * castSettings().tolerance;
+  std::optional<ShapeCastResult> best;
+  castCandidates(broadPhase, shape, pose, translation, filter.mask, [&](std::uint32_t index, float) {
+    if (passes(filter, bodies, index)) {
+      const std::optional<ShapeCastResult> hit =
+          castAgainst(bodies, index, shape, sweep, translation, filter);
+      if (hit && (!best || earlierCast(*hit, *best))) best = hit;
+    }
+    // The broad phase passes by every box the moving box meets beyond the earliest contact so far.
+    return best ? best->fraction * length + slack : std::numeric_limits<float>::infinity();
+  });
+  return best;
 }
 
 std::vector<ShapeCastResult> castShapeAll(const BodyStorage& bodies, const BroadPhase& broadPhase,

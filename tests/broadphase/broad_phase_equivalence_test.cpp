@@ -2,11 +2,14 @@
 // over many steps: inserts, removals, small moves, teleports, static updates. The pair lists (ids and
 // labels) and every query must be exactly equal.
 #include <collide/broadphase.h>
+#include <collide/error.h>
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -233,4 +236,73 @@ TEST(BroadPhaseEquivalence, BruteForceQueriesAgreeWithDirectTests) {
   const auto hits = bp.rayCastAll(ray);
   for (const ProxyRayHit& hit : hits) EXPECT_GE(rayAabbEntry(ray, bp.bounds(hit.id)), 0.0f);
   for (std::size_t k = 1; k < hits.size(); ++k) EXPECT_LE(hits[k - 1].distance, hits[k].distance);
+}
+
+namespace {
+
+// A box cast written out: whether the box, moved along `translation` in 2,000 even steps, overlaps
+// `target` at one of them (the tests ask it only of clear cases: boxes grown or shrunk by 1 mm).
+bool movingBoxTouches(const Aabb& box, const Vec3& translation, const Aabb& target) {
+  for (int k = 0; k <= 2000; ++k) {
+    const Vec3 d = translation * (float(k) / 2000.0f);
+    if (Aabb{box.min + d, box.max + d}.overlaps(target)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(BroadPhaseEquivalence, BoxCastsEqualEveryAlgorithmAndTheWrittenOutTest) {
+  // Every algorithm hands out the same proxies at the same distances; the reference's proxies are
+  // those a finely sampled moving box touches, and the distances are where the box first touches.
+  Scene scene(31);
+  scene.populate(200, 40);
+  int reported = 0;
+  for (int q = 0; q < 60; ++q) {
+    const Aabb box = scene.randomBox(12.0f, 1.0f);
+    Vec3 translation(scene.uniform(-15.0f, 15.0f), scene.uniform(-15.0f, 15.0f),
+                     scene.uniform(-15.0f, 15.0f));
+    if (q % 10 == 0) translation = Vec3(0.0f, 0.0f, scene.uniform(-15.0f, 15.0f));  // along an axis
+    if (q % 20 == 0) translation = Vec3(0.0f);                                      // an overlap query
+    const auto cast = [&](const BroadPhase& bp) {
+      std::vector<std::pair<std::uint32_t, float>> hits;
+      bp.boxCast(box, translation, kAllLayers, [&](ProxyId id, float distance) {
+        hits.push_back({id.index, distance});
+        return std::numeric_limits<float>::infinity();
+      });
+      std::sort(hits.begin(), hits.end());
+      return hits;
+    };
+    const auto reference = cast(scene.phase(0));
+    for (std::size_t i = 1; i < kTypes.size(); ++i)
+      EXPECT_EQ(cast(scene.phase(i)), reference) << name(i) << " cast " << q;
+    const BroadPhase& bp = scene.phase(0);
+    const float length = glm::length(translation);
+    for (const auto& [index, distance] : reference) {
+      const Aabb target = bp.records()[index].bounds;
+      EXPECT_TRUE(movingBoxTouches(box, translation, target.expanded(1e-3f))) << "cast " << q;
+      if (length > 0.0f) {
+        // Just before the reported distance the box is clear of the target (unless it starts touching).
+        const Vec3 before = translation * (std::max(0.0f, distance - 1e-3f) / length);
+        if (distance > 1e-3f)
+          EXPECT_FALSE((Aabb{box.min + before, box.max + before}.overlaps(target))) << "cast " << q;
+        const Vec3 at = translation * (distance / length);
+        EXPECT_TRUE((Aabb{box.min + at, box.max + at}.expanded(1e-3f).overlaps(target))) << "cast " << q;
+      }
+    }
+    // Every proxy the sampled box clearly touches is reported.
+    for (std::uint32_t index = 0; index < bp.records().size(); ++index) {
+      const auto& r = bp.records()[index];
+      if (!r.alive || !movingBoxTouches(box.expanded(-1e-3f), translation, r.bounds)) continue;
+      EXPECT_TRUE(
+          std::any_of(reference.begin(), reference.end(), [&](const auto& h) { return h.first == index; }))
+          << "cast " << q << " proxy " << index;
+    }
+    reported += static_cast<int>(reference.size());
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(reported, 100);
+  EXPECT_THROW(scene.phase(0).boxCast(Aabb{Vec3(NAN), Vec3(0.0f)}, Vec3(1.0f), kAllLayers,
+                                      [](ProxyId, float) { return 0.0f; }),
+               Error);
 }
