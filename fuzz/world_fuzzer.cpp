@@ -199,7 +199,7 @@ struct Story {
   }
 
   void call(int& steps) {
-    switch (in.choice(15)) {
+    switch (in.choice(16)) {
       case 0:
       case 1: {
         if (live() >= kMaxBodies) break;
@@ -357,6 +357,52 @@ struct Story {
         } catch (const Error& e) {
           trace(std::string("  refused: ") + e.what());
         }
+        break;
+      }
+      case 14: {
+        // Queries and debug drawing between steps. Their answers must agree with each other: the
+        // closest ray hit is the first of all hits, which are sorted and within reach.
+        Ray ray{in.vec(-8.0f, 8.0f), in.vec(-1.0f, 1.0f), in.flag() ? in.value(0.0f, 20.0f) : 1e30f};
+        const Vec3 point = in.vec(-8.0f, 8.0f);
+        const Shape probe = collide::fuzz::decodeShape(in, /*allowPlane=*/false);
+        trace("queries: ray " + describe(ray.origin) + " " + describe(ray.direction) + ", probe " + describe(probe) +
+              " at " + describe(point));
+        try {
+          const auto closest = world.castRay(ray);
+          const auto all = world.castRayAll(ray);
+          for (std::size_t k = 1; k < all.size(); ++k) {
+            if (all[k - 1].distance > all[k].distance) std::abort();
+          }
+          if (closest.has_value() != !all.empty()) std::abort();
+          if (closest && closest->distance != all.front().distance) std::abort();
+          (void)world.hasLineOfSight(ray.origin, point);
+        } catch (const Error& e) {
+          trace(std::string("  refused: ") + e.what());
+        }
+        const auto attempt = [&](auto&& query) {
+          try {
+            query();
+          } catch (const Error& e) {
+            trace(std::string("  refused: ") + e.what());
+          }
+        };
+        attempt([&] { (void)world.overlapShape(probe, Transform{point}); });
+        attempt([&] { (void)world.overlapPoint(point); });
+        attempt([&] { (void)world.castShape(probe, Transform{point}, ray.direction); });
+        attempt([&] {
+          int handed = 0;
+          world.castShapeCollect(probe, Transform{point}, ray.direction, [&](const ShapeCastResult& hit) {
+            return ++handed < 3 ? hit.fraction : -1.0f;
+          });
+        });
+        struct CountingDraw : DebugDraw {
+          std::size_t lines = 0;
+          void drawLine(const Vec3&, const Vec3&, const DebugColor&) override { ++lines; }
+        } draw;
+        DebugDrawOptions everything;
+        everything.bounds = everything.broadPhase = everything.contacts = everything.joints = true;
+        everything.centersOfMass = everything.solidMeshes = everything.names = everything.staticTree = true;
+        world.draw(draw, everything);
         break;
       }
       default: {
