@@ -102,6 +102,10 @@ struct ContactSettings {
   float friction = 0.0f;
   float bounciness = 0.0f;
   Vec3 surfaceVelocity{0.0f};
+  // The parts in contact (0 for a body of one shape), for the callback to read: a one-way platform
+  // that is one part of a level body. What the callback writes here is ignored.
+  std::uint32_t partA = 0;
+  std::uint32_t partB = 0;
 };
 
 // Called for each contact before the solve (normal from a to b); return false to disable it for

@@ -331,7 +331,7 @@ class PairPass {
   // friction would reach every body the contact touches: bad settings are refused (the contact
   // keeps the world's values), the step completes, and then World::step reports them.
   void applyPreSolve(std::uint32_t ia, std::uint32_t ib, Contact& c) const {
-    ContactSettings settings{c.friction, c.impactBounciness, Vec3(0.0f)};
+    ContactSettings settings{c.friction, c.impactBounciness, Vec3(0.0f), c.partA, c.partB};
     c.enabled = preSolve_(bodies_.idOf(ia), bodies_.idOf(ib), c.manifold, settings);
     if (!settingsInRange(settings)) {
       if (callbackError_.empty()) {
@@ -341,7 +341,7 @@ class PairPass {
                          ", surfaceVelocity " + formatVec(settings.surfaceVelocity) +
                          "); the contact kept its own values";
       }
-      settings = ContactSettings{c.friction, c.impactBounciness, Vec3(0.0f)};
+      settings = ContactSettings{c.friction, c.impactBounciness, Vec3(0.0f), c.partA, c.partB};
     }
     c.friction = settings.friction;
     c.impactBounciness = settings.bounciness;

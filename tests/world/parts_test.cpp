@@ -74,8 +74,9 @@ TEST(Parts, MassCentreAndInertiaAreTheSumOfTheParts) {
 }
 
 TEST(Parts, TheTableOfTheDocsStandsOnItsFourLegs) {
-  // docs/parts.md's example: a top and four legs, placed with its feet 5 cm above the ground. It settles on its four legs: four contacts, one per leg part
-  // (1 to 4), none for the top, and its mass is the five parts' at 1000 kg/m^3.
+  // docs/parts.md's example: a top and four legs, placed with its feet 5 cm above the ground. It settles on
+  // its four legs: four contacts, one per leg part (1 to 4), none for the top, and its mass is the five
+  // parts' at 1000 kg/m^3.
   World world;
   world.createBody(test::groundBox());
   BodyDef table;
@@ -323,6 +324,29 @@ TEST(Parts, ASensorPartReportsAndTheSolidPartStops) {
   EXPECT_NEAR(world.transform(ball).position.y, 0.25f, 0.01f);
   EXPECT_TRUE(world.partIsSensor(floor, 1));
   EXPECT_FALSE(world.partIsSensor(floor, 0));
+}
+
+TEST(Parts, ThePreSolveCallbackSeesThePartsAndDisablesOne) {
+  // A level body of two parts, a floor (0) and a platform above it (1); the callback disables every
+  // contact with the platform: a ball dropped on it falls through and lands on the floor.
+  World world;
+  BodyDef level;
+  level.type = BodyType::Static;
+  level.parts = {boxPart(Vec3(0.0f, -0.5f, 0.0f), Vec3(5.0f, 0.5f, 5.0f)),
+                 boxPart(Vec3(0.0f, 2.0f, 0.0f), Vec3(2.0f, 0.1f, 2.0f))};
+  const BodyId levelId = world.createBody(level);
+  const BodyId ball = world.createBody(test::sphereBody(Vec3(0.0f, 4.0f, 0.0f), 0.25f, 1.0f));
+  std::set<std::uint32_t> seen;
+  world.setPreSolveCallback([&](BodyId a, BodyId, const Manifold&, ContactSettings& settings) {
+    const std::uint32_t part = a == levelId ? settings.partA : settings.partB;
+    seen.insert(part);
+    settings.partA = settings.partB = 99;  // ignored
+    return part != 1;
+  });
+  for (int s = 0; s < 180; ++s) world.step(kDt);
+  EXPECT_EQ(seen, (std::set<std::uint32_t>{0, 1}));
+  EXPECT_NEAR(world.transform(ball).position.y, 0.25f, 0.01f);
+  world.visitContacts([&](const ContactData& c) { EXPECT_EQ(c.a == levelId ? c.partA : c.partB, 0u); });
 }
 
 TEST(Parts, ContinuousCollisionStopsEachSolidPartAndLetsAFilteredOnePass) {
