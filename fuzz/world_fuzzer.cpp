@@ -365,8 +365,8 @@ struct Story {
         Ray ray{in.vec(-8.0f, 8.0f), in.vec(-1.0f, 1.0f), in.flag() ? in.value(0.0f, 20.0f) : 1e30f};
         const Vec3 point = in.vec(-8.0f, 8.0f);
         const Shape probe = collide::fuzz::decodeShape(in, /*allowPlane=*/false);
-        trace("queries: ray " + describe(ray.origin) + " " + describe(ray.direction) + ", probe " + describe(probe) +
-              " at " + describe(point));
+        trace("queries: ray " + describe(ray.origin) + " " + describe(ray.direction) + ", probe " +
+              describe(probe) + " at " + describe(point));
         try {
           const auto closest = world.castRay(ray);
           const auto all = world.castRayAll(ray);
@@ -374,7 +374,12 @@ struct Story {
             if (all[k - 1].distance > all[k].distance) std::abort();
           }
           if (closest.has_value() != !all.empty()) std::abort();
-          if (closest && closest->distance != all.front().distance) std::abort();
+          if (closest && closest->distance != all.front().distance) {
+            trace("  closest " + describe(closest->distance) + " body " + describe(closest->body) + ", all:");
+            for (const RayCastResult& hit : all)
+              trace("    " + describe(hit.distance) + " " + describe(hit.body));
+            std::abort();
+          }
           (void)world.hasLineOfSight(ray.origin, point);
         } catch (const Error& e) {
           trace(std::string("  refused: ") + e.what());

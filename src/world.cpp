@@ -159,8 +159,12 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation, 
   }
   BodyRecord& r = w.bodies.records[i];
   BodyState& s = w.bodies.states[i];
-  s.rotation = glm::normalize(rotation);
-  s.centerOfMass = position + s.rotation * r.localCenterOfMass;
+  BodyState placed = s;
+  placed.rotation = glm::normalize(rotation);
+  placed.centerOfMass = position + placed.rotation * r.localCenterOfMass;
+  detail::requireRepresentableBounds(r, placed, "world: setTransform");
+  s.rotation = placed.rotation;
+  s.centerOfMass = placed.centerOfMass;
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
   r.validCenterOfMass = s.centerOfMass;  // placed by the user: where revert goes back to from now
   r.validRotation = s.rotation;

@@ -340,7 +340,8 @@ struct SurfacePoint {
 SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const Vec3& point);
 
 // The first hit of a ray with the shape, world frame. A ray starting inside a solid shape hits at
-// distance 0 with normal = -direction. Throws Error for a non-finite ray or a non-unit direction.
+// distance 0 with normal = -direction. A hit farther than float's range is none. Throws Error for a
+// non-finite ray or a non-unit direction.
 std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, const Ray& ray);
 
 }  // namespace collide

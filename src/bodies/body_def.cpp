@@ -305,6 +305,7 @@ void setBodyParts(BodyRecord& r, BodyState& s, std::vector<Compound::Child> chil
   next.ccd = next.ccd && !next.sensor;
   BodyState nextState = s;
   remeasure(next, nextState, bodyOrigin(r, s), s.centerOfMass);
+  requireRepresentableBounds(next, nextState, "parts");
   r = std::move(next);
   s = nextState;
 }
@@ -387,8 +388,13 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   }
   s.inverseInertiaWorld = worldInverseInertia(r.inverseInertiaLocal, s.rotation);
 
+  requireRepresentableBounds(r, s, who);
+}
+
+void requireRepresentableBounds(const BodyRecord& r, const BodyState& s, const std::string& who) {
   // Refused before the broad phase sees it: a shape whose box at this place is not representable
-  // (or whose parts cannot be placed: a compound's child scales can multiply down to zero).
+  // (or whose parts cannot be placed: a compound's child scales can multiply down to zero, a part
+  // near float's limit from the body's origin lands beyond it).
   Aabb bounds;
   try {
     bounds = worldBounds(r.shape, bodyTransform(r, s));

@@ -47,4 +47,9 @@ void setBodyType(BodyRecord& record, BodyState& state, BodyType type);
 // label) when the shape's mass properties or bounds are not representable at this scale and place.
 void initBody(const BodyDef& def, BodyRecord& record, BodyState& state);
 
+// Throws Error (prefixed with `who`) when the body's box at its pose is not representable in float
+// or its shape's reach is not (initBody's last test; World::setTransform and setBodyParts run it on
+// their copies before they change anything).
+void requireRepresentableBounds(const BodyRecord& record, const BodyState& state, const std::string& who);
+
 }  // namespace collide::detail

@@ -328,7 +328,22 @@ std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, co
   local.origin = transform.inverseApplyToPoint(ray.origin);
   local.direction = transform.inverseApplyToDirection(ray.direction);
   local.maxDistance = ray.maxDistance / transform.scale;
+  if (!isFinite(local.origin)) {
+    // The ray's origin is beyond float's range in the shape's frame (a shape placed near 3e38 m, a
+    // ray near the origin). A bounded shape is then farther than any distance float can hold; a
+    // plane, unbounded, is cast in the world frame instead, where its offset may still be finite.
+    if (shape.type() != ShapeType::Plane) return std::nullopt;
+    const Plane& plane = shape.plane();
+    const Vec3 normal = transform.applyToDirection(plane.normal);
+    const Plane world{normal, glm::dot(normal, transform.position) + transform.scale * plane.distance};
+    if (!std::isfinite(world.distance)) return std::nullopt;
+    Ray unit = ray;
+    std::optional<RayHit> hit = detail::localRayCast(world, unit);
+    if (hit && !std::isfinite(hit->distance)) return std::nullopt;
+    return hit;
+  }
   std::optional<RayHit> hit = shape.visit([&](const auto& s) { return detail::localRayCast(s, local); });
+  if (hit && !std::isfinite(hit->distance)) return std::nullopt;  // no distance float can hold
   if (hit) {
     hit->distance *= transform.scale;
     hit->point = ray.origin + hit->distance * ray.direction;

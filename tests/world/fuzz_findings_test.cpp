@@ -260,5 +260,96 @@ TEST(WorldFuzzFindings, InterpolatedImpactDoesNotStopTheStepAfterAFault) {
   }
 }
 
+// A part placed 3e38 m from its static body's centre, turned: its offset in the part's frame
+// overflows, so continuous collision has no sweep for it. A fast ball still stops on the body's
+// floor part (its own sweep is fine), and the far part is passed by rather than refused mid-step.
+TEST(WorldFuzzFindings, APartNearFloatsLimitDoesNotStopContinuousCollision) {
+  World world;
+  BodyDef level;
+  level.type = BodyType::Static;
+  PartDef floor;
+  floor.shape = Shape(Box{Vec3(5.0f, 0.5f, 5.0f)});
+  floor.position = Vec3(0.0f, -0.5f, 0.0f);
+  PartDef far;
+  far.shape = Shape(Sphere{0.5f});
+  far.position = Vec3(kHuge, 0.0f, kHuge);
+  far.rotation = glm::angleAxis(0.7f, Vec3(0.0f, 1.0f, 0.0f));
+  level.parts = {floor, far};
+  const BodyId levelId = world.createBody(level);
+  BodyDef ball = sphere(BodyType::Dynamic, 0.1f, Vec3(0.0f, 2.0f, 0.0f));
+  ball.linearVelocity = Vec3(0.0f, -300.0f, 0.0f);  // 5 m a step: through the 1 m floor without CCD
+  const BodyId ballId = world.createBody(ball);
+  for (int step = 0; step < 60; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, {levelId, ballId})) << "step " << step;
+  }
+  EXPECT_GT(world.transform(ballId).position.y, 0.0f);
+  EXPECT_LT(world.transform(ballId).position.y, 0.2f);
+}
+
+// A ray near the origin against shapes placed at 3e38 m, scaled down: in their frames the ray's
+// origin is beyond float range. A plane through the ray's path still hits where the world frame
+// says (a NaN distance before); a bounded shape out there is no hit, and the world's closest and
+// all-hits casts agree.
+TEST(WorldFuzzFindings, RayCastAgainstShapesPlacedNearFloatsLimit) {
+  const Transform farAway{Vec3(kHuge, 0.0f, kHuge), Quat(1.0f, 0.0f, 0.0f, 0.0f), 0.25f};
+  const Ray down{Vec3(0.0f, 5.0f, 0.0f), Vec3(0.0f, -1.0f, 0.0f), 1e30f};
+  const std::optional<RayHit> ground = rayCast(Shape(Plane{Vec3(0.0f, 1.0f, 0.0f), 0.0f}), farAway, down);
+  ASSERT_TRUE(ground.has_value());
+  EXPECT_FLOAT_EQ(ground->distance, 5.0f);
+  EXPECT_FLOAT_EQ(ground->normal.y, 1.0f);
+  EXPECT_FLOAT_EQ(ground->point.y, 0.0f);
+  EXPECT_FALSE(rayCast(Shape(Sphere{1.0f}), farAway, down).has_value());
+
+  World world;
+  BodyDef plane;
+  plane.type = BodyType::Static;
+  plane.shape = Shape(Plane{Vec3(0.0f, 1.0f, 0.0f), 0.0f});
+  plane.position = farAway.position;
+  plane.scale = farAway.scale;
+  const BodyId planeId = world.createBody(plane);
+  BodyDef ball = sphere(BodyType::Static, 1.0f, farAway.position);
+  ball.scale = farAway.scale;
+  world.createBody(ball);
+  const std::optional<RayCastResult> closest = world.castRay(down);
+  const std::vector<RayCastResult> all = world.castRayAll(down);
+  ASSERT_TRUE(closest.has_value());
+  EXPECT_EQ(closest->body, planeId);
+  EXPECT_FLOAT_EQ(closest->distance, 5.0f);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all.front().body, planeId);
+}
+
+// A part 3e38 m from its body's origin, added at run time, and a body teleported to where its box
+// overflows: both are refused as createBody refuses them, with nothing changed, and the world goes
+// on stepping (before, addPart let the part in, and the step threw on its box or its sweep).
+TEST(WorldFuzzFindings, APartOrAPoseBeyondFloatRangeIsRefusedAtRunTime) {
+  World world;
+  BodyDef carrier;
+  carrier.type = BodyType::Kinematic;
+  carrier.shape = Shape(Box{Vec3(1.0f, 0.1f, 1.0f)});
+  carrier.angularVelocity = Vec3(0.0f, 1.0f, 0.0f);
+  const BodyId id = world.createBody(carrier);
+  PartDef far;
+  far.shape = Shape(Sphere{0.5f});
+  far.position = Vec3(kHuge, 0.0f, kHuge);
+  EXPECT_THROW(world.addPart(id, far), Error);
+  EXPECT_EQ(world.partCount(id), 1u);
+
+  const BodyId giant = world.createBody(sphere(BodyType::Static, 1e38f, Vec3(0.0f)));
+  try {
+    world.setTransform(giant, Vec3(kHuge, 0.0f, 0.0f), Quat(1.0f, 0.0f, 0.0f, 0.0f));
+    ADD_FAILURE() << "a pose where the body's box overflows must be refused";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("setTransform"));
+    EXPECT_THAT(e.what(), HasSubstr("not finite"));
+  }
+  EXPECT_EQ(world.transform(giant).position, Vec3(0.0f));
+  for (int step = 0; step < 10; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, {id, giant})) << "step " << step;
+  }
+}
+
 }  // namespace
 }  // namespace collide
