@@ -10,21 +10,6 @@
 
 namespace collide::detail {
 
-namespace {
-
-// A body's world box is recomputed once any of its points may have moved this far (m) since the box
-// was computed; until then the old box grown by the possible motion stands in (conservative).
-constexpr float kBoundsReuseDistance = 0.002f;
-
-// Whether the body's last box still serves, grown by `moved` (set then).
-bool boundsReusable(const BodyStorage& bodies, std::uint32_t index, float& moved) {
-  const BodyRecord& r = bodies.records[index];
-  if (!r.boundsValid || r.type == BodyType::Static) return false;
-  const BodyState& s = bodies.states[index];
-  moved = pointMotionBound(r, r.boundsCenter, r.boundsRotation, s.centerOfMass, s.rotation);
-  return moved <= kBoundsReuseDistance;
-}
-
 // A finite state can still give an infinite box (a large shape turning fast, a body at 1e38 m
 // moving on), which the broad phase refuses: both sides are kept within the planes' "infinite"
 // extent, +-1e30 (NaN goes to the far side). Nothing that far matters to a contact any more; the
@@ -39,6 +24,21 @@ Aabb withinFloatRange(Aabb box) {
     box.max[axis] = clampFar(box.max[axis], kFar);
   }
   return box;
+}
+
+namespace {
+
+// A body's world box is recomputed once any of its points may have moved this far (m) since the box
+// was computed; until then the old box grown by the possible motion stands in (conservative).
+constexpr float kBoundsReuseDistance = 0.002f;
+
+// Whether the body's last box still serves, grown by `moved` (set then).
+bool boundsReusable(const BodyStorage& bodies, std::uint32_t index, float& moved) {
+  const BodyRecord& r = bodies.records[index];
+  if (!r.boundsValid || r.type == BodyType::Static) return false;
+  const BodyState& s = bodies.states[index];
+  moved = pointMotionBound(r, r.boundsCenter, r.boundsRotation, s.centerOfMass, s.rotation);
+  return moved <= kBoundsReuseDistance;
 }
 
 // The body's box as its proxy's: grown by the step's motion and the speculative distance.

@@ -18,6 +18,10 @@ namespace collide::detail {
 float pointMotionBound(const BodyRecord& record, const Vec3& com0, const Quat& q0, const Vec3& com1,
                        const Quat& q1);
 
+// A box with both sides kept within +-1e30, the planes' "infinite" extent (NaN to the far side):
+// what the broad phase takes and is asked about, whatever a finite state overflowed to.
+Aabb withinFloatRange(Aabb box);
+
 // The body's world box computed anew from its shape and pose, and kept with that pose.
 Aabb recomputeBounds(BodyStorage& bodies, std::uint32_t index);
 // The body's world box: its last computed box grown by how far it can have moved since, while that

@@ -61,7 +61,8 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
 
     Aabb swept = worldBounds(record.shape, sweep.at(0.0f));
     swept.grow(worldBounds(record.shape, sweep.at(1.0f)));
-    swept = swept.expanded(turn + linearSlop);  // between the ends, turning reaches at most this far
+    // Between the ends, turning reaches at most this far; a large shape far out can overflow it.
+    swept = withinFloatRange(swept.expanded(turn + linearSlop));
     float first = 1.0f;
     // Every layer: a body of the same positive group collides whatever its layer.
     broadPhase.queryAabb(swept, kAllLayers, [&](ProxyId id) {

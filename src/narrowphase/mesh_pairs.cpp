@@ -113,9 +113,12 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
 bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                        const Transform& transformB, float margin, Manifold& out) {
   const TriangleMesh& mesh = shapeA.mesh();
-  const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
   thread_local std::vector<SatTriangle> triangles;
   triangles.clear();
+  // Two valid poses can still be farther apart than float holds in the mesh's frame (a body at
+  // 3e38 m, a small mesh near the origin): no triangle reaches that far.
+  if (!isValid(transformA.inverse() * transformB)) return mergeContacts({}, margin, out);
+  const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
   const MeshPlacement placement(transformA);
   mesh.forEachTriangleOverlapping(
       bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, placement)); });
@@ -133,6 +136,7 @@ bool collideMeshMesh(const Shape& shapeA, const Transform& transformA, const Sha
   const TriangleMesh& meshB = shapeB.mesh();
   const Transform bInA = transformA.inverse() * transformB;
   const Transform aInB = transformB.inverse() * transformA;
+  if (!isValid(bInA) || !isValid(aInB)) return mergeContacts({}, margin, out);  // beyond float range apart
   const Aabb boundsB = transformAabb(meshB.bounds(), bInA).expanded(margin / transformA.scale);
   std::vector<NormalContact> contacts;
   meshA.forEachTriangleOverlapping(boundsB, [&](std::uint32_t indexA) {

@@ -80,6 +80,24 @@ TEST(PairTable, InvalidTransformsAndMarginsAreRejected) {
   }
 }
 
+TEST(PairTable, AMeshAndAShapeBeyondFloatRangeApartDoNotTouch) {
+  // Both poses valid, but the sphere's pose in the mesh's frame overflows (3e38 m on two axes): no
+  // triangle reaches it, which is no contact rather than a refused transform (found by world_fuzzer).
+  const Shape mesh(
+      TriangleMesh::fromTriangles({Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(0, 0, 1)}, {{0, 1, 2}}));
+  Transform far = Transform::identity();
+  far.position = Vec3(0.0f, 3e38f, 3e38f);
+  const Transform turned{Vec3(0.0f), glm::angleAxis(0.5f, glm::normalize(Vec3(1.0f, 1.0f, 0.0f))), 1.0f};
+  Manifold m;
+  EXPECT_FALSE(collide::collide(mesh, turned, Shape(Sphere{1.0f}), far, m));
+  EXPECT_EQ(m.count, 0);
+  EXPECT_FALSE(collide::collide(Shape(Sphere{1.0f}), far, mesh, turned, m));
+  EXPECT_FALSE(collide::collide(mesh, turned, mesh, far, m));
+  // Near, the same pair touches.
+  EXPECT_TRUE(collide::collide(mesh, Transform::identity(), Shape(Sphere{1.0f}),
+                               Transform{Vec3(0.0f, 0.5f, 0.0f), Quat(1, 0, 0, 0), 1.0f}, m));
+}
+
 TEST(PairTable, CollideOfBAndAMirrorsCollideOfAAndB) {
   // Same depths, opposite normals, swapped points, for every ordered pair of primitives and planes.
   std::mt19937 rng(99);

@@ -351,5 +351,22 @@ TEST(WorldFuzzFindings, APartOrAPoseBeyondFloatRangeIsRefusedAtRunTime) {
   }
 }
 
+// A linear slop of 3e38 m is finite and accepted; continuous collision grows a fast body's swept box
+// by it, which overflows for a body at 3e38 m and was refused by the broad phase mid-step. The box
+// is kept within the broad phase's range, as the proxies' boxes are.
+TEST(WorldFuzzFindings, AnOverflowingSweptBoxDoesNotStopContinuousCollision) {
+  WorldDef def;
+  def.contact.linearSlop = kHuge;
+  World world(def);
+  BodyDef ball = sphere(BodyType::Dynamic, 0.5f, Vec3(0.0f, 0.0f, kHuge));
+  ball.linearVelocity = Vec3(0.0f, -600.0f, 0.0f);  // fast: 10 m a step, the continuous pass sweeps it
+  const BodyId id = world.createBody(ball);
+  const BodyId wall = world.createBody(sphere(BodyType::Static, 1.0f, Vec3(0.0f)));
+  for (int step = 0; step < 5; ++step) {
+    ASSERT_NO_THROW(world.step(kDt)) << "step " << step;
+    ASSERT_TRUE(everythingFinite(world, {id, wall})) << "step " << step;
+  }
+}
+
 }  // namespace
 }  // namespace collide
