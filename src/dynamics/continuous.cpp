@@ -27,6 +27,7 @@ float impactTime(const Shape& a, const Sweep& sweepA, const Shape& b, const Swee
     // turning anchor the solver's linearised separation misreads).
     ToiSettings touching = settings;
     touching.targetSeparation = std::min(toi.separation, linearSlop) - linearSlop;
+    if (!std::isfinite(touching.targetSeparation)) return 1.0f;  // as deep as above, with a huge slop
     toi = timeOfImpact(a, sweepA, b, sweepB, touching);
   }
   return toi.hit() ? toi.t : 1.0f;
