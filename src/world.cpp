@@ -19,9 +19,9 @@ namespace collide {
 using detail::BodyRecord;
 using detail::BodyState;
 using detail::Contact;
-using detail::DistanceJoint;
 using detail::formatFloat;
 using detail::formatVec;
+using detail::Joint;
 
 std::uint32_t World::Impl::resolve(BodyId id, const char* operation) const {
   if (id.index >= bodies.records.size() || !bodies.records[id.index].alive ||
@@ -41,7 +41,7 @@ std::uint32_t World::Impl::resolve(JointId id, const char* operation) const {
 }
 
 void World::Impl::freeJoint(std::uint32_t index) {
-  const detail::DistanceJoint& joint = joints[index];
+  const detail::Joint& joint = joints[index];
   if (!joint.collideConnected) {
     const auto it = jointedApart.find(detail::bodyPairKey(joint.bodyA, joint.bodyB));
     if (it != jointedApart.end() && --it->second == 0) jointedApart.erase(it);
@@ -236,7 +236,7 @@ bool World::isEnabled(BodyId id) const {
 
 void World::Impl::centerMoved(std::uint32_t index, const Vec3& shift) {
   if (shift == Vec3(0.0f)) return;
-  for (DistanceJoint& joint : joints) {
+  for (Joint& joint : joints) {
     if (!joint.alive) continue;
     if (joint.bodyA == index) joint.localAnchorA -= shift;
     if (joint.bodyB == index) joint.localAnchorB -= shift;
@@ -429,15 +429,9 @@ std::vector<BodyId> World::bodies() const {
 JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
   Impl& w = *impl_;
   const auto fail = [](const std::string& message) { throw Error("distance constraint: " + message); };
-  if (!isValid(def.a)) fail("a: invalid or stale body id (index " + std::to_string(def.a.index) + ")");
-  if (!isValid(def.b)) fail("b: invalid or stale body id (index " + std::to_string(def.b.index) + ")");
-  if (def.a == def.b) fail("a and b are the same body (index " + std::to_string(def.a.index) + ")");
+  w.requireJointBodies(def.a, def.b, "distance constraint");
   const BodyRecord& ra = w.bodies.records[def.a.index];
   const BodyRecord& rb = w.bodies.records[def.b.index];
-  if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) {
-    fail("a and b: at least one body must be dynamic, got " + std::string(toString(ra.type)) + " and " +
-         std::string(toString(rb.type)));
-  }
   const auto localAnchor = [&](const std::optional<Vec3>& anchor, const BodyRecord& r, const char* field) {
     if (!anchor) return Vec3(0.0f);
     if (!isFinite(*anchor)) fail(std::string(field) + " must be finite, got " + formatVec(*anchor));
@@ -447,7 +441,8 @@ JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
     }
     return r.scale * *anchor - r.localCenterOfMass;
   };
-  DistanceJoint joint;
+  Joint joint;
+  joint.type = JointType::Distance;
   joint.bodyA = def.a.index;
   joint.bodyB = def.b.index;
   joint.localAnchorA = localAnchor(def.localAnchorA, ra, "localAnchorA");
@@ -467,25 +462,72 @@ JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
   joint.compliance = def.compliance;
   joint.dampingRatio = def.dampingRatio;
   joint.collideConnected = def.collideConnected;
-  if (!joint.collideConnected) ++w.jointedApart[detail::bodyPairKey(joint.bodyA, joint.bodyB)];
   if (glm::length(d) > 1e-6f) joint.axis = d / glm::length(d);
-  joint.alive = true;
-
-  std::uint32_t index;
-  if (!w.freeJoints.empty()) {
-    index = w.freeJoints.back();
-    w.freeJoints.pop_back();
-    joint.generation = w.joints[index].generation;
-    w.joints[index] = joint;
-  } else {
-    index = static_cast<std::uint32_t>(w.joints.size());
-    w.joints.push_back(joint);
-  }
-  ++w.jointCount;
-  detail::wakeIsland(w.bodies, joint.bodyA);
-  detail::wakeIsland(w.bodies, joint.bodyB);
-  return {index, w.joints[index].generation};
+  return w.addJoint(joint);
 }
+
+JointId World::Impl::addJoint(Joint joint) {
+  if (!joint.collideConnected) ++jointedApart[detail::bodyPairKey(joint.bodyA, joint.bodyB)];
+  joint.alive = true;
+  std::uint32_t index;
+  if (!freeJoints.empty()) {
+    index = freeJoints.back();
+    freeJoints.pop_back();
+    joint.generation = joints[index].generation;
+    joints[index] = joint;
+  } else {
+    index = static_cast<std::uint32_t>(joints.size());
+    joints.push_back(joint);
+  }
+  ++jointCount;
+  detail::wakeIsland(bodies, joint.bodyA);
+  detail::wakeIsland(bodies, joint.bodyB);
+  return {index, joints[index].generation};
+}
+
+void World::Impl::requireJointBodies(BodyId a, BodyId b, const std::string& who) const {
+  const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
+  const auto valid = [&](BodyId id) {
+    return id.index < bodies.records.size() && bodies.records[id.index].alive &&
+           bodies.records[id.index].generation == id.generation;
+  };
+  if (!valid(a)) fail("a: invalid or stale body id (index " + std::to_string(a.index) + ")");
+  if (!valid(b)) fail("b: invalid or stale body id (index " + std::to_string(b.index) + ")");
+  if (a == b) fail("a and b are the same body (index " + std::to_string(a.index) + ")");
+  const BodyRecord& ra = bodies.records[a.index];
+  const BodyRecord& rb = bodies.records[b.index];
+  if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) {
+    fail("a and b: at least one body must be dynamic, got " + std::string(toString(ra.type)) + " and " +
+         std::string(toString(rb.type)));
+  }
+}
+
+JointId World::createBallJoint(const BallJointDef& def) {
+  Impl& w = *impl_;
+  w.requireJointBodies(def.a, def.b, "ball joint");
+  if (!isFinite(def.anchor)) throw Error("ball joint: anchor must be finite, got " + formatVec(def.anchor));
+  Joint joint;
+  joint.type = JointType::Ball;
+  joint.bodyA = def.a.index;
+  joint.bodyB = def.b.index;
+  // Each body's local point under the world anchor, from its centre of mass. A particle has no
+  // orientation to carry an offset: its anchor must be its centre.
+  const auto local = [&](std::uint32_t body, const char* field) {
+    const BodyState& s = w.bodies.states[body];
+    const Vec3 offset = def.anchor - s.centerOfMass;
+    if (w.bodies.records[body].particle && glm::length(offset) > 1e-6f) {
+      throw Error(std::string("ball joint: ") + field + ": a particle's anchor must be its centre " +
+                  formatVec(s.centerOfMass) + ", got " + formatVec(def.anchor));
+    }
+    return glm::conjugate(s.rotation) * offset;
+  };
+  joint.localAnchorA = local(joint.bodyA, "a");
+  joint.localAnchorB = local(joint.bodyB, "b");
+  joint.collideConnected = def.collideConnected;
+  return w.addJoint(joint);
+}
+
+JointType World::jointType(JointId id) const { return impl_->joints[impl_->resolve(id, "jointType")].type; }
 
 void World::destroyConstraint(JointId id) {
   Impl& w = *impl_;
@@ -501,10 +543,11 @@ bool World::isValid(JointId id) const {
 }
 std::size_t World::constraintCount() const { return impl_->jointCount; }
 float World::constraintLength(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "constraintLength")].length;
+  const Joint& j = impl_->joints[impl_->resolve(id, "constraintLength")];
+  return j.type == JointType::Distance ? j.length : 0.0f;
 }
 float World::constraintCurrentLength(JointId id) const {
-  const DistanceJoint& j = impl_->joints[impl_->resolve(id, "constraintCurrentLength")];
+  const Joint& j = impl_->joints[impl_->resolve(id, "constraintCurrentLength")];
   return glm::length(impl_->anchorWorld(j.bodyB, j.localAnchorB) -
                      impl_->anchorWorld(j.bodyA, j.localAnchorA));
 }

@@ -113,7 +113,7 @@ void World::draw(DebugDraw& draw, const DebugDrawOptions& options) const {
     }
   }
   if (options.joints) {
-    for (const detail::DistanceJoint& joint : w.joints) {
+    for (const detail::Joint& joint : w.joints) {
       if (!joint.alive) continue;
       const Vec3 a = w.anchorWorld(joint.bodyA, joint.localAnchorA);
       const Vec3 b = w.anchorWorld(joint.bodyB, joint.localAnchorB);

@@ -35,7 +35,7 @@ struct World::Impl {
   std::vector<detail::Contact> contacts;  // in pair order
   std::vector<detail::Contact> previousContacts;
   detail::StepSolver stepSolver;
-  std::vector<detail::DistanceJoint> joints;
+  std::vector<detail::Joint> joints;
   std::vector<std::uint32_t> freeJoints;
   std::size_t jointCount = 0;
   detail::StepEvents events;
@@ -57,6 +57,11 @@ struct World::Impl {
   std::uint32_t resolve(BodyId id, const char* operation) const;
   std::uint32_t resolve(JointId id, const char* operation) const;
   void freeJoint(std::uint32_t index);
+  // Stores a new joint (its type's fields filled in), in a free slot if there is one, keeps its
+  // bodies apart in the pair filters unless it lets them collide, and wakes both.
+  JointId addJoint(detail::Joint joint);
+  // Throws Error (prefixed with `who`) unless a and b are two different live bodies, one dynamic.
+  void requireJointBodies(BodyId a, BodyId b, const std::string& who) const;
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
   // Body `index`'s contacts end (touching ones: End events with the next step's), what they touched
   // wakes (destroyBody, setEnabled).

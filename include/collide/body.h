@@ -34,6 +34,12 @@ struct JointId {
   friend bool operator==(const JointId&, const JointId&) = default;
 };
 
+// The kinds of joint (World::createDistanceConstraint, createBallJoint; docs/joints.md).
+enum class JointType : std::uint8_t {
+  Distance,  // the anchors keep a distance (rigid, or a spring)
+  Ball,      // the anchors coincide; the bodies turn freely about them (spherical)
+};
+
 // What a body's contacts combine with their partner's (BodyDef's fields of the same names).
 struct BodyMaterial {
   float friction = 0.5f;           // >= 0

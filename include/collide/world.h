@@ -109,6 +109,17 @@ struct DistanceConstraintDef {
   bool collideConnected = true;
 };
 
+// A ball (spherical) joint: the two bodies share the anchor point and turn freely about it (a
+// chain's links, a ragdoll's shoulder without limits). Soft as the rigid distance constraint
+// (docs/joints.md).
+struct BallJointDef {
+  BodyId a;
+  BodyId b;
+  Vec3 anchor{0.0f};  // world frame, at creation: each body keeps it at its own local point
+  // false (the default): the two bodies do not collide with each other while the joint exists.
+  bool collideConnected = false;
+};
+
 class World {
  public:
   // Throws Error on invalid settings (substeps < 1, non-finite gravity, bad tuning) and on
@@ -225,10 +236,12 @@ class World {
   // ---- Constraints. Stale ids throw Error; destroying a body destroys its constraints. ----
   // Throws Error naming the field for a bad definition (stale body, a == b, no dynamic body, ...).
   JointId createDistanceConstraint(const DistanceConstraintDef& def);
+  JointId createBallJoint(const BallJointDef& def);
   void destroyConstraint(JointId id);
   bool isValid(JointId id) const;
   std::size_t constraintCount() const;
-  float constraintLength(JointId id) const;         // the rest length
+  JointType jointType(JointId id) const;
+  float constraintLength(JointId id) const;         // the rest length (0 for a ball joint)
   float constraintCurrentLength(JointId id) const;  // the anchors' distance now
 
   void setPreSolveCallback(PreSolveCallback callback);

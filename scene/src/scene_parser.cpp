@@ -397,14 +397,22 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   return body;
 }
 
-DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::string, std::size_t>& names,
-                                  const std::vector<Body>& bodies) {
+Constraint readConstraint(const JsonNode& node, const std::map<std::string, std::size_t>& names,
+                          const std::vector<Body>& bodies) {
   if (!node.value().is_object()) node.fail("must be a constraint object, got " + node.shown());
   const JsonNode typeNode = node.at("type");
-  if (typeNode.string() != "distance")
-    typeNode.fail("unknown constraint type " + typeNode.shown() + " (expected distance)");
-  node.expectObject({"type", "a", "b", "anchor_a", "anchor_b", "length", "compliance", "collide_connected"});
-  DistanceConstraint c;
+  const std::string type = typeNode.string();
+  if (type != "distance" && type != "ball")
+    typeNode.fail("unknown constraint type " + typeNode.shown() + " (expected distance or ball)");
+  Constraint c;
+  if (type == "ball") {
+    node.expectObject({"type", "a", "b", "anchor", "collide_connected"});
+    c.type = JointType::Ball;
+    c.collideConnected = false;
+  } else {
+    node.expectObject(
+        {"type", "a", "b", "anchor_a", "anchor_b", "length", "compliance", "collide_connected"});
+  }
   for (const char* key : {"a", "b"}) {
     const JsonNode n = node.at(key);
     const std::string name = n.string();
@@ -412,6 +420,11 @@ DistanceConstraint readConstraint(const JsonNode& node, const std::map<std::stri
     (key[0] == 'a' ? c.a : c.b) = name;
   }
   if (c.a == c.b) node.at("b").fail("must differ from a, got " + node.at("b").shown());
+  if (c.type == JointType::Ball) {
+    c.anchor = node.at("anchor").vec3();
+    if (auto n = node.find("collide_connected")) c.collideConnected = n->boolean();
+    return c;
+  }
   // A particle cannot turn, so an anchor off its centre would have no lever (the World refuses it).
   const auto readAnchor = [&](const char* key, const std::string& bodyName) -> std::optional<Vec3> {
     const auto n = node.find(key);

@@ -27,7 +27,7 @@ SceneWorld buildWorld(const Scene& scene) {
   // After every body: a constraint's default length is the anchors' distance at load time.
   out.constraints.reserve(scene.constraints.size());
   for (std::size_t i = 0; i < scene.constraints.size(); ++i) {
-    const DistanceConstraint& c = scene.constraints[i];
+    const Constraint& c = scene.constraints[i];
     const std::string field = "constraints[" + std::to_string(i) + "]";
     const auto body = [&](const std::string& name, const char* key) {
       const auto it = byName.find(name);
@@ -35,6 +35,15 @@ SceneWorld buildWorld(const Scene& scene) {
         throw Error(scene.source + ": " + field + "." + key + ": unknown body \"" + name + "\"");
       return it->second;
     };
+    if (c.type == JointType::Ball) {
+      try {
+        out.constraints.push_back(
+            out.world.createBallJoint({body(c.a, "a"), body(c.b, "b"), c.anchor, c.collideConnected}));
+      } catch (const Error& e) {
+        throw Error(scene.source + ": " + field + ": " + e.what());
+      }
+      continue;
+    }
     DistanceConstraintDef def;
     def.a = body(c.a, "a");
     def.b = body(c.b, "b");

@@ -53,7 +53,7 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults) {
 }
 
 void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
-                         std::vector<DistanceJoint>& joints) {
+                         std::vector<Joint>& joints) {
   const auto faulted = [&](std::uint32_t body) {
     return std::any_of(faults.begin(), faults.end(),
                        [&](const FaultEvent& f) { return f.body.index == body; });
@@ -68,9 +68,10 @@ void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact
     c.stuck = false;
     c.touching = false;
   }
-  for (DistanceJoint& joint : joints) {
+  for (Joint& joint : joints) {
     if (!joint.alive || (!faulted(joint.bodyA) && !faulted(joint.bodyB))) continue;
     joint.impulse = 0.0f;
+    joint.pointImpulse = Vec3(0.0f);
     if (!finite(joint.axis)) joint.axis = Vec3(1.0f, 0.0f, 0.0f);
   }
 }

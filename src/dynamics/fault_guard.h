@@ -33,7 +33,7 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults);
 // so that no event reports those numbers and the next step's warm start does not hand them to the
 // bodies' neighbours. The next narrow phase finds the contacts again, at the frozen pose.
 void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
-                         std::vector<DistanceJoint>& joints);
+                         std::vector<Joint>& joints);
 
 // Back to the pose at the start of the step, stopped, forces cleared. A dynamic body also loses its
 // inverse mass and inertia and sleeps: the solver then treats it as an immovable obstacle, and

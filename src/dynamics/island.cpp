@@ -88,7 +88,7 @@ void Islands::unite(std::uint32_t a, std::uint32_t b) {
 // A body below both sleep speeds accumulates rest time; an island whose every body has rested for
 // timeToSleep falls asleep as a whole, velocities zeroed.
 void Islands::updateSleep(BodyStorage& bodies, std::span<const Contact> contacts,
-                          std::span<const DistanceJoint> joints, const SleepTuning& tuning, float dt) {
+                          std::span<const Joint> joints, const SleepTuning& tuning, float dt) {
   const auto n = static_cast<std::uint32_t>(bodies.records.size());
   parent_.resize(n);
   sleepTime_.assign(n, std::numeric_limits<float>::infinity());
@@ -102,7 +102,7 @@ void Islands::updateSleep(BodyStorage& bodies, std::span<const Contact> contacts
   for (const Contact& c : contacts) {
     if (!c.sensor && c.touching && !c.asleep) link(c.bodyA, c.bodyB);
   }
-  for (const DistanceJoint& joint : joints) {
+  for (const Joint& joint : joints) {
     if (joint.alive && bodies.records[joint.bodyA].enabled && bodies.records[joint.bodyB].enabled)
       link(joint.bodyA, joint.bodyB);
   }

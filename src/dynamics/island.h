@@ -37,7 +37,7 @@ void wakeTouchedIslands(BodyStorage& bodies, const BroadPhase& broadPhase, std::
 class Islands {
  public:
   void updateSleep(BodyStorage& bodies, std::span<const Contact> contacts,
-                   std::span<const DistanceJoint> joints, const SleepTuning& tuning, float dt);
+                   std::span<const Joint> joints, const SleepTuning& tuning, float dt);
 
  private:
   std::uint32_t findRoot(std::uint32_t i);

@@ -96,7 +96,7 @@ void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults
 }
 
 void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
-                       std::vector<DistanceJoint>& joints, const StepSettings& settings, float dt,
+                       std::vector<Joint>& joints, const StepSettings& settings, float dt,
                        std::vector<FaultEvent>& faults) {
   const float h = dt / static_cast<float>(settings.substeps);
   gatherBodies(storage, settings.gravity);

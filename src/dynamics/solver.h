@@ -36,7 +36,7 @@ struct StepSettings {
 
 class StepSolver {
  public:
-  void solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<DistanceJoint>& joints,
+  void solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<Joint>& joints,
              const StepSettings& settings, float dt, std::vector<FaultEvent>& faults);
 
   // The contacts the last solve took, in solve order (the response models and revert walk them).

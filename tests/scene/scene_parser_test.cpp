@@ -122,7 +122,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
   EXPECT_FLOAT_EQ(dumbbell.children()[2].shape.sphere().radius, 0.3f);
 
   ASSERT_EQ(s.constraints.size(), 1u);
-  const DistanceConstraint& c = s.constraints[0];
+  const Constraint& c = s.constraints[0];
   EXPECT_EQ(c.a, "ball");
   EXPECT_EQ(c.b, "crate");
   ASSERT_TRUE(c.anchorA.has_value() && c.anchorB.has_value());

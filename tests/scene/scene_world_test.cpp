@@ -46,6 +46,41 @@ TEST(SceneWorld, PendulumFromAFileHoldsItsLength) {
   EXPECT_LT(leftmost, -1.2f);
 }
 
+TEST(SceneWorld, ABallJointFromAFileHoldsItsRodOnThePivot) {
+  // A 1 m rod hung by its top end at (0, 3, 0), turned 60 degrees about z: it swings through the
+  // bottom to the mirror of its start, its top end on the pivot. The ball joint's bodies do not
+  // collide by default, and its fields are its own.
+  const Scene s = parseScene(R"({"format": "collide-scene/1",
+    "bodies": [
+      {"name": "pivot", "type": "static", "shape": {"type": "sphere", "radius": 0.05}, "position": [0, 3, 0]},
+      {"name": "rod", "type": "dynamic", "mass": 1, "shape": {"type": "box", "half_extents": [0.01, 0.5, 0.01]},
+       "position": [0.43301270, 2.75, 0], "rotation": [0, 0, 0.5, 0.86602540]}],
+    "constraints": [{"type": "ball", "a": "pivot", "b": "rod", "anchor": [0, 3, 0]}]})",
+                             "ball.json");
+  ASSERT_EQ(s.constraints.size(), 1u);
+  EXPECT_EQ(s.constraints[0].type, JointType::Ball);
+  EXPECT_FALSE(s.constraints[0].collideConnected);
+  SceneWorld sw = buildWorld(s);
+  const JointId joint = sw.constraints[0];
+  EXPECT_EQ(sw.world.jointType(joint), JointType::Ball);
+  EXPECT_LT(sw.world.constraintCurrentLength(joint), 1e-5f);
+  float worstGap = 0.0f, leftmost = 0.5f;
+  for (int step = 0; step < 90; ++step) {  // 1.5 s: past the far turn (a period is 1.8 s at 60 degrees)
+    sw.world.step(1.0f / 60.0f);
+    worstGap = std::max(worstGap, sw.world.constraintCurrentLength(joint));
+    leftmost = std::min(leftmost, sw.world.transform(sw.bodies[1]).position.x);
+  }
+  EXPECT_LT(worstGap, 0.005f);
+  EXPECT_LT(leftmost, -0.40f);  // the mirror of x = 0.433, less what damping took
+
+  EXPECT_THROW(parseScene(R"({"format": "collide-scene/1",
+    "bodies": [{"name": "p", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+               {"name": "q", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}],
+    "constraints": [{"type": "ball", "a": "p", "b": "q", "anchor": [0, 0, 0], "length": 1}]})",
+                          "bad.json"),
+               Error);
+}
+
 TEST(SceneWorld, DefaultLengthIsTheAnchorsDistanceAtLoad) {
   // Anchors are local points: the box turned 90 degrees about z carries its anchor (0.5, 0, 0) to
   // (2, 1.5, 0); the ceiling's (0, -0.5, 0) is at (0, 2.5, 0): sqrt(2^2 + 1^2) apart. Unset anchors
@@ -144,7 +179,10 @@ TEST(SceneWorldErrors, WorldRefusalsNameTheConstraint) {
   Scene s = parseScene(R"({"format": "collide-scene/1", "bodies": [
       {"name": "a", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}]})",
                        "code");
-  s.constraints.push_back({"a", "x", std::nullopt, std::nullopt, std::nullopt, 0.0f});
+  Constraint unknown;
+  unknown.a = "a";
+  unknown.b = "x";
+  s.constraints.push_back(unknown);
   try {
     buildWorld(s);
     ADD_FAILURE() << "an unknown body name was accepted";

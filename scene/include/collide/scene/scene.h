@@ -35,14 +35,22 @@ struct Body {
   std::optional<float> breakImpulse;
 };
 
-struct DistanceConstraint {
+// A constraint of the scene file's "constraints" (scene-format.md): its type's fields are set, the
+// others keep their defaults.
+struct Constraint {
+  JointType type = JointType::Distance;
   std::string a;
   std::string b;
+  // distance
   std::optional<Vec3> anchorA;  // local points; unset: the centre of mass
   std::optional<Vec3> anchorB;
-  std::optional<float> length;   // default: the distance at load time
-  float compliance = 0.0f;       // 0 = rigid
-  bool collideConnected = true;  // false: a and b do not collide with each other
+  std::optional<float> length;  // default: the distance at load time
+  float compliance = 0.0f;      // 0 = rigid
+  // ball
+  Vec3 anchor{0.0f};  // world frame at load time
+  // false: a and b do not collide with each other (the default of every type but distance, which
+  // keeps the scene format's first meaning: true)
+  bool collideConnected = true;
 };
 
 struct Scene {
@@ -57,7 +65,7 @@ struct Scene {
   int steps = 600;
   std::map<std::string, Material> materials;
   std::vector<Body> bodies;
-  std::vector<DistanceConstraint> constraints;
+  std::vector<Constraint> constraints;
 };
 
 struct LoadOptions {
