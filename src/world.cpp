@@ -23,9 +23,13 @@ using detail::formatFloat;
 using detail::formatVec;
 using detail::Joint;
 
+bool World::Impl::isLive(BodyId id) const {
+  return id.index < bodies.records.size() && bodies.records[id.index].alive &&
+         bodies.records[id.index].generation == id.generation;
+}
+
 std::uint32_t World::Impl::resolve(BodyId id, const char* operation) const {
-  if (id.index >= bodies.records.size() || !bodies.records[id.index].alive ||
-      bodies.records[id.index].generation != id.generation) {
+  if (!isLive(id)) {
     throw Error(std::string("world: ") + operation + ": invalid or stale body id (index " +
                 std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")");
   }
@@ -129,10 +133,7 @@ void World::destroyBody(BodyId id) {
   w.bodies.free(index);
 }
 
-bool World::isValid(BodyId id) const {
-  return id.index < impl_->bodies.records.size() && impl_->bodies.records[id.index].alive &&
-         impl_->bodies.records[id.index].generation == id.generation;
-}
+bool World::isValid(BodyId id) const { return impl_->isLive(id); }
 std::size_t World::bodyCount() const { return impl_->bodies.aliveCount; }
 
 BodyType World::type(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "type")].type; }
@@ -487,12 +488,8 @@ JointId World::Impl::addJoint(Joint joint) {
 
 void World::Impl::requireJointBodies(BodyId a, BodyId b, const std::string& who) const {
   const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
-  const auto valid = [&](BodyId id) {
-    return id.index < bodies.records.size() && bodies.records[id.index].alive &&
-           bodies.records[id.index].generation == id.generation;
-  };
-  if (!valid(a)) fail("a: invalid or stale body id (index " + std::to_string(a.index) + ")");
-  if (!valid(b)) fail("b: invalid or stale body id (index " + std::to_string(b.index) + ")");
+  if (!isLive(a)) fail("a: invalid or stale body id (index " + std::to_string(a.index) + ")");
+  if (!isLive(b)) fail("b: invalid or stale body id (index " + std::to_string(b.index) + ")");
   if (a == b) fail("a and b are the same body (index " + std::to_string(a.index) + ")");
   const BodyRecord& ra = bodies.records[a.index];
   const BodyRecord& rb = bodies.records[b.index];

@@ -54,6 +54,8 @@ struct World::Impl {
   std::size_t touchingCount = 0;
 
   // The slot of a live body or joint; Error naming the operation for a stale or invalid id.
+  // Whether the id names a live body of this generation (World::isValid; resolve throws unless).
+  bool isLive(BodyId id) const;
   std::uint32_t resolve(BodyId id, const char* operation) const;
   std::uint32_t resolve(JointId id, const char* operation) const;
   void freeJoint(std::uint32_t index);

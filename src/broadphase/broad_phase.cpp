@@ -173,13 +173,7 @@ void BroadPhase::rayCast(const Ray& ray, LayerMask mask, const RayCastCallback& 
   }
   if (!callback) throw Error("broad phase: ray cast: empty callback");
   RayQuery query;
-  query.origin = ray.origin;
-  query.direction = ray.direction / length;
-  for (int i = 0; i < 3; ++i) {
-    query.parallel[i] = std::abs(query.direction[i]) < 1e-12f;
-    query.inverse[i] = query.parallel[i] ? 0.0f : 1.0f / query.direction[i];
-  }
-  query.maxDistance = ray.maxDistance;
+  query.aim(ray.origin, ray.direction / length, ray.maxDistance);
   query.mask = mask;
   query.callback = &callback;
   query.proxies = &proxies_;
@@ -199,13 +193,7 @@ void BroadPhase::boxCast(const Aabb& box, const Vec3& translation, LayerMask mas
     return;
   }
   RayQuery query;
-  query.origin = box.center();
-  query.direction = translation / length;
-  for (int i = 0; i < 3; ++i) {
-    query.parallel[i] = std::abs(query.direction[i]) < 1e-12f;
-    query.inverse[i] = query.parallel[i] ? 0.0f : 1.0f / query.direction[i];
-  }
-  query.maxDistance = length;
+  query.aim(box.center(), translation / length, length);
   query.extent = box.halfExtents();
   query.mask = mask;
   query.callback = &callback;

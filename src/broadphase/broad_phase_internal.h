@@ -45,6 +45,18 @@ struct BroadPhase::RayQuery {
   const std::vector<ProxyRecord>* proxies = nullptr;
   bool stopped = false;
 
+  // Points the query from `from` along the unit `unitDirection` for `reach`, its inverse direction
+  // and parallel axes with it.
+  void aim(const Vec3& from, const Vec3& unitDirection, float reach) {
+    origin = from;
+    direction = unitDirection;
+    for (int i = 0; i < 3; ++i) {
+      parallel[i] = std::abs(direction[i]) < 1e-12f;
+      inverse[i] = parallel[i] ? 0.0f : 1.0f / direction[i];
+    }
+    maxDistance = reach;
+  }
+
   // Entry distance into the box within [0, maxDistance], or a negative value on a miss. Monotone in
   // the box: a box containing another is entered no later, which keeps tree and grid pruning exact.
   float entry(const Aabb& box) const {

@@ -18,16 +18,29 @@ void DebugDraw::drawPoint(const Vec3& point, float size, const DebugColor& color
   }
 }
 
-void drawBox(DebugDraw& draw, const Aabb& box, const DebugColor& color) {
-  const auto corner = [&](int i) {
-    return Vec3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
-  };
-  // Each corner to the corners one bit away: the twelve edges once.
+namespace {
+
+// The twelve edges of a box whose corner i (bit 0: x, bit 1: y, bit 2: z at its high side) is
+// corner(i): each corner to the corners one bit away, each edge once.
+template <typename Corner>
+void drawBoxEdges(DebugDraw& draw, Corner&& corner, const DebugColor& color) {
   for (int i = 0; i < 8; ++i) {
     for (int bit = 1; bit < 8; bit <<= 1) {
       if ((i & bit) == 0) draw.drawLine(corner(i), corner(i | bit), color);
     }
   }
+}
+
+}  // namespace
+
+void drawBox(DebugDraw& draw, const Aabb& box, const DebugColor& color) {
+  drawBoxEdges(
+      draw,
+      [&](int i) {
+        return Vec3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
+                    i & 4 ? box.max.z : box.min.z);
+      },
+      color);
 }
 
 namespace {
@@ -120,14 +133,12 @@ void drawShape(DebugDraw& draw, const Shape& shape, const Transform& t, const De
       break;
     case ShapeType::Box: {
       const Vec3 h = shape.box().halfExtents;
-      const auto corner = [&](int i) {
-        return t.applyToPoint(Vec3(i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z));
-      };
-      for (int i = 0; i < 8; ++i) {
-        for (int bit = 1; bit < 8; bit <<= 1) {
-          if ((i & bit) == 0) draw.drawLine(corner(i), corner(i | bit), color);
-        }
-      }
+      drawBoxEdges(
+          draw,
+          [&](int i) {
+            return t.applyToPoint(Vec3(i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z));
+          },
+          color);
       break;
     }
     case ShapeType::ConvexHull:

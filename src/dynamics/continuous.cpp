@@ -17,9 +17,6 @@ namespace {
 float impactTime(const Shape& a, const Sweep& sweepA, const Shape& b, const Sweep& sweepB,
                  const ToiSettings& settings, float linearSlop) {
   ToiResult toi = timeOfImpact(a, sweepA, b, sweepB, settings);
-  // Overlapping beyond float range (a half-space placed 3e38 m away holds the body infinitely deep):
-  // no depth to keep, so no stop; the contact pushes out what it can.
-  if (toi.state == ToiResult::State::Overlapping && !std::isfinite(toi.separation)) return 1.0f;
   if (toi.state == ToiResult::State::Overlapping) {
     // Touching at the start: stopping there would freeze a body sliding fast along a floor, so the
     // pair may go on as long as it gets no deeper than the slop below where it started (the solver's
@@ -27,7 +24,10 @@ float impactTime(const Shape& a, const Sweep& sweepA, const Shape& b, const Swee
     // turning anchor the solver's linearised separation misreads).
     ToiSettings touching = settings;
     touching.targetSeparation = std::min(toi.separation, linearSlop) - linearSlop;
-    if (!std::isfinite(touching.targetSeparation)) return 1.0f;  // as deep as above, with a huge slop
+    // A depth beyond float range (a half-space placed 3e38 m away holds the body infinitely deep),
+    // or one a huge slop takes beyond it: no depth to keep, so no stop; the contact pushes out what
+    // it can.
+    if (!std::isfinite(touching.targetSeparation)) return 1.0f;
     toi = timeOfImpact(a, sweepA, b, sweepB, touching);
   }
   return toi.hit() ? toi.t : 1.0f;

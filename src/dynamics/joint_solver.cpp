@@ -50,6 +50,13 @@ Vec3 angularVelocity(const JointSolverView& view, std::uint32_t body) {
   return j == kNoSolverBody ? Vec3(0.0f) : view.bodies[static_cast<std::size_t>(j)].angularVelocity;
 }
 
+// The velocity of anchor B relative to anchor A (offsets rA, rB from the centres of mass).
+Vec3 relativeAnchorVelocity(const JointSolverView& view, const Joint& joint, const Vec3& rA, const Vec3& rB) {
+  const Vec3 va = linearVelocity(view, joint.bodyA) + glm::cross(angularVelocity(view, joint.bodyA), rA);
+  const Vec3 vb = linearVelocity(view, joint.bodyB) + glm::cross(angularVelocity(view, joint.bodyB), rB);
+  return vb - va;
+}
+
 struct JointFrame {
   Vec3 rA{0.0f};  // world offsets from the centres of mass to the anchors, at the current pose
   Vec3 rB{0.0f};
@@ -176,9 +183,7 @@ void solveDistance(const JointSolverView& view, Joint& joint, float h, float rig
   if (k <= 0.0f) return;
   const float axialMass = 1.0f / k;
   const float c = f.distance - joint.length;
-  const Vec3 va = linearVelocity(view, joint.bodyA) + glm::cross(angularVelocity(view, joint.bodyA), f.rA);
-  const Vec3 vb = linearVelocity(view, joint.bodyB) + glm::cross(angularVelocity(view, joint.bodyB), f.rB);
-  const float cdot = glm::dot(vb - va, f.axis);
+  const float cdot = glm::dot(relativeAnchorVelocity(view, joint, f.rA, f.rB), f.axis);
 
   float bias = 0.0f;
   float massScale = 1.0f;
@@ -213,9 +218,7 @@ void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHe
   const BallFrame f = ballFrameOf(a, b, joint);
   const Mat3 k = pointInverseMass(a, b, f.rA, f.rB);
   if (!(glm::determinant(k) > 0.0f)) return;
-  const Vec3 va = linearVelocity(view, joint.bodyA) + glm::cross(angularVelocity(view, joint.bodyA), f.rA);
-  const Vec3 vb = linearVelocity(view, joint.bodyB) + glm::cross(angularVelocity(view, joint.bodyB), f.rB);
-  const Vec3 cdot = vb - va;
+  const Vec3 cdot = relativeAnchorVelocity(view, joint, f.rA, f.rB);
   Softness soft;  // the relax pass: no bias, the whole mass
   if (useBias) soft = makeSoftness(rigidHertz, 2.0f, h);
   const Vec3 impulse = -soft.massScale * (glm::inverse(k) * (cdot + soft.biasRate * f.gap)) -

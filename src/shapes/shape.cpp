@@ -337,8 +337,7 @@ std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, co
     const Vec3 normal = transform.applyToDirection(plane.normal);
     const Plane world{normal, glm::dot(normal, transform.position) + transform.scale * plane.distance};
     if (!std::isfinite(world.distance)) return std::nullopt;
-    Ray unit = ray;
-    std::optional<RayHit> hit = detail::localRayCast(world, unit);
+    std::optional<RayHit> hit = detail::localRayCast(world, ray);
     if (hit && !std::isfinite(hit->distance)) return std::nullopt;
     return hit;
   }
