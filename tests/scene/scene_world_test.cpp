@@ -73,12 +73,27 @@ TEST(SceneWorld, ABallJointFromAFileHoldsItsRodOnThePivot) {
   EXPECT_LT(worstGap, 0.005f);
   EXPECT_LT(leftmost, -0.40f);  // the mirror of x = 0.433, less what damping took
 
-  EXPECT_THROW(parseScene(R"({"format": "collide-scene/1",
-    "bodies": [{"name": "p", "type": "static", "shape": {"type": "sphere", "radius": 1}},
-               {"name": "q", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}],
-    "constraints": [{"type": "ball", "a": "p", "b": "q", "anchor": [0, 0, 0], "length": 1}]})",
-                          "bad.json"),
-               Error);
+  // A ball joint's fields are its own, its anchor is required, and the joint types collide lacks
+  // are unknown, each refused naming the field.
+  const auto refusal = [](const std::string& constraint) {
+    try {
+      parseScene(R"({"format": "collide-scene/1",
+        "bodies": [{"name": "p", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+                   {"name": "q", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}],
+        "constraints": [)" +
+                     constraint + "]}",
+                 "bad.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(refusal(R"({"type": "ball", "a": "p", "b": "q", "anchor": [0, 0, 0], "length": 1})"),
+              HasSubstr("constraints[0].length: unknown field"));
+  EXPECT_THAT(refusal(R"({"type": "ball", "a": "p", "b": "q"})"),
+              HasSubstr("constraints[0].anchor: missing required field"));
+  EXPECT_THAT(refusal(R"({"type": "hinge", "a": "p", "b": "q", "anchor": [0, 0, 0]})"),
+              HasSubstr("unknown constraint type \"hinge\""));
 }
 
 TEST(SceneWorld, DefaultLengthIsTheAnchorsDistanceAtLoad) {
