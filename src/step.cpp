@@ -52,6 +52,13 @@ void World::Impl::step(float dt) {
   if (def.impactModel != ImpactModel::Newton || bodies.bouncyCount > 0 || preSolve)
     impacts.run(bodies, contacts, def.impactModel, tuning, def.gravity, dt);
   stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults);
+  lastSubstep = dt / static_cast<float>(def.substeps);
+  detail::findBrokenJoints(bodies, joints, lastSubstep, events.jointBreaks);
+  for (const JointBreakEvent& broken : events.jointBreaks) {
+    detail::wakeIsland(bodies, joints[broken.joint.index].bodyA);
+    detail::wakeIsland(bodies, joints[broken.joint.index].bodyB);
+    freeJoint(broken.joint.index);
+  }
   impacts.applyTimeShifts(bodies);
   detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   if (bodies.rollingCount > 0) detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());

@@ -29,6 +29,8 @@ constexpr std::array<std::string_view, 2> kImpactNames{"newton", "interpolated"}
 constexpr std::array<std::string_view, 4> kFrictionNames{"coulomb", "viscous", "damping", "none"};
 constexpr std::array<std::string_view, 3> kPenetrationNames{"soft", "project", "revert"};
 constexpr std::array<std::string_view, 3> kBodyTypeNames{"static", "kinematic", "dynamic"};
+constexpr std::array<std::string_view, 6> kJointTypeNames{"distance", "ball",  "hinge",
+                                                          "slider",   "fixed", "cone"};
 
 }  // namespace
 
@@ -39,6 +41,7 @@ std::string_view toString(PenetrationResponse response) {
   return kPenetrationNames[static_cast<int>(response)];
 }
 std::string_view toString(BodyType type) { return kBodyTypeNames[static_cast<int>(type)]; }
+std::string_view toString(JointType type) { return kJointTypeNames[static_cast<int>(type)]; }
 
 CombineRule parseCombineRule(std::string_view name) {
   return parseName<CombineRule>(name, kCombineNames, "combine rule");

@@ -16,7 +16,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -52,6 +54,7 @@ struct World::Impl {
   ContactListener* contactListener = nullptr;
   std::string callbackError;  // reported by step() once the step is complete
   std::size_t touchingCount = 0;
+  float lastSubstep = 0.0f;  // the last step's substep, s (the joints' loads are impulses over it)
 
   // The slot of a live body or joint; Error naming the operation for a stale or invalid id.
   // Whether the id names a live body of this generation (World::isValid; resolve throws unless).
@@ -64,6 +67,14 @@ struct World::Impl {
   JointId addJoint(detail::Joint joint);
   // Throws Error (prefixed with `who`) unless a and b are two different live bodies, one dynamic.
   void requireJointBodies(BodyId a, BodyId b, const std::string& who) const;
+  // A joint of `type` between a and b at the world anchor, its frame's x along `axis` (unset: the
+  // world's frame), its local anchors and frames filled in; Error naming the field for bad bodies,
+  // anchor or axis. `turns`: the joint holds the bodies' rotation, which a particle does not have.
+  detail::Joint jointAt(BodyId a, BodyId b, const Vec3& anchor, const std::optional<Vec3>& axis,
+                        JointType type, bool turns) const;
+  // The live joint of `id` if its type is one of `types`; Error naming the operation otherwise.
+  detail::Joint& jointFor(JointId id, const char* operation, std::initializer_list<JointType> types);
+  void wakeJoint(const detail::Joint& joint);
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
   // Body `index`'s contacts end (touching ones: End events with the next step's), what they touched
   // wakes (destroyBody, setEnabled).

@@ -34,11 +34,16 @@ struct JointId {
   friend bool operator==(const JointId&, const JointId&) = default;
 };
 
-// The kinds of joint (World::createDistanceConstraint, createBallJoint; docs/joints.md).
+// The kinds of joint (collide/joints.h, docs/joints.md).
 enum class JointType : std::uint8_t {
-  Distance,  // the anchors keep a distance (rigid, or a spring)
+  Distance,  // the anchors keep a distance (rigid, a spring, or within [min, max])
   Ball,      // the anchors coincide; the bodies turn freely about them (spherical)
+  Hinge,     // the anchors coincide; the bodies turn about one axis (revolute)
+  Slider,    // the bodies keep their relative rotation and slide along one axis (prismatic)
+  Fixed,     // the bodies keep their relative pose (weld)
+  Cone,      // a ball joint whose axis stays in a cone and twists within limits (swing-twist)
 };
+std::string_view toString(JointType type);
 
 // What a body's contacts combine with their partner's (BodyDef's fields of the same names).
 struct BodyMaterial {

@@ -7,6 +7,7 @@
 #include <collide/debug_draw.h>
 #include <collide/error.h>
 #include <collide/events.h>
+#include <collide/joints.h>
 #include <collide/math.h>
 #include <collide/narrowphase.h>
 #include <collide/queries.h>

@@ -93,6 +93,17 @@ struct FaultEvent {
   std::uint8_t fields = 0;
 };
 
+// A joint that broke this step: its constraint force (or torque) exceeded the break force (torque)
+// of its definition. The joint is destroyed at the end of the step that broke it (the id is stale
+// from then on); its bodies are kept.
+struct JointBreakEvent {
+  JointId joint;
+  BodyId a;
+  BodyId b;
+  float force = 0.0f;   // N: the force the joint carried in the step's last substep
+  float torque = 0.0f;  // N m
+};
+
 // What a pre-solve callback may change of one contact for this step. friction and bounciness start
 // as the world's combined values for the pair. surfaceVelocity is the velocity B's surface is to keep
 // relative to A's along the contact plane (its normal part is ignored): friction drives the bodies'

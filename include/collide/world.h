@@ -11,6 +11,7 @@
 #include <collide/debug_draw.h>
 #include <collide/error.h>
 #include <collide/events.h>
+#include <collide/joints.h>
 #include <collide/math.h>
 #include <collide/narrowphase.h>
 #include <collide/queries.h>
@@ -88,36 +89,6 @@ struct WorldDef {
   bool persistEvents = false;
   SleepTuning sleep{};
   ContactTuning contact{};
-};
-
-// Keeps an anchor on body a at `length` from an anchor on body b (a rope that also pushes: a rod).
-// Any two bodies, at least one dynamic. Anchors are points in each body's local frame (scaled with
-// the body, like its shape); unset, they are the centres of mass. A particle's anchor must be its
-// centre (it cannot turn, so an offset anchor would have no lever).
-struct DistanceConstraintDef {
-  BodyId a;
-  BodyId b;
-  std::optional<Vec3> localAnchorA;
-  std::optional<Vec3> localAnchorB;
-  std::optional<float> length;  // >= 0; unset: the anchors' distance at creation
-  // m/N, >= 0. 0 is rigid; otherwise a spring of stiffness 1/compliance (XPBD's compliance), see
-  // docs/architecture.md ("Distance constraints").
-  float compliance = 0.0f;
-  float dampingRatio = 0.0f;  // of the spring (compliance > 0), >= 0; 1 is critical
-  // false: the two bodies do not collide with each other while the constraint exists (a ragdoll's
-  // neighbouring limbs, a chain's links that overlap at the joints).
-  bool collideConnected = true;
-};
-
-// A ball (spherical) joint: the two bodies share the anchor point and turn freely about it (a
-// chain's links, a ragdoll's shoulder without limits). Soft as the rigid distance constraint
-// (docs/joints.md).
-struct BallJointDef {
-  BodyId a;
-  BodyId b;
-  Vec3 anchor{0.0f};  // world frame, at creation: each body keeps it at its own local point
-  // false (the default): the two bodies do not collide with each other while the joint exists.
-  bool collideConnected = false;
 };
 
 class World {
@@ -233,16 +204,63 @@ class World {
   std::uint32_t addPart(BodyId id, const PartDef& part);
   void removePart(BodyId id, std::uint32_t part);
 
-  // ---- Constraints. Stale ids throw Error; destroying a body destroys its constraints. ----
-  // Throws Error naming the field for a bad definition (stale body, a == b, no dynamic body, ...).
+  // ---- Joints (collide/joints.h, docs/joints.md). Stale ids throw Error; destroying a body
+  // destroys its joints. ----
+  // Each throws Error naming the field for a bad definition (stale body, a == b, no dynamic body,
+  // a non-finite or zero axis, limits out of order, ...).
   JointId createDistanceConstraint(const DistanceConstraintDef& def);
   JointId createBallJoint(const BallJointDef& def);
+  JointId createHingeJoint(const HingeJointDef& def);
+  JointId createSliderJoint(const SliderJointDef& def);
+  JointId createFixedJoint(const FixedJointDef& def);
+  JointId createConeJoint(const ConeJointDef& def);
   void destroyConstraint(JointId id);
   bool isValid(JointId id) const;
   std::size_t constraintCount() const;
   JointType jointType(JointId id) const;
+  BodyId jointBodyA(JointId id) const;
+  BodyId jointBodyB(JointId id) const;
   float constraintLength(JointId id) const;         // the rest length (0 for a ball joint)
   float constraintCurrentLength(JointId id) const;  // the anchors' distance now
+  // The anchors in the world now, as each body carries its own.
+  Vec3 jointAnchorA(JointId id) const;
+  Vec3 jointAnchorB(JointId id) const;
+  // The joint's axis in the world now, as body a carries it (hinge, slider, cone; x of the joint
+  // frame for the others).
+  Vec3 jointAxis(JointId id) const;
+  // The free coordinate now: a hinge's angle and a cone joint's twist (rad, (-pi, pi]), a slider's
+  // offset (m), a distance joint's length; 0 for ball and fixed joints. Its rate, from the bodies'
+  // velocities (rad/s, m/s).
+  float jointPosition(JointId id) const;
+  float jointSpeed(JointId id) const;
+  // The force (N) and torque (N m) the joint carried in the last step's last substep, and the
+  // motor's share along the free coordinate (N m for a hinge, N for a slider).
+  float jointForce(JointId id) const;
+  float jointTorque(JointId id) const;
+  float jointMotorForce(JointId id) const;
+  // The fields of the definitions, read and changed after creation; each setter checks as the
+  // definition does (Error and no change), wakes the joint's bodies, and takes effect next step.
+  // Limits, motor and spring belong to hinge, slider (and cone: twist limits; distance: limits,
+  // spring); softness to every type (the fixed joint's linear rows; setJointAngularSoftness for its
+  // rotation rows). A setter that does not apply to the joint's type throws Error.
+  JointLimits jointLimits(JointId id) const;
+  void setJointLimits(JointId id, const JointLimits& limits);
+  JointMotor jointMotor(JointId id) const;
+  void setJointMotor(JointId id, const JointMotor& motor);
+  JointSpring jointSpring(JointId id) const;
+  void setJointSpring(JointId id, const JointSpring& spring);
+  JointSoftness jointSoftness(JointId id) const;
+  void setJointSoftness(JointId id, const JointSoftness& softness);
+  JointSoftness jointAngularSoftness(JointId id) const;
+  void setJointAngularSoftness(JointId id, const JointSoftness& softness);
+  float coneSwingLimit(JointId id) const;
+  void setConeSwingLimit(JointId id, float swingLimit);
+  float jointBreakForce(JointId id) const;
+  void setJointBreakForce(JointId id, float force);  // > 0; kUnbreakable for none
+  float jointBreakTorque(JointId id) const;
+  void setJointBreakTorque(JointId id, float torque);
+  bool jointCollideConnected(JointId id) const;
+  void setJointCollideConnected(JointId id, bool collide);
 
   void setPreSolveCallback(PreSolveCallback callback);
   void setPreSolveCallback(PreSolveFilter filter);
@@ -269,6 +287,9 @@ class World {
   std::span<const SensorEvent> sensorEvents() const;
   // Bodies frozen by the last step because their state became non-finite (see FaultEvent).
   std::span<const FaultEvent> faultEvents() const;
+  // The joints that broke in the last step (their break force or torque exceeded); already
+  // destroyed.
+  std::span<const JointBreakEvent> jointBreakEvents() const;
   // The number of touching (non-sensor) contact pairs after the last step.
   std::size_t touchingContactCount() const;
   // Every touching (non-sensor) contact after the last step, whole, in the contacts' pair order (the

@@ -25,6 +25,7 @@ void StepEvents::beginStep() {
   pendingContacts.clear();
   pendingSensors.clear();
   faults.clear();
+  jointBreaks.clear();
 }
 
 void StepEvents::endVanished(const BodyStorage& bodies, const Contact& old) {

@@ -25,6 +25,7 @@ struct StepEvents {
   std::vector<std::uint32_t> contactOfEvent;
   std::vector<SensorEvent> sensors;
   std::vector<FaultEvent> faults;
+  std::vector<JointBreakEvent> jointBreaks;
   std::vector<ContactEvent> pendingContacts;
   std::vector<SensorEvent> pendingSensors;
 

@@ -70,8 +70,7 @@ void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact
   }
   for (Joint& joint : joints) {
     if (!joint.alive || (!faulted(joint.bodyA) && !faulted(joint.bodyB))) continue;
-    joint.impulse = 0.0f;
-    joint.pointImpulse = Vec3(0.0f);
+    joint.resetImpulses();
     if (!finite(joint.axis)) joint.axis = Vec3(1.0f, 0.0f, 0.0f);
   }
 }

@@ -1,22 +1,22 @@
 // The joints of the soft step (Catto, "Solver2D" 2024 and GDC 2011 "Soft Constraints"), solved in
 // the same substep loop as the contacts (StepSolver::solve in src/dynamics/solver.cpp). One record
-// per joint with a type tag; warm start, solve and projection switch on it (Box2D v3's joint.c).
+// per joint with a type tag; warm start, solve and projection switch on it (Box2D v3's joint.c),
+// and each type is one file of src/dynamics/joints/ built from the rows of joints/joint_rows.h.
 //
-// Distance: C = |pB - pA| - length, along the unit axis n from anchor A to anchor B. A rigid
-// constraint (compliance 0) is a velocity constraint in the relax pass and, in the biased pass, a
-// stiff soft constraint (Box2D v3's joint softness: twice the contact hertz, damping ratio 2).
-// A compliant one is a spring of stiffness 1/compliance (N/m), the XPBD compliance of Macklin et
-// al. 2016: with effective mass m the spring has omega^2 = 1 / (compliance m) and is integrated
-// implicitly as a soft constraint in both passes (it is a physical force, not an error correction).
-//
-// Ball (spherical): C = pB - pA, three rows solved together through the 3x3 effective mass
-// K = (mA + mB) I - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x, soft as a rigid distance joint.
+// Every joint is made of the same few rows: a point block (the anchors coincide: three rows solved
+// together through their 3x3 effective mass), a rotation block (the bodies keep their relative
+// rotation, or all but its turn about one axis), and single rows along a free coordinate (a hinge's
+// angle, a slider's offset, a distance joint's length) that carry its spring, motor and limits.
+// Rigid rows are soft constraints at twice the contact stiffness in the biased pass and plain
+// velocity constraints in the relax pass; a joint given a softness (hertz > 0) is a spring in both.
 #pragma once
 
 #include "bodies/body_storage.h"
 #include "dynamics/solver_body.h"
 
 #include <collide/body.h>
+#include <collide/events.h>
+#include <collide/joints.h>
 
 #include <cstdint>
 #include <vector>
@@ -29,20 +29,44 @@ struct Joint {
   std::uint32_t bodyB = 0;
   Vec3 localAnchorA{0.0f};  // from the centre of mass, body frame, scaled
   Vec3 localAnchorB{0.0f};
+  // The joint frame in each body's frame; its x axis is the joint's axis (hinge, slider, cone).
+  // Equal in the world at creation: the relative rotation of the two frames is the joint's turn.
+  Quat localFrameA{1.0f, 0.0f, 0.0f, 0.0f};
+  Quat localFrameB{1.0f, 0.0f, 0.0f, 0.0f};
   bool collideConnected = true;  // false: its bodies are kept apart in the pair filters
   bool alive = false;
   bool active = false;  // this step: at least one awake dynamic body
   std::uint32_t generation = 1;
 
+  JointSoftness softness;         // the point rows (and, but for the fixed joint, every row)
+  JointSoftness angularSoftness;  // the fixed joint's rotation rows
+  JointLimits limits;
+  JointMotor motor;
+  JointSpring spring;
+  float swingLimit = kPi;  // cone
+  float breakForce = kUnbreakable;
+  float breakTorque = kUnbreakable;
+
   // Distance.
   float length = 0.0f;
   float compliance = 0.0f;  // m/N; 0 = rigid
   float dampingRatio = 0.0f;
-  float impulse = 0.0f;         // accumulated along the axis (warm start), N s
   Vec3 axis{1.0f, 0.0f, 0.0f};  // the last axis, kept for coincident anchors
 
-  // Ball.
-  Vec3 pointImpulse{0.0f};  // accumulated on B at the anchor (warm start), N s
+  // Accumulated impulses of the last substep (the warm start), N s and N m s.
+  Vec3 linearImpulse{0.0f};   // point rows, on B at the anchor; the slider's rows across its axis
+  Vec3 angularImpulse{0.0f};  // rotation rows, on B; the hinge's two across its axis
+  float impulse = 0.0f;       // the distance joint's length row
+  float springImpulse = 0.0f;
+  float motorImpulse = 0.0f;
+  float lowerImpulse = 0.0f;
+  float upperImpulse = 0.0f;
+  float swingImpulse = 0.0f;
+
+  void resetImpulses() {
+    linearImpulse = angularImpulse = Vec3(0.0f);
+    impulse = springImpulse = motorImpulse = lowerImpulse = upperImpulse = swingImpulse = 0.0f;
+  }
 };
 
 // The step's bodies as the joints see them: the solver bodies of moving bodies, the body storage
@@ -56,24 +80,53 @@ struct JointSolverView {
 
 // Once per step: which joints take part (at least one awake dynamic body).
 void prepareJoints(const JointSolverView& view, std::vector<Joint>& joints);
-// Per substep, over the active joints: apply the accumulated impulse along the current axis.
+// Per substep, over the active joints: apply the accumulated impulses at the current pose.
 void warmStartJoints(const JointSolverView& view, std::vector<Joint>& joints);
-// Per substep: one pass; useBias = false is the relax pass (rigid joints without position bias).
-// rigidHertz: the stiffness of the rigid joints' position correction (twice the contact hertz).
+// Per substep: one pass; useBias = false is the relax pass (rigid rows without position bias).
+// rigidHertz: the stiffness of the rigid rows' position correction (twice the contact hertz).
 void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
                  bool useBias);
 
 // Per substep, after the position update: the length a rigid distance joint lost or gained beyond
-// kJointLengthSlop, and the gap a ball joint's anchors opened beyond kBallJointGapSlop, are removed
-// by moving its bodies (non-linear Gauss-Seidel on positions, Box2D
-// v2's and Jolt's position iterations), over the joints in order, pass after pass while one is
-// still off, at most kJointProjectionPasses times. The soft joint holds a link within the slop on
-// its own; under the load of a whipping chain it gives, and the passes take the give back. Below
-// the slop nothing moves: a projection there would only cost a spinning pair its angular momentum
-// (positions moved without turning the velocities).
+// kJointLengthSlop, and the gap a rigid point block's anchors opened beyond kBallJointGapSlop, are
+// removed by moving its bodies (non-linear Gauss-Seidel on positions, Box2D v2's and Jolt's
+// position iterations), over the joints in order, pass after pass while one is still off, at most
+// kJointProjectionPasses times. The soft joint holds a link within the slop on its own; under the
+// load of a whipping chain it gives, and the passes take the give back. Below the slop nothing
+// moves: a projection there would only cost a spinning pair its angular momentum (positions moved
+// without turning the velocities).
 inline constexpr float kJointLengthSlop = 0.005f;   // of the joint's length
 inline constexpr float kBallJointGapSlop = 0.001f;  // m
 inline constexpr int kJointProjectionPasses = 128;
 void projectJoints(const JointSolverView& view, std::vector<Joint>& joints);
+
+// The force and torque a joint carried in the last substep (its accumulated impulses over h).
+struct JointLoad {
+  float force = 0.0f;
+  float torque = 0.0f;
+};
+JointLoad jointLoad(const Joint& joint, float h);
+
+// After the solve: every active joint whose load exceeds its break force or torque, as events (in
+// joint order); the caller destroys them.
+void findBrokenJoints(const BodyStorage& storage, const std::vector<Joint>& joints, float h,
+                      std::vector<JointBreakEvent>& broken);
+
+// The free coordinate of a joint at the bodies' current poses: a hinge's angle, a slider's offset,
+// a cone joint's twist, a distance joint's length; 0 for a ball or fixed joint. Also the anchors'
+// world points and the joint frame's axis in the world, for queries and drawing.
+struct JointPose {
+  Vec3 anchorA{0.0f};
+  Vec3 anchorB{0.0f};
+  Vec3 axisA{1.0f, 0.0f, 0.0f};  // the joint frame's x in the world, as body a carries it
+  Vec3 axisB{1.0f, 0.0f, 0.0f};
+  Quat frameA{1.0f, 0.0f, 0.0f, 0.0f};
+  Quat frameB{1.0f, 0.0f, 0.0f, 0.0f};
+  float position = 0.0f;
+};
+JointPose jointPose(const BodyStorage& storage, const Joint& joint);
+
+// The twist of the relative rotation q (frame B in frame A) about frame A's x axis, in (-pi, pi].
+float twistAngle(const Quat& q);
 
 }  // namespace collide::detail

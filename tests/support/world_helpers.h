@@ -44,4 +44,13 @@ inline BodyDef groundPlane() {
   return def;
 }
 
+// A small static sphere to hang joints from.
+inline BodyId staticAnchor(World& world, const Vec3& at) {
+  BodyDef def;
+  def.type = BodyType::Static;
+  def.shape = Shape(Sphere{0.01f});
+  def.position = at;
+  return world.createBody(def);
+}
+
 }  // namespace collide::test

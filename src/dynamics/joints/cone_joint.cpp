@@ -1,0 +1,73 @@
+// The cone (swing-twist) joint: the point block, a swing limit that keeps b's axis within a cone
+// about a's, and twist limits about the axis (Jolt's SwingTwistConstraint and Box2D v3's 3D
+// spherical joint are the models; the rows are our own).
+//
+// Swing: the angle phi between a's axis a and b's axis b. Turning b about n = (a x b) / |a x b|
+// opens it, so the limit's row is the relative rotation about n, C = swingLimit - phi >= 0.
+// Twist: the turn of frame B relative to frame A about the axis (the twist of the swing-twist
+// split), measured about the mean of the two axes, where a twist rate does not change the swing.
+#include "dynamics/joints/joint_rows.h"
+
+#include <cmath>
+
+namespace collide::detail {
+
+namespace {
+
+struct ConeRows {
+  Vec3 swingAxis{0.0f};  // zero: no swing row (the axes coincide, or the cone is the whole sphere)
+  float swing = 0.0f;
+  Vec3 twistAxis{0.0f};  // zero: no twist row (the axes are opposite)
+  float twist = 0.0f;
+};
+
+ConeRows coneRows(const JointFrame& f, const Joint& joint) {
+  ConeRows rows;
+  const Vec3 a = f.frameA * Vec3(1.0f, 0.0f, 0.0f);
+  const Vec3 b = f.frameB * Vec3(1.0f, 0.0f, 0.0f);
+  const Vec3 s = glm::cross(a, b);
+  const float sine = glm::length(s);
+  rows.swing = std::atan2(sine, glm::dot(a, b));
+  if (joint.swingLimit < kPi && sine > 1e-6f) rows.swingAxis = s / sine;
+  const Vec3 mean = a + b;
+  const float meanLength = glm::length(mean);
+  if (joint.limits.enabled && meanLength > 1e-6f) {
+    rows.twistAxis = mean / meanLength;
+    rows.twist = twistAngle(glm::conjugate(f.frameA) * f.frameB);
+  }
+  return rows;
+}
+
+}  // namespace
+
+void warmStartCone(const JointSolverView& view, Joint& joint) {
+  const JointFrame f = jointFrame(view, joint);
+  const ConeRows rows = coneRows(f, joint);
+  // The swing limit is an upper limit on phi: its impulse turns b back, about -n.
+  applyAngularImpulse(
+      f.a, f.b,
+      -joint.swingImpulse * rows.swingAxis + (joint.lowerImpulse - joint.upperImpulse) * rows.twistAxis);
+  applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
+}
+
+void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
+  const JointFrame f = jointFrame(view, joint);
+  const ConeRows rows = coneRows(f, joint);
+  const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
+  if (rows.swingAxis != Vec3(0.0f)) {
+    const JointRow row = angularRow(f.a, f.b, rows.swingAxis);
+    solveUpperLimit(f, row, rows.swing, joint.swingLimit, soft, h, joint.swingImpulse);
+  } else {
+    joint.swingImpulse = 0.0f;
+  }
+  if (rows.twistAxis != Vec3(0.0f)) {
+    const JointRow row = angularRow(f.a, f.b, rows.twistAxis);
+    solveLowerLimit(f, row, rows.twist, joint.limits.lower, soft, h, joint.lowerImpulse);
+    solveUpperLimit(f, row, rows.twist, joint.limits.upper, soft, h, joint.upperImpulse);
+  } else {
+    joint.lowerImpulse = joint.upperImpulse = 0.0f;
+  }
+  solvePoint(f, soft, joint.linearImpulse);
+}
+
+}  // namespace collide::detail

@@ -1,0 +1,123 @@
+// The rows every joint type is made of (joint_solver.h): the bodies at their current pose, the
+// point block, the rotation blocks, and the single rows that carry springs, motors and limits.
+// A joint type's file (ball_joint.cpp, hinge_joint.cpp, ...) builds its rows from these each
+// substep and keeps their accumulated impulses in its Joint record.
+#pragma once
+
+#include "dynamics/contact_solver.h"
+#include "dynamics/joint_solver.h"
+
+namespace collide::detail {
+
+// One end of a joint: the body's current pose, velocities and masses (zero for a body the solver
+// does not move). `moving` reads a kinematic body's velocity; `solver` is set for a dynamic one,
+// which the joint's impulses change.
+struct JointBody {
+  Vec3 centerOfMass{0.0f};
+  Quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  const SolverBody* moving = nullptr;
+  SolverBody* solver = nullptr;
+  float inverseMass = 0.0f;
+  Mat3 inverseInertia{0.0f};
+
+  Vec3 linearVelocity() const { return moving ? moving->linearVelocity : Vec3(0.0f); }
+  Vec3 angularVelocity() const { return moving ? moving->angularVelocity : Vec3(0.0f); }
+  Vec3 velocityAt(const Vec3& r) const { return linearVelocity() + glm::cross(angularVelocity(), r); }
+};
+
+JointBody jointBody(const JointSolverView& view, std::uint32_t body);
+
+// A joint's two bodies and its frame at their current pose.
+struct JointFrame {
+  JointBody a;
+  JointBody b;
+  Vec3 rA{0.0f};  // world offsets from the centres of mass to the anchors
+  Vec3 rB{0.0f};
+  Vec3 d{0.0f};                         // anchor B minus anchor A
+  Quat frameA{1.0f, 0.0f, 0.0f, 0.0f};  // the joint frame in the world, as each body carries it
+  Quat frameB{1.0f, 0.0f, 0.0f, 0.0f};
+};
+JointFrame jointFrame(const JointSolverView& view, const Joint& joint);
+
+// The softness of a joint's rows in one pass: the joint's own spring (hertz > 0) in both passes;
+// a rigid row's stiff soft constraint in the biased pass; in the relax pass, no bias.
+Softness rowSoftness(const JointSoftness& softness, float rigidHertz, float h, bool useBias);
+
+// Impulses: p on B at its anchor (rB from its centre), -p on A at rA; the angular impulse L on B,
+// -L on A.
+void applyImpulse(const JointBody& a, const JointBody& b, const Vec3& rA, const Vec3& rB, const Vec3& p);
+void applyAngularImpulse(const JointBody& a, const JointBody& b, const Vec3& l);
+// The positional impulse p (kg m) on B at its anchor, -p on A: each body moved and turned by it as
+// its masses say (non-linear Gauss-Seidel on positions).
+void applyPositionImpulse(const JointBody& a, const JointBody& b, const Vec3& rA, const Vec3& rB,
+                          const Vec3& p);
+
+// The cross-product matrix: skew(r) v = r x v.
+Mat3 skew(const Vec3& r);
+
+// The point block: anchor B's velocity relative to anchor A driven to zero, its gap C = d closed by
+// the softness's bias. K = (mA^-1 + mB^-1) I - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x, symmetric and
+// positive definite while one body moves; solved as a block, so the anchor does not slide round
+// the curve one row after another would trace (Box2D v3's revolute point constraint, Jolt's
+// PointConstraintPart).
+Mat3 pointInverseMass(const JointBody& a, const JointBody& b, const Vec3& rA, const Vec3& rB);
+void solvePoint(const JointFrame& f, const Softness& soft, Vec3& accumulated);
+// The rigid point block's projection: the gap beyond kBallJointGapSlop removed along the gap.
+bool projectPoint(const JointFrame& f);
+
+// The rotation block: frame B's rotation relative to frame A (in the world, as a rotation vector e
+// of qB qA^-1) driven back to zero, K = IA^-1 + IB^-1 (the fixed and the slider joint).
+Vec3 rotationError(const Quat& frameA, const Quat& frameB);
+void solveRotation(const JointFrame& f, const Softness& soft, Vec3& accumulated);
+
+// One row: C' = n . (vB - vA) + wB . omegaB - wA . omegaA; an impulse lambda adds n lambda to B's
+// momentum and -n lambda to A's, wB lambda to B's angular momentum and -wA lambda to A's.
+struct JointRow {
+  Vec3 linear{0.0f};
+  Vec3 angularA{0.0f};
+  Vec3 angularB{0.0f};
+  float mass = 0.0f;  // 1 / (the row's inverse effective mass); 0 when nothing can move it
+};
+JointRow makeRow(const JointBody& a, const JointBody& b, const Vec3& linear, const Vec3& angularA,
+                 const Vec3& angularB);
+// A row along an axis through the anchors: linear along it, levers rA and rB.
+JointRow linearRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA);
+// A row of relative rotation about an axis.
+JointRow angularRow(const JointBody& a, const JointBody& b, const Vec3& axis);
+float rowSpeed(const JointBody& a, const JointBody& b, const JointRow& row);
+void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
+
+// The free coordinate's rows, in Box2D v3's order (spring, motor, limits), given its position.
+// The spring pulls position towards spring.target in both passes; the motor's accumulated impulse
+// is clamped to h maxForce; the limits are one-sided rows, speculative while inside (a row that
+// only acts once the coordinate would cross the limit within the substep), soft or rigid outside.
+void solveSpring(const JointFrame& f, const JointRow& row, float position, const JointSpring& spring, float h,
+                 float& accumulated);
+void solveMotor(const JointFrame& f, const JointRow& row, const JointMotor& motor, float h,
+                float& accumulated);
+void solveLowerLimit(const JointFrame& f, const JointRow& row, float position, float lower,
+                     const Softness& soft, float h, float& accumulated);
+void solveUpperLimit(const JointFrame& f, const JointRow& row, float position, float upper,
+                     const Softness& soft, float h, float& accumulated);
+
+// The per-type pieces, one file each.
+void warmStartDistance(const JointSolverView& view, Joint& joint);
+void solveDistance(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+bool projectDistance(const JointSolverView& view, Joint& joint);
+
+void warmStartBall(const JointSolverView& view, Joint& joint);
+void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+
+void warmStartHinge(const JointSolverView& view, Joint& joint);
+void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+
+void warmStartSlider(const JointSolverView& view, Joint& joint);
+void solveSlider(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+
+void warmStartFixed(const JointSolverView& view, Joint& joint);
+void solveFixed(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+
+void warmStartCone(const JointSolverView& view, Joint& joint);
+void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+
+}  // namespace collide::detail
