@@ -92,6 +92,16 @@ std::uint64_t stateHash(const SceneWorld& sw) {
   return hash;
 }
 
+// A constraint's name in events: its "name", or its place in the file.
+std::string jointName(const Scene& scene, const SceneWorld& sw, JointId joint) {
+  for (std::size_t i = 0; i < sw.constraints.size(); ++i) {
+    if (sw.constraints[i] != joint) continue;
+    return scene.constraints[i].name.empty() ? "constraints[" + std::to_string(i) + "]"
+                                             : scene.constraints[i].name;
+  }
+  return "joint " + std::to_string(joint.index);
+}
+
 std::vector<std::string> faultFieldNames(std::uint8_t fields) {
   std::vector<std::string> out;
   if (fields & FaultEvent::kPosition) out.emplace_back("position");
@@ -197,6 +207,18 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
                                      {"fields", faultFieldNames(e.fields)}};
         events->write(line.dump() + '\n');
       }
+    }
+    for (const JointBreakEvent& e : sw.world.jointBreakEvents()) {
+      ++summary.brokenJoints;
+      if (!events) continue;
+      const nlohmann::json line = {{"step", step},
+                                   {"type", "joint_break"},
+                                   {"joint", jointName(scene, sw, e.joint)},
+                                   {"a", names[e.a.index]},
+                                   {"b", names[e.b.index]},
+                                   {"force", jsonNumber(e.force)},
+                                   {"torque", jsonNumber(e.torque)}};
+      events->write(line.dump() + '\n');
     }
     for (std::size_t body : broken) {
       sw.world.destroyBody(sw.bodies[body]);

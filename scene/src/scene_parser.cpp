@@ -397,22 +397,55 @@ Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& conte
   return body;
 }
 
+// A [lower, upper] pair of finite numbers, lower <= upper.
+JointLimits readLimits(const JsonNode& n) {
+  const std::vector<JsonNode> pair = n.elements();
+  if (pair.size() != 2) n.fail("must be [lower, upper], got " + n.shown());
+  const JointLimits limits{true, pair[0].number(), pair[1].number()};
+  if (!(limits.lower <= limits.upper)) n.fail("lower must be <= upper, got " + n.shown());
+  return limits;
+}
+
 Constraint readConstraint(const JsonNode& node, const std::map<std::string, std::size_t>& names,
                           const std::vector<Body>& bodies) {
   if (!node.value().is_object()) node.fail("must be a constraint object, got " + node.shown());
   const JsonNode typeNode = node.at("type");
   const std::string type = typeNode.string();
-  if (type != "distance" && type != "ball")
-    typeNode.fail("unknown constraint type " + typeNode.shown() + " (expected distance or ball)");
-  Constraint c;
-  if (type == "ball") {
-    node.expectObject({"type", "a", "b", "anchor", "collide_connected"});
-    c.type = JointType::Ball;
-    c.collideConnected = false;
-  } else {
-    node.expectObject(
-        {"type", "a", "b", "anchor_a", "anchor_b", "length", "compliance", "collide_connected"});
+  static const std::map<std::string, JointType, std::less<>> kTypes = {
+      {"distance", JointType::Distance}, {"ball", JointType::Ball},   {"hinge", JointType::Hinge},
+      {"slider", JointType::Slider},     {"fixed", JointType::Fixed}, {"cone", JointType::Cone}};
+  const auto known = kTypes.find(type);
+  if (known == kTypes.end()) {
+    typeNode.fail("unknown constraint type " + typeNode.shown() +
+                  " (expected distance, ball, hinge, slider, fixed or cone)");
   }
+  Constraint c;
+  c.type = known->second;
+  c.collideConnected = c.type == JointType::Distance;
+  switch (c.type) {
+    case JointType::Distance:
+      node.expectObject({"type", "name", "a", "b", "anchor_a", "anchor_b", "length", "compliance", "limits",
+                         "collide_connected", "break_force", "stiffness", "damping"});
+      break;
+    case JointType::Ball:
+      node.expectObject(
+          {"type", "name", "a", "b", "anchor", "collide_connected", "break_force", "stiffness", "damping"});
+      break;
+    case JointType::Hinge:
+    case JointType::Slider:
+      node.expectObject({"type", "name", "a", "b", "anchor", "axis", "limits", "motor", "collide_connected",
+                         "break_force", "break_torque", "stiffness", "damping"});
+      break;
+    case JointType::Fixed:
+      node.expectObject({"type", "name", "a", "b", "anchor", "collide_connected", "break_force",
+                         "break_torque", "stiffness", "damping"});
+      break;
+    case JointType::Cone:
+      node.expectObject({"type", "name", "a", "b", "anchor", "axis", "swing", "twist", "collide_connected",
+                         "break_force", "break_torque", "stiffness", "damping"});
+      break;
+  }
+  if (auto n = node.find("name")) c.name = n->string();
   for (const char* key : {"a", "b"}) {
     const JsonNode n = node.at(key);
     const std::string name = n.string();
@@ -420,11 +453,37 @@ Constraint readConstraint(const JsonNode& node, const std::map<std::string, std:
     (key[0] == 'a' ? c.a : c.b) = name;
   }
   if (c.a == c.b) node.at("b").fail("must differ from a, got " + node.at("b").shown());
-  if (c.type == JointType::Ball) {
-    c.anchor = node.at("anchor").vec3();
-    if (auto n = node.find("collide_connected")) c.collideConnected = n->boolean();
+  if (auto n = node.find("collide_connected")) c.collideConnected = n->boolean();
+  if (auto n = node.find("break_force")) c.breakForce = n->positive();
+  if (auto n = node.find("break_torque")) c.breakTorque = n->positive();
+  if (auto n = node.find("stiffness")) c.softness.hertz = n->nonNegative();
+  if (auto n = node.find("damping")) c.softness.dampingRatio = n->nonNegative();
+  if (c.type == JointType::Fixed) {
+    if (auto n = node.find("anchor")) c.anchor = n->vec3();
     return c;
   }
+  if (c.type != JointType::Distance) c.anchor = node.at("anchor").vec3();
+  if (c.type == JointType::Hinge || c.type == JointType::Slider || c.type == JointType::Cone) {
+    const JsonNode n = node.at("axis");
+    c.axis = n.vec3();
+    if (!(glm::length(c.axis) > 1e-6f)) n.fail("must be a non-zero direction, got " + n.shown());
+  }
+  if (auto n = node.find("limits")) c.limits = readLimits(*n);
+  if (c.type == JointType::Hinge || c.type == JointType::Slider) {
+    if (auto n = node.find("motor")) {
+      const char* force = c.type == JointType::Hinge ? "max_torque" : "max_force";
+      n->expectObject({"speed", force});
+      c.motor = {true, n->at("speed").number(), n->at(force).nonNegative()};
+    }
+  }
+  if (c.type == JointType::Cone) {
+    if (auto n = node.find("swing")) {
+      c.swing = n->nonNegative();
+      if (c.swing > kPi) n->fail("must be within [0, pi], got " + n->shown());
+    }
+    if (auto n = node.find("twist")) c.limits = readLimits(*n);
+  }
+  if (c.type != JointType::Distance) return c;
   // A particle cannot turn, so an anchor off its centre would have no lever (the World refuses it).
   const auto readAnchor = [&](const char* key, const std::string& bodyName) -> std::optional<Vec3> {
     const auto n = node.find(key);
@@ -438,7 +497,10 @@ Constraint readConstraint(const JsonNode& node, const std::map<std::string, std:
   c.anchorB = readAnchor("anchor_b", c.b);
   if (auto n = node.find("length")) c.length = n->nonNegative();
   if (auto n = node.find("compliance")) c.compliance = n->nonNegative();
-  if (auto n = node.find("collide_connected")) c.collideConnected = n->boolean();
+  if (c.compliance > 0.0f && c.softness.hertz > 0.0f)
+    node.at("stiffness").fail("a distance constraint has one spring: stiffness or compliance, got both");
+  if (c.limits.enabled && c.limits.lower < 0.0f)
+    node.at("limits").fail("lengths must be >= 0, got " + node.at("limits").shown());
   return c;
 }
 

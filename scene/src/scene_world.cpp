@@ -6,6 +6,72 @@
 
 namespace collide::scene {
 
+namespace {
+
+JointId createJoint(World& world, const Constraint& c, BodyId a, BodyId b) {
+  const Vec3 anchor = c.anchor.value_or(Vec3(0.0f));
+  switch (c.type) {
+    case JointType::Distance: {
+      DistanceConstraintDef def{.a = a, .b = b};
+      def.localAnchorA = c.anchorA;
+      def.localAnchorB = c.anchorB;
+      def.length = c.length;
+      def.compliance = c.compliance;
+      if (c.softness.hertz > 0.0f) def.spring = {true, c.softness.hertz, c.softness.dampingRatio, 0.0f};
+      def.limits = c.limits;
+      def.collideConnected = c.collideConnected;
+      def.breakForce = c.breakForce;
+      return world.createDistanceConstraint(def);
+    }
+    case JointType::Ball: {
+      BallJointDef def{.a = a, .b = b, .anchor = anchor, .collideConnected = c.collideConnected};
+      def.softness = c.softness;
+      def.breakForce = c.breakForce;
+      return world.createBallJoint(def);
+    }
+    case JointType::Hinge: {
+      HingeJointDef def{.a = a, .b = b, .anchor = anchor, .axis = c.axis};
+      def.limits = c.limits;
+      def.motor = c.motor;
+      def.collideConnected = c.collideConnected;
+      def.softness = c.softness;
+      def.breakForce = c.breakForce;
+      def.breakTorque = c.breakTorque;
+      return world.createHingeJoint(def);
+    }
+    case JointType::Slider: {
+      SliderJointDef def{.a = a, .b = b, .anchor = anchor, .axis = c.axis};
+      def.limits = c.limits;
+      def.motor = c.motor;
+      def.collideConnected = c.collideConnected;
+      def.softness = c.softness;
+      def.breakForce = c.breakForce;
+      def.breakTorque = c.breakTorque;
+      return world.createSliderJoint(def);
+    }
+    case JointType::Fixed: {
+      FixedJointDef def{.a = a, .b = b, .anchor = c.anchor, .collideConnected = c.collideConnected};
+      def.linearSoftness = c.softness;
+      def.angularSoftness = c.softness;
+      def.breakForce = c.breakForce;
+      def.breakTorque = c.breakTorque;
+      return world.createFixedJoint(def);
+    }
+    case JointType::Cone: {
+      ConeJointDef def{.a = a, .b = b, .anchor = anchor, .axis = c.axis, .swingLimit = c.swing};
+      def.twistLimits = c.limits;
+      def.collideConnected = c.collideConnected;
+      def.softness = c.softness;
+      def.breakForce = c.breakForce;
+      def.breakTorque = c.breakTorque;
+      return world.createConeJoint(def);
+    }
+  }
+  throw Error("unknown joint type");
+}
+
+}  // namespace
+
 SceneWorld buildWorld(const Scene& scene) {
   std::optional<World> world;
   try {
@@ -35,25 +101,8 @@ SceneWorld buildWorld(const Scene& scene) {
         throw Error(scene.source + ": " + field + "." + key + ": unknown body \"" + name + "\"");
       return it->second;
     };
-    if (c.type == JointType::Ball) {
-      try {
-        out.constraints.push_back(
-            out.world.createBallJoint({body(c.a, "a"), body(c.b, "b"), c.anchor, c.collideConnected}));
-      } catch (const Error& e) {
-        throw Error(scene.source + ": " + field + ": " + e.what());
-      }
-      continue;
-    }
-    DistanceConstraintDef def;
-    def.a = body(c.a, "a");
-    def.b = body(c.b, "b");
-    def.localAnchorA = c.anchorA;
-    def.localAnchorB = c.anchorB;
-    def.length = c.length;
-    def.compliance = c.compliance;
-    def.collideConnected = c.collideConnected;
     try {
-      out.constraints.push_back(out.world.createDistanceConstraint(def));
+      out.constraints.push_back(createJoint(out.world, c, body(c.a, "a"), body(c.b, "b")));
     } catch (const Error& e) {
       throw Error(scene.source + ": " + field + ": " + e.what());
     }

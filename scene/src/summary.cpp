@@ -44,6 +44,7 @@ std::string formatSummary(const RunSummary& s) {
   if (s.sleeping)
     add("sleeping        %d awake, %d asleep (dynamic bodies at the end)\n", s.awakeBodies, s.asleepBodies);
   if (s.brokenBodies > 0) add("broken          %d bodies removed\n", s.brokenBodies);
+  if (s.brokenJoints > 0) add("broken joints   %d\n", s.brokenJoints);
   add("contact events  %llu\n", static_cast<unsigned long long>(s.contactEvents));
   if (!s.faults.empty()) {
     // The figures below count the frozen bodies as they were left (stopped where the faulted step
@@ -93,6 +94,7 @@ std::string summaryJson(const RunSummary& s) {
       {"bodies",
        {{"static", s.staticBodies}, {"kinematic", s.kinematicBodies}, {"dynamic", s.dynamicBodies}}},
       {"broken_bodies", s.brokenBodies},
+      {"broken_joints", s.brokenJoints},
       {"sleeping", {{"enabled", s.sleeping}, {"awake", s.awakeBodies}, {"asleep", s.asleepBodies}}},
       {"contact_events", s.contactEvents},
       {"faults", faults},

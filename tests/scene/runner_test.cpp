@@ -173,6 +173,40 @@ TEST(Runner, EventsFileHasFaults) {
   std::filesystem::remove(events);
 }
 
+// A 10 kg box on a ball joint that breaks above 50 N: the joint breaks in the first step (the box's
+// weight is 98 N), once, and the events file names it, its bodies and its load.
+TEST(Runner, EventsFileHasJointBreaks) {
+  const auto events = scratch("joint_break_events.jsonl");
+  const Scene scene = parseScene(R"({ "format": "collide-scene/1",
+    "settings": { "dt": 0.016666667, "steps": 30 },
+    "bodies": [ { "name": "hook", "type": "static", "shape": { "type": "sphere", "radius": 0.05 }, "position": [0, 3, 0] },
+                { "name": "box", "type": "dynamic", "mass": 10, "shape": { "type": "box", "half_extents": [0.2, 0.2, 0.2] },
+                  "position": [0, 2.5, 0] } ],
+    "constraints": [ { "type": "ball", "name": "weak link", "a": "hook", "b": "box", "anchor": [0, 3, 0],
+                       "break_force": 50 } ] })",
+                                 "breaking");
+  RunOptions options;
+  options.steps = 30;
+  options.eventsPath = events.string();
+  const RunSummary summary = runScene(scene, options);
+  EXPECT_EQ(summary.brokenJoints, 1);
+  std::ifstream eventsFile(events);
+  std::string line;
+  int breaks = 0;
+  while (std::getline(eventsFile, line)) {
+    const auto e = nlohmann::json::parse(line);
+    if (e["type"] != "joint_break") continue;
+    ++breaks;
+    EXPECT_EQ(e["step"], 1);
+    EXPECT_EQ(e["joint"], "weak link");
+    EXPECT_EQ(e["a"], "hook");
+    EXPECT_EQ(e["b"], "box");
+    EXPECT_GT(e["force"].get<double>(), 50.0);
+  }
+  EXPECT_EQ(breaks, 1);
+  std::filesystem::remove(events);
+}
+
 // A run whose bodies the fault guard froze says so: a kinetic energy of 0 J at the end is not a
 // pile at rest. overflow_fault.json flings two boxes at each other at 3e38 m/s.
 TEST(Runner, FaultsAreInTheSummaryAndItsJson) {

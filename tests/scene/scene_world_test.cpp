@@ -92,8 +92,76 @@ TEST(SceneWorld, ABallJointFromAFileHoldsItsRodOnThePivot) {
               HasSubstr("constraints[0].length: unknown field"));
   EXPECT_THAT(refusal(R"({"type": "ball", "a": "p", "b": "q"})"),
               HasSubstr("constraints[0].anchor: missing required field"));
+  EXPECT_THAT(refusal(R"({"type": "weld", "a": "p", "b": "q", "anchor": [0, 0, 0]})"),
+              HasSubstr("unknown constraint type \"weld\""));
   EXPECT_THAT(refusal(R"({"type": "hinge", "a": "p", "b": "q", "anchor": [0, 0, 0]})"),
-              HasSubstr("unknown constraint type \"hinge\""));
+              HasSubstr("constraints[0].axis: missing required field"));
+  EXPECT_THAT(refusal(R"({"type": "hinge", "a": "p", "b": "q", "anchor": [0, 0, 0], "axis": [0, 0, 0]})"),
+              HasSubstr("constraints[0].axis: must be a non-zero direction"));
+  EXPECT_THAT(refusal(R"({"type": "hinge", "a": "p", "b": "q", "anchor": [0, 0, 0], "axis": [0, 0, 1],
+                          "limits": [1, -1]})"),
+              HasSubstr("constraints[0].limits: lower must be <= upper"));
+  EXPECT_THAT(refusal(R"({"type": "slider", "a": "p", "b": "q", "anchor": [0, 0, 0], "axis": [1, 0, 0],
+                          "motor": {"speed": 1, "max_torque": 3}})"),
+              HasSubstr("constraints[0].motor.max_torque: unknown field"));
+  EXPECT_THAT(
+      refusal(R"({"type": "cone", "a": "p", "b": "q", "anchor": [0, 0, 0], "axis": [1, 0, 0], "swing": 4})"),
+      HasSubstr("constraints[0].swing: must be within [0, pi]"));
+  EXPECT_THAT(refusal(R"({"type": "fixed", "a": "p", "b": "q", "break_force": 0})"),
+              HasSubstr("constraints[0].break_force"));
+}
+
+TEST(SceneWorld, EveryJointTypeFromAFileGetsItsFields) {
+  // A door on a hinge with limits and a motor, a slider, a weld, a cone and a rope, each read into
+  // the World's joint with the file's fields.
+  const Scene s = parseScene(R"({"format": "collide-scene/1",
+    "bodies": [
+      {"name": "frame", "type": "static", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [0, 3, 0]},
+      {"name": "door", "type": "dynamic", "mass": 10, "shape": {"type": "box", "half_extents": [0.5, 0.025, 0.4]},
+       "position": [0.5, 1, 0]},
+      {"name": "carriage", "type": "dynamic", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [3, 3, 0]},
+      {"name": "plate", "type": "dynamic", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}, "position": [3, 3.2, 0]},
+      {"name": "arm", "type": "dynamic", "shape": {"type": "box", "half_extents": [0.5, 0.05, 0.05]}, "position": [-0.5, 3, 0]},
+      {"name": "weight", "type": "dynamic", "shape": {"type": "sphere", "radius": 0.1}, "position": [0, 2.5, 2]}],
+    "constraints": [
+      {"type": "hinge", "a": "frame", "b": "door", "anchor": [0, 1, 0], "axis": [0, 0, 1],
+       "limits": [-0.7853982, 0.7853982], "motor": {"speed": 0, "max_torque": 1}, "name": "trapdoor"},
+      {"type": "slider", "a": "frame", "b": "carriage", "anchor": [3, 3, 0], "axis": [1, 0, 0],
+       "limits": [-1, 1], "motor": {"speed": 0.5, "max_force": 20}, "break_force": 1000},
+      {"type": "fixed", "a": "carriage", "b": "plate", "stiffness": 5, "damping": 0.7, "break_torque": 200},
+      {"type": "cone", "a": "frame", "b": "arm", "anchor": [0, 3, 0], "axis": [-1, 0, 0], "swing": 0.5,
+       "twist": [-0.2, 0.3], "collide_connected": true},
+      {"type": "distance", "a": "frame", "b": "weight", "limits": [0, 2.5], "break_force": 100000}]})",
+                             "joints.json");
+  SceneWorld sw = buildWorld(s);
+  ASSERT_EQ(sw.constraints.size(), 5u);
+  World& w = sw.world;
+  const JointId hinge = sw.constraints[0], slider = sw.constraints[1], fixed = sw.constraints[2],
+                cone = sw.constraints[3], rope = sw.constraints[4];
+  EXPECT_EQ(w.jointType(hinge), JointType::Hinge);
+  EXPECT_EQ(w.jointLimits(hinge), (JointLimits{true, -0.7853982f, 0.7853982f}));
+  EXPECT_EQ(w.jointMotor(hinge), (JointMotor{true, 0.0f, 1.0f}));
+  EXPECT_FALSE(w.jointCollideConnected(hinge));
+  EXPECT_EQ(w.jointType(slider), JointType::Slider);
+  EXPECT_EQ(w.jointMotor(slider), (JointMotor{true, 0.5f, 20.0f}));
+  EXPECT_EQ(w.jointBreakForce(slider), 1000.0f);
+  EXPECT_EQ(w.jointType(fixed), JointType::Fixed);
+  EXPECT_EQ(w.jointSoftness(fixed), (JointSoftness{5.0f, 0.7f}));
+  EXPECT_EQ(w.jointAngularSoftness(fixed), (JointSoftness{5.0f, 0.7f}));
+  EXPECT_EQ(w.jointBreakTorque(fixed), 200.0f);
+  EXPECT_EQ(w.jointType(cone), JointType::Cone);
+  EXPECT_EQ(w.coneSwingLimit(cone), 0.5f);
+  EXPECT_EQ(w.jointLimits(cone), (JointLimits{true, -0.2f, 0.3f}));
+  EXPECT_TRUE(w.jointCollideConnected(cone));
+  EXPECT_EQ(w.jointType(rope), JointType::Distance);
+  EXPECT_EQ(w.jointLimits(rope), (JointLimits{true, 0.0f, 2.5f}));
+  EXPECT_EQ(w.jointBreakForce(rope), 100000.0f);
+  EXPECT_NEAR(w.jointAxis(cone).x, -1.0f, 1e-6f);
+  // The door falls onto its lower limit; the carriage's motor drives it to its upper end.
+  for (int step = 0; step < 240; ++step) w.step(1.0f / 60.0f);
+  EXPECT_NEAR(w.jointPosition(hinge), -0.7853982f, 0.02f);
+  EXPECT_NEAR(w.jointPosition(slider), 1.0f, 0.01f);
+  EXPECT_LT(w.jointPosition(rope), 2.5f * 1.006f);
 }
 
 TEST(SceneWorld, DefaultLengthIsTheAnchorsDistanceAtLoad) {

@@ -34,6 +34,7 @@ struct RunSummary {
   int kinematicBodies = 0;
   int dynamicBodies = 0;
   int brokenBodies = 0;
+  int brokenJoints = 0;  // joints whose load passed their break force or torque
   // Dynamic bodies at the end (broken ones left out); with sleeping off every one is awake.
   bool sleeping = false;  // the scene's settings.sleeping
   int awakeBodies = 0;

@@ -39,6 +39,7 @@ struct Body {
 // others keep their defaults.
 struct Constraint {
   JointType type = JointType::Distance;
+  std::string name;  // for events; empty: none given
   std::string a;
   std::string b;
   // distance
@@ -46,8 +47,16 @@ struct Constraint {
   std::optional<Vec3> anchorB;
   std::optional<float> length;  // default: the distance at load time
   float compliance = 0.0f;      // 0 = rigid
-  // ball
-  Vec3 anchor{0.0f};  // world frame at load time
+  // ball, hinge, slider, cone (required), fixed (optional: b's centre): world frame at load time
+  std::optional<Vec3> anchor;
+  Vec3 axis{1.0f, 0.0f, 0.0f};  // hinge, slider, cone
+  JointLimits limits;           // hinge, slider, distance (lengths); the cone's twist
+  JointMotor motor;             // hinge, slider
+  float swing = kPi;            // cone
+  // stiffness (Hz) and damping (ratio): the joint's softness; a distance joint's spring
+  JointSoftness softness;
+  float breakForce = kUnbreakable;
+  float breakTorque = kUnbreakable;
   // false: a and b do not collide with each other (the default of every type but distance, which
   // keeps the scene format's first meaning: true)
   bool collideConnected = true;
