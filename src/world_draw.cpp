@@ -52,6 +52,51 @@ void drawTriangles(DebugDraw& draw, const Shape& shape, const Transform& t, cons
   }
 }
 
+// A joint's axis and limits at its anchor A, `length` long.
+void drawJointFrame(DebugDraw& draw, const detail::JointPose& pose, const detail::Joint& joint,
+                    float length) {
+  if (joint.type != JointType::Hinge && joint.type != JointType::Slider && joint.type != JointType::Cone)
+    return;
+  const Vec3 at = pose.anchorA;
+  draw.drawLine(at, at + length * pose.axisA, DebugColors::kJointAxis);
+  // b's axis: its hinge or slider direction (on a's while the joint holds), a cone's swung axis.
+  draw.drawLine(pose.anchorB, pose.anchorB + length * pose.axisB, DebugColors::kJointAxis);
+  constexpr int kArcSegments = 12;
+  if (joint.type == JointType::Hinge && joint.limits.enabled) {
+    // The fan from the lower to the upper angle, from frame A's y axis turned about its x.
+    const auto spoke = [&](float angle) {
+      return at + length * (pose.frameA * Vec3(0.0f, std::cos(angle), std::sin(angle)));
+    };
+    draw.drawLine(at, spoke(joint.limits.lower), DebugColors::kJointLimit);
+    draw.drawLine(at, spoke(joint.limits.upper), DebugColors::kJointLimit);
+    for (int i = 0; i < kArcSegments; ++i) {
+      const float span = joint.limits.upper - joint.limits.lower;
+      draw.drawLine(spoke(joint.limits.lower + span * i / kArcSegments),
+                    spoke(joint.limits.lower + span * (i + 1) / kArcSegments), DebugColors::kJointLimit);
+    }
+  } else if (joint.type == JointType::Slider && joint.limits.enabled) {
+    const Vec3 across = length * 0.25f * (pose.frameA * Vec3(0.0f, 1.0f, 0.0f));
+    for (const float offset : {joint.limits.lower, joint.limits.upper}) {
+      const Vec3 mark = at + offset * pose.axisA;
+      draw.drawLine(mark - across, mark + across, DebugColors::kJointLimit);
+    }
+    draw.drawLine(at + joint.limits.lower * pose.axisA, at + joint.limits.upper * pose.axisA,
+                  DebugColors::kJointLimit);
+  } else if (joint.type == JointType::Cone && joint.swingLimit < kPi) {
+    // The rim: the directions at the swing angle from a's axis, round it.
+    const auto rim = [&](float around) {
+      const Vec3 local(std::cos(joint.swingLimit), std::sin(joint.swingLimit) * std::cos(around),
+                       std::sin(joint.swingLimit) * std::sin(around));
+      return at + length * (pose.frameA * local);
+    };
+    for (int i = 0; i < kArcSegments; ++i) {
+      const float step = 2.0f * kPi / kArcSegments;
+      draw.drawLine(rim(step * i), rim(step * (i + 1)), DebugColors::kJointLimit);
+      if (i % 3 == 0) draw.drawLine(at, rim(step * i), DebugColors::kJointLimit);
+    }
+  }
+}
+
 }  // namespace
 
 void World::draw(DebugDraw& draw, const DebugDrawOptions& options) const {
@@ -120,6 +165,7 @@ void World::draw(DebugDraw& draw, const DebugDrawOptions& options) const {
       draw.drawLine(a, b, DebugColors::kJoint);
       draw.drawPoint(a, 0.25f * options.normalLength, DebugColors::kJoint);
       draw.drawPoint(b, 0.25f * options.normalLength, DebugColors::kJoint);
+      drawJointFrame(draw, detail::jointPose(w.bodies, joint), joint, options.normalLength);
     }
   }
 }

@@ -191,6 +191,7 @@ struct App {
   void debugDrawing() {
     DebugLines& debug = options.debug;
     ImGui::Checkbox("contact points and normals", &debug.contacts);
+    ImGui::Checkbox("joints: anchors, axes, limits", &debug.joints);
     ImGui::Checkbox("bounding boxes", &debug.aabbs);
     ImGui::Checkbox("pairs the broad phase kept", &debug.pairs);
     const BroadPhaseType type = scene->world().def().broadPhase.type;

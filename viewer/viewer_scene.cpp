@@ -224,6 +224,7 @@ std::vector<LineVertex> ViewerScene::debugLines(const DebugLines& options) const
   draw.firstDepth = options.firstDepth;
   draw.lastDepth = options.lastDepth;
   draw.contacts = options.contacts;
+  draw.joints = options.joints;
   // Sized by the bodies: a 30 cm normal hides a billiard ball and vanishes next to a house.
   draw.normalLength = 0.6f * typicalRadius_;
   draw.impulseScale = typicalRadius_ / typicalImpulse_;

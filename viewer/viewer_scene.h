@@ -15,8 +15,8 @@
 
 namespace collide::viewer {
 
-// What the viewer's debug lines show: the library's debug drawing (World::draw) of contacts, boxes
-// and the broad phase, and the broad phase's pairs.
+// What the viewer's debug lines show: the library's debug drawing (World::draw) of contacts, boxes,
+// joints and the broad phase, and the broad phase's pairs.
 struct DebugLines {
   bool contacts = false;  // touching contacts: points, normals and impulses (World::draw)
   bool aabbs = false;     // each body's world box
@@ -27,6 +27,7 @@ struct DebugLines {
   int firstDepth = 0;
   int lastDepth = 64;
   bool pairs = false;  // the pairs the broad phase kept in the last step
+  bool joints = true;  // each joint's anchors, axes and limits (World::draw)
 };
 
 class ViewerScene {

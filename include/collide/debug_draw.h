@@ -38,8 +38,11 @@ struct DebugDrawOptions {
   bool staticTree = false;  // with broadPhase: the static bodies' tree too
   int firstDepth = 0;       // with broadPhase: the tree's levels from firstDepth to lastDepth
   int lastDepth = 1 << 30;
-  bool contacts = false;       // touching contacts: points, normals and normal impulses
-  bool joints = false;         // each distance constraint: its anchors and the line between them
+  bool contacts = false;  // touching contacts: points, normals and normal impulses
+  // Each joint: its anchors and the line between them; a hinge's, slider's and cone's axis (as body
+  // a carries it) and its current direction in b; a hinge's angle limits as a fan, a slider's as
+  // marks on its axis, a cone's swing limit as the cone's rim (all normalLength long).
+  bool joints = false;
   bool centersOfMass = false;  // each movable body's centre of mass and axes
   bool solidMeshes = false;    // meshes' triangles through drawTriangle as well as their edges
   bool names = false;          // each named body's name at its centre, through drawText
@@ -62,6 +65,8 @@ struct DebugColors {
   static constexpr DebugColor kContactNormal{1.0f, 0.9f, 0.2f};
   static constexpr DebugColor kContactImpulse{1.0f, 0.4f, 0.1f};
   static constexpr DebugColor kJoint{0.9f, 0.9f, 0.9f};
+  static constexpr DebugColor kJointAxis{0.9f, 0.3f, 0.9f};
+  static constexpr DebugColor kJointLimit{0.6f, 0.3f, 0.9f};
   static constexpr DebugColor kAxisX{1.0f, 0.0f, 0.0f};
   static constexpr DebugColor kAxisY{0.0f, 1.0f, 0.0f};
   static constexpr DebugColor kAxisZ{0.0f, 0.0f, 1.0f};

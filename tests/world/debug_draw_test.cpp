@@ -218,9 +218,53 @@ TEST(WorldDraw, ContactsBoundsJointsAndCentresAreWhatTheWorldHolds) {
       EXPECT_NEAR(glm::length(l.to - l.from), others.normalLength, 1e-5f);
     }
   }
+  EXPECT_EQ(more.count(DebugColors::kJointAxis), 0u);  // a distance constraint has no axis
   DebugDrawOptions bad;
   bad.normalLength = -1.0f;
   EXPECT_THROW(world.draw(more, bad), Error);
+}
+
+TEST(WorldDraw, JointsDrawTheirAxesAndLimits) {
+  // A hinge about z with limits [-0.5, 1], a slider along x with limits [-1, 2] and a cone about x
+  // with a 0.4 swing limit: each draws its axis twice (a's and b's) and its limits, every limit
+  // point normalLength (the slider: its offset) from anchor A.
+  World world;
+  const BodyId post = test::staticAnchor(world, Vec3(0.0f));
+  const BodyId door = world.createBody(test::boxBody(Vec3(0.5f, 0.0f, 0.0f), Vec3(0.5f, 0.05f, 0.05f), 1.0f));
+  const BodyId cart = world.createBody(test::boxBody(Vec3(0.0f, 3.0f, 0.0f), Vec3(0.1f), 1.0f));
+  const BodyId arm = world.createBody(test::boxBody(Vec3(0.5f, -3.0f, 0.0f), Vec3(0.5f, 0.05f, 0.05f), 1.0f));
+  HingeJointDef hinge{.a = post, .b = door, .anchor = Vec3(0.0f), .axis = Vec3(0.0f, 0.0f, 1.0f)};
+  hinge.limits = {true, -0.5f, 1.0f};
+  world.createHingeJoint(hinge);
+  SliderJointDef slider{
+      .a = post, .b = cart, .anchor = Vec3(0.0f, 3.0f, 0.0f), .axis = Vec3(1.0f, 0.0f, 0.0f)};
+  slider.limits = {true, -1.0f, 2.0f};
+  world.createSliderJoint(slider);
+  world.createConeJoint({.a = post, .b = arm, .anchor = Vec3(0.0f, -3.0f, 0.0f), .swingLimit = 0.4f});
+  DebugDrawOptions options;
+  options.shapes = false;
+  options.joints = true;
+  RecordingDraw draw;
+  world.draw(draw, options);
+  EXPECT_EQ(draw.count(DebugColors::kJointAxis), 6u);
+  int hingeSpokes = 0, coneRim = 0, sliderMarks = 0;
+  for (const Line& l : draw.lines) {
+    if (l.color != DebugColors::kJointLimit) continue;
+    if (l.from == Vec3(0.0f)) {  // the hinge's two spokes, at the limit angles from frame A's y
+      ++hingeSpokes;
+      EXPECT_NEAR(glm::length(l.to), options.normalLength, 1e-5f);
+      EXPECT_NEAR(l.to.z, 0.0f, 1e-6f);  // in the hinge's plane
+    } else if (l.from.y < -2.0f && l.to.y < -2.0f) {
+      ++coneRim;  // rim segments and spokes: at the swing angle from the cone's axis (x)
+      const Vec3 d = l.to - Vec3(0.0f, -3.0f, 0.0f);
+      EXPECT_NEAR(std::acos(d.x / glm::length(d)), 0.4f, 1e-4f);
+    } else if (l.from.y > 2.0f) {
+      ++sliderMarks;
+    }
+  }
+  EXPECT_EQ(hingeSpokes, 2);
+  EXPECT_EQ(coneRim, 12 + 4);
+  EXPECT_EQ(sliderMarks, 3);  // two marks across the axis and the range along it
 }
 
 }  // namespace
