@@ -9,23 +9,6 @@ namespace collide::scene::builtin {
 
 namespace {
 
-Json demoDocument() {
-  Json doc = referenceDocument();
-  doc["settings"]["steps"] = 300;
-  return doc;
-}
-
-Json groundPlane() {
-  return body("ground", "static", {{"type", "plane"}, {"normal", vec(0, 1, 0)}, {"distance", 0}},
-              vec(0, 0, 0));
-}
-
-// A quaternion [x, y, z, w] turning `angle` about a unit axis.
-Json turn(double angle, double ax, double ay, double az) {
-  const double s = std::sin(angle / 2);
-  return Json::array({num(ax * s), num(ay * s), num(az * s), num(std::cos(angle / 2))});
-}
-
 Json gemPoints() {
   return Json::array({vec(0.35, 0, 0), vec(-0.35, 0, 0), vec(0, 0.45, 0), vec(0, -0.45, 0), vec(0, 0, 0.35),
                       vec(0, 0, -0.35), vec(0.2, 0.2, 0.2), vec(-0.2, -0.2, 0.2)});

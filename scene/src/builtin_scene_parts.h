@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <string>
 
 namespace collide::scene::builtin {
@@ -45,6 +46,24 @@ inline Json groundBox() {
   Json ground = body("ground", "static", box(100, 0.5, 100), vec(0, -0.5, 0));
   ground["friction"] = num(0.5);
   return ground;
+}
+
+// The demonstration scenes' settings: the reference ones, 300 steps.
+inline Json demoDocument() {
+  Json doc = referenceDocument();
+  doc["settings"]["steps"] = 300;
+  return doc;
+}
+
+inline Json groundPlane() {
+  return body("ground", "static", {{"type", "plane"}, {"normal", vec(0, 1, 0)}, {"distance", 0}},
+              vec(0, 0, 0));
+}
+
+// A quaternion [x, y, z, w] turning `angle` about a unit axis.
+inline Json turn(double angle, double ax, double ay, double az) {
+  const double s = std::sin(angle / 2);
+  return Json::array({num(ax * s), num(ay * s), num(az * s), num(std::cos(angle / 2))});
 }
 
 }  // namespace collide::scene::builtin

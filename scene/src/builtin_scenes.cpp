@@ -19,6 +19,10 @@ Json penetrationDrop(const char* response);
 Json breakable();
 Json chain();
 Json tunneling();
+Json pendulum();
+Json bridge();
+Json ragdolls();
+Json machine();
 }  // namespace builtin
 
 namespace {
@@ -52,6 +56,13 @@ const std::vector<Entry>& registry() {
        builtin::chain},
       {{"tunneling", "fast small bodies at thin plates, the same shots with ccd on and off"},
        builtin::tunneling},
+      {{"pendulum", "a hinged rod pendulum and a 50-link ball-joint chain released level"},
+       builtin::pendulum},
+      {{"bridge", "40 planks on hinges between two posts, carrying a 50 kg crate"}, builtin::bridge},
+      {{"ragdolls", "eight ragdolls (11 bodies, cone and hinge joints) thrown down a flight of stairs"},
+       builtin::ragdolls},
+      {{"machine", "a motorised windmill of welded blades batting balls, and a lift on a motorised slider"},
+       builtin::machine},
   };
   return entries;
 }

@@ -40,6 +40,10 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"breakable", 120, 0x3ead5165968c2a4f},
     {"chain", 120, 0xbc97e1f0772826f9},
     {"tunneling", 120, 0x935a5f9071b1f803},
+    {"pendulum", 120, 0xb982569fecd9ae3f},
+    {"bridge", 120, 0x1888d6834d2b1395},
+    {"ragdolls", 120, 0x8a5535d21ac90ed0},
+    {"machine", 120, 0x53deebc759a36311},
 };
 
 std::string hex(std::uint64_t value) {
