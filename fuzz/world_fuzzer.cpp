@@ -1,8 +1,8 @@
 // World fuzzer: a World with fuzzed settings, driven by a fuzzed sequence of API calls: create
 // bodies (every shape type, static, kinematic and dynamic, particles, sensors, ccd), destroy them,
 // set their transforms and velocities, apply forces, impulses and torques, wake them, create and
-// destroy distance constraints, and step with fuzzed dt. Ids are drawn from every id handed out so
-// far, so destroyed (stale) ones are used too.
+// destroy joints of every type and change their settings, and step with fuzzed dt. Ids are drawn from every
+// id handed out so far, so destroyed (stale) ones are used too.
 //
 // Allowed: every call works or throws collide::Error. A finding: a crash, a sanitizer report,
 // another exception, a step with a valid dt that throws, or, after a step, a body whose state is
@@ -259,20 +259,62 @@ struct Story {
         break;
       }
       case 8: {
-        DistanceConstraintDef def;
-        def.a = anyBody();
-        def.b = anyBody();
-        if (in.flag()) def.localAnchorA = in.vec(-1.0f, 1.0f);
-        if (in.flag()) def.localAnchorB = in.vec(-1.0f, 1.0f);
-        if (in.flag()) def.length = in.value(0.0f, 4.0f);
-        if (in.flag()) def.compliance = in.value(0.0f, 0.01f);
-        if (in.flag()) def.dampingRatio = in.value(0.0f, 2.0f);
-        trace("createDistanceConstraint({" + describe(def.a) + ", " + describe(def.b) + ", anchors " +
-              (def.localAnchorA ? describe(*def.localAnchorA) : "unset") + " " +
-              (def.localAnchorB ? describe(*def.localAnchorB) : "unset") + ", length " +
-              (def.length ? describe(*def.length) : "unset") + ", compliance " + describe(def.compliance) +
-              ", damping " + describe(def.dampingRatio) + "})");
-        joints.push_back(world.createDistanceConstraint(def));
+        // Every joint type, with every field fuzzed (out-of-range values are refused naming the field).
+        const int type = in.choice(6);
+        const BodyId a = anyBody();
+        const BodyId b = anyBody();
+        const Vec3 anchor = in.vec(-6.0f, 6.0f);
+        const Vec3 axis = in.vec(-1.0f, 1.0f);
+        const JointLimits limits{in.flag(), in.value(-4.0f, 4.0f), in.value(-4.0f, 4.0f)};
+        const JointMotor motor{in.flag(), in.value(-20.0f, 20.0f), in.value(-10.0f, 500.0f)};
+        const JointSpring spring{in.flag(), in.value(0.0f, 30.0f), in.value(0.0f, 2.0f),
+                                 in.value(-2.0f, 2.0f)};
+        const JointSoftness softness{in.flag() ? in.value(0.0f, 60.0f) : 0.0f, in.value(0.0f, 2.0f)};
+        const float breakForce = in.flag() ? in.value(-10.0f, 2000.0f) : kUnbreakable;
+        const float breakTorque = in.flag() ? in.value(-10.0f, 2000.0f) : kUnbreakable;
+        const bool collide = in.flag();
+        trace("create joint type " + std::to_string(type) + " (" + describe(a) + ", " + describe(b) +
+              ", anchor " + describe(anchor) + ", axis " + describe(axis) + ", limits " +
+              describe(limits.lower) + " " + describe(limits.upper) + (limits.enabled ? " on" : " off") +
+              ", motor " + describe(motor.speed) + " " + describe(motor.maxForce) +
+              (motor.enabled ? " on" : " off") + ", spring " + describe(spring.hertz) +
+              (spring.enabled ? " on" : " off") + ", softness " + describe(softness.hertz) + ", break " +
+              describe(breakForce) + " " + describe(breakTorque) + ")");
+        switch (type) {
+          case 0: {
+            DistanceConstraintDef def{.a = a, .b = b};
+            if (in.flag()) def.localAnchorA = in.vec(-1.0f, 1.0f);
+            if (in.flag()) def.localAnchorB = in.vec(-1.0f, 1.0f);
+            if (in.flag()) def.length = in.value(0.0f, 4.0f);
+            if (in.flag()) def.compliance = in.value(0.0f, 0.01f);
+            if (in.flag()) def.dampingRatio = in.value(0.0f, 2.0f);
+            if (in.flag()) def.spring = spring;
+            if (in.flag()) def.limits = limits;
+            def.collideConnected = collide;
+            def.breakForce = breakForce;
+            joints.push_back(world.createDistanceConstraint(def));
+            break;
+          }
+          case 1:
+            joints.push_back(world.createBallJoint({a, b, anchor, collide, softness, breakForce}));
+            break;
+          case 2:
+            joints.push_back(world.createHingeJoint(
+                {a, b, anchor, axis, limits, motor, spring, collide, softness, breakForce, breakTorque}));
+            break;
+          case 3:
+            joints.push_back(world.createSliderJoint(
+                {a, b, anchor, axis, limits, motor, spring, collide, softness, breakForce, breakTorque}));
+            break;
+          case 4:
+            joints.push_back(world.createFixedJoint({a, b, in.flag() ? std::optional(anchor) : std::nullopt,
+                                                     collide, softness, softness, breakForce, breakTorque}));
+            break;
+          default:
+            joints.push_back(world.createConeJoint({a, b, anchor, axis, in.value(-1.0f, 4.0f), limits,
+                                                    collide, softness, breakForce, breakTorque}));
+            break;
+        }
         trace("  -> " + describe(joints.back()));
         break;
       }
@@ -290,6 +332,25 @@ struct Story {
         (void)world.mass(id);
         const JointId joint = anyJoint();
         (void)world.constraintCurrentLength(joint);
+        // The joint's readings are finite; its settings change as a game changes them (refused
+        // where out of range or not of its type).
+        const float readings[] = {world.jointPosition(joint), world.jointSpeed(joint),
+                                  world.jointForce(joint), world.jointTorque(joint),
+                                  world.jointMotorForce(joint)};
+        for (const float r : readings) {
+          if (!std::isfinite(r) && !in.sawExtreme()) std::abort();
+        }
+        const int what = in.choice(6);
+        trace("  joint setting " + std::to_string(what));
+        if (what == 0) world.setJointLimits(joint, {in.flag(), in.value(-4.0f, 4.0f), in.value(-4.0f, 4.0f)});
+        if (what == 1)
+          world.setJointMotor(joint, {in.flag(), in.value(-20.0f, 20.0f), in.value(-10.0f, 500.0f)});
+        if (what == 2)
+          world.setJointSpring(
+              joint, {in.flag(), in.value(0.0f, 30.0f), in.value(0.0f, 2.0f), in.value(-2.0f, 2.0f)});
+        if (what == 3) world.setJointSoftness(joint, {in.value(0.0f, 60.0f), in.value(0.0f, 2.0f)});
+        if (what == 4) world.setJointBreakForce(joint, in.value(-10.0f, 2000.0f));
+        if (what == 5) world.setJointCollideConnected(joint, in.flag());
         break;
       }
       case 11: {
