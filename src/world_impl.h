@@ -75,6 +75,9 @@ struct World::Impl {
   // The live joint of `id` if its type is one of `types`; Error naming the operation otherwise.
   detail::Joint& jointFor(JointId id, const char* operation, std::initializer_list<JointType> types);
   void wakeJoint(const detail::Joint& joint);
+  // createHingeJoint and createSliderJoint (world_joints.cpp).
+  template <typename Def>
+  JointId addAxialJoint(const Def& def, JointType type);
   Vec3 anchorWorld(std::uint32_t body, const Vec3& localAnchor) const;
   // Body `index`'s contacts end (touching ones: End events with the next step's), what they touched
   // wakes (destroyBody, setEnabled).

@@ -207,11 +207,12 @@ JointId World::createBallJoint(const BallJointDef& def) {
   return w.addJoint(joint);
 }
 
-JointId World::createHingeJoint(const HingeJointDef& def) {
-  Impl& w = *impl_;
-  const std::string who = "hinge joint";
-  Joint joint = w.jointAt(def.a, def.b, def.anchor, def.axis, JointType::Hinge, true);
-  checkLimits(def.limits, Coordinate::Angle, who, "limits");
+// Hinge and slider share their fields: one free coordinate along an axis (an angle, an offset).
+template <typename Def>
+JointId World::Impl::addAxialJoint(const Def& def, JointType type) {
+  const std::string who = std::string(toString(type)) + " joint";
+  Joint joint = jointAt(def.a, def.b, def.anchor, def.axis, type, true);
+  checkLimits(def.limits, type == JointType::Hinge ? Coordinate::Angle : Coordinate::Offset, who, "limits");
   checkMotor(def.motor, who);
   checkSpring(def.spring, who);
   checkSoftness(def.softness, who, "softness");
@@ -224,27 +225,14 @@ JointId World::createHingeJoint(const HingeJointDef& def) {
   joint.breakForce = def.breakForce;
   joint.breakTorque = def.breakTorque;
   joint.collideConnected = def.collideConnected;
-  return w.addJoint(joint);
+  return addJoint(joint);
 }
 
+JointId World::createHingeJoint(const HingeJointDef& def) {
+  return impl_->addAxialJoint(def, JointType::Hinge);
+}
 JointId World::createSliderJoint(const SliderJointDef& def) {
-  Impl& w = *impl_;
-  const std::string who = "slider joint";
-  Joint joint = w.jointAt(def.a, def.b, def.anchor, def.axis, JointType::Slider, true);
-  checkLimits(def.limits, Coordinate::Offset, who, "limits");
-  checkMotor(def.motor, who);
-  checkSpring(def.spring, who);
-  checkSoftness(def.softness, who, "softness");
-  checkBreak(def.breakForce, who, "breakForce");
-  checkBreak(def.breakTorque, who, "breakTorque");
-  joint.limits = def.limits;
-  joint.motor = def.motor;
-  joint.spring = def.spring;
-  joint.softness = def.softness;
-  joint.breakForce = def.breakForce;
-  joint.breakTorque = def.breakTorque;
-  joint.collideConnected = def.collideConnected;
-  return w.addJoint(joint);
+  return impl_->addAxialJoint(def, JointType::Slider);
 }
 
 JointId World::createFixedJoint(const FixedJointDef& def) {
