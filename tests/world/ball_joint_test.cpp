@@ -18,14 +18,6 @@ using ::testing::HasSubstr;
 constexpr float kDt = 1.0f / 60.0f;
 constexpr float kG = 9.81f;
 
-BodyId staticPivot(World& world, const Vec3& at) {
-  BodyDef pivot;
-  pivot.type = BodyType::Static;
-  pivot.shape = Shape(Sphere{0.01f});
-  pivot.position = at;
-  return world.createBody(pivot);
-}
-
 // A uniform rod of length L and square section t x t hung from a pivot by its top end, turned by
 // `angle` about z.
 struct Pendulum {
@@ -38,7 +30,7 @@ struct Pendulum {
   Vec3 pivot{0.0f, 2.0f, 0.0f};
 
   explicit Pendulum(float angle) {
-    const BodyId top = staticPivot(world, pivot);
+    const BodyId top = test::staticAnchor(world, pivot);
     const Quat turn = glm::angleAxis(angle, Vec3(0.0f, 0.0f, 1.0f));
     BodyDef def = test::boxBody(pivot + turn * Vec3(0.0f, -0.5f * kLength, 0.0f),
                                 Vec3(0.5f * kThickness, 0.5f * kLength, 0.5f * kThickness), kMass);
@@ -166,7 +158,7 @@ TEST(BallJoint, BadDefinitionsAreRefusedNamingTheField) {
   refused({ground, BodyId{77, 1}, Vec3(0.0f)}, "b: invalid or stale");
   refused({box, ground, Vec3(NAN, 0.0f, 0.0f)}, "anchor must be finite");
   refused({box, particle, Vec3(0.0f, 2.0f, 0.0f)}, "particle's anchor must be its centre");
-  const BodyId otherStatic = staticPivot(world, Vec3(5.0f));
+  const BodyId otherStatic = test::staticAnchor(world, Vec3(5.0f));
   refused({ground, otherStatic, Vec3(0.0f)}, "at least one body must be dynamic");
   EXPECT_EQ(world.constraintCount(), 0u);
   // A particle at its centre is a ball joint of the lecture's particles.
