@@ -74,6 +74,16 @@ SatTriangle satTriangle(const TriangleMesh& mesh, std::uint32_t index, const Mes
   return t;
 }
 
+// A triangle placed in the world frame has a plane float can hold: finite corners and a finite,
+// non-zero normal. A mesh valid in its own frame can still be turned or moved past float's range
+// (corners near 3e38 m); such a triangle is beyond anything it could touch.
+bool hasFinitePlane(const SatTriangle& triangle) {
+  const std::array<Vec3, 3>& v = triangle.vertices;
+  if (!isFinite(v[0]) || !isFinite(v[1]) || !isFinite(v[2])) return false;
+  const Vec3 normal = glm::cross(v[1] - v[0], v[2] - v[0]);
+  return isFinite(normal) && glm::dot(normal, normal) > 0.0f && isFinite(glm::normalize(normal));
+}
+
 }  // namespace
 
 namespace {
@@ -105,6 +115,7 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
       placed[i].vertexFeature[k] = static_cast<std::uint16_t>(kMeshVertex | ((3 * i + k) & kMeshIndex));
     }
   }
+  std::erase_if(placed, [](const SatTriangle& t) { return !hasFinitePlane(t); });
   std::vector<NormalContact> contacts;
   collideTriangles(placed, convex, convexTransform, margin, contacts);
   return mergeContacts(contacts, margin, out);
@@ -120,8 +131,10 @@ bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const S
   if (!isValid(transformA.inverse() * transformB)) return mergeContacts({}, margin, out);
   const Aabb bounds = boundsInFrame(shapeB, transformB, transformA, margin);
   const MeshPlacement placement(transformA);
-  mesh.forEachTriangleOverlapping(
-      bounds, [&](std::uint32_t index) { triangles.push_back(satTriangle(mesh, index, placement)); });
+  mesh.forEachTriangleOverlapping(bounds, [&](std::uint32_t index) {
+    const SatTriangle triangle = satTriangle(mesh, index, placement);
+    if (hasFinitePlane(triangle)) triangles.push_back(triangle);
+  });
   // Per-thread, like the triangles: no allocation once warm (the step calls this per pair).
   thread_local std::vector<NormalContact> contacts;
   contacts.clear();

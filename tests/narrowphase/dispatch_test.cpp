@@ -98,6 +98,26 @@ TEST(PairTable, AMeshAndAShapeBeyondFloatRangeApartDoNotTouch) {
                                Transform{Vec3(0.0f, 0.5f, 0.0f), Quat(1, 0, 0, 0), 1.0f}, m));
 }
 
+TEST(PairTable, AMeshTriangleThatOverflowsWhenPlacedGivesNoContact) {
+  // Each vertex is finite and the triangle is sound in double, but turned into the world frame two
+  // of its corners pass float's range: the triangle has no finite plane, so it cannot touch
+  // anything. An ellipsoid far out where its box overlaps the triangle's (found by world_fuzzer;
+  // the support function was handed the NaN normal).
+  const Shape mesh(
+      TriangleMesh::fromTriangles({Vec3(3.05175781e-05f, 1.85882354f, 3e38f), Vec3(3e38f, 3e38f, -2.0f),
+                                   Vec3(2.0f, 1.98870826f, 1e30f), Vec3(1e30f, -1.99566638f, -1.99987793f)},
+                                  {{1, 3, 0}}));
+  const Transform placed{Vec3(-5.28770876f, -6.0f, -6.0f), Quat(-0.5f, -0.5f, -0.5f, -0.5f), 1.0f};
+  const Transform far{Vec3(1e30f, 3e38f, 3e38f), Quat(1, 0, 0, 0), 1.0f};
+  const Shape ellipsoid(Ellipsoid{Vec3(1.12939203f, 1.25373864f, 0.418111682f)});
+  Manifold m;
+  EXPECT_FALSE(collide::collide(mesh, placed, ellipsoid, far, m));
+  EXPECT_EQ(m.count, 0);
+  EXPECT_FALSE(collide::collide(ellipsoid, far, mesh, placed, m));
+  EXPECT_FALSE(collide::collide(mesh, placed, Shape(Box{Vec3(1.0f)}), far, m));
+  EXPECT_FALSE(collide::collide(mesh, placed, Shape(Sphere{1.0f}), far, m));
+}
+
 TEST(PairTable, CollideOfBAndAMirrorsCollideOfAAndB) {
   // Same depths, opposite normals, swapped points, for every ordered pair of primitives and planes.
   std::mt19937 rng(99);
