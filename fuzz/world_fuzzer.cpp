@@ -273,13 +273,14 @@ struct Story {
         const float breakForce = in.flag() ? in.value(-10.0f, 2000.0f) : kUnbreakable;
         const float breakTorque = in.flag() ? in.value(-10.0f, 2000.0f) : kUnbreakable;
         const bool collide = in.flag();
+        const float friction = in.flag() ? in.value(-1.0f, 50.0f) : 0.0f;
         trace("create joint type " + std::to_string(type) + " (" + describe(a) + ", " + describe(b) +
               ", anchor " + describe(anchor) + ", axis " + describe(axis) + ", limits " +
               describe(limits.lower) + " " + describe(limits.upper) + (limits.enabled ? " on" : " off") +
               ", motor " + describe(motor.speed) + " " + describe(motor.maxForce) +
               (motor.enabled ? " on" : " off") + ", spring " + describe(spring.hertz) +
               (spring.enabled ? " on" : " off") + ", softness " + describe(softness.hertz) + ", break " +
-              describe(breakForce) + " " + describe(breakTorque) + ")");
+              describe(breakForce) + " " + describe(breakTorque) + ", friction " + describe(friction) + ")");
         switch (type) {
           case 0: {
             DistanceConstraintDef def{.a = a, .b = b};
@@ -296,15 +297,15 @@ struct Story {
             break;
           }
           case 1:
-            joints.push_back(world.createBallJoint({a, b, anchor, collide, softness, breakForce}));
+            joints.push_back(world.createBallJoint({a, b, anchor, collide, softness, breakForce, friction}));
             break;
           case 2:
-            joints.push_back(world.createHingeJoint(
-                {a, b, anchor, axis, limits, motor, spring, collide, softness, breakForce, breakTorque}));
+            joints.push_back(world.createHingeJoint({a, b, anchor, axis, limits, motor, spring, collide,
+                                                     softness, breakForce, breakTorque, friction}));
             break;
           case 3:
-            joints.push_back(world.createSliderJoint(
-                {a, b, anchor, axis, limits, motor, spring, collide, softness, breakForce, breakTorque}));
+            joints.push_back(world.createSliderJoint({a, b, anchor, axis, limits, motor, spring, collide,
+                                                      softness, breakForce, breakTorque, friction}));
             break;
           case 4:
             joints.push_back(world.createFixedJoint({a, b, in.flag() ? std::optional(anchor) : std::nullopt,
@@ -312,7 +313,7 @@ struct Story {
             break;
           default:
             joints.push_back(world.createConeJoint({a, b, anchor, axis, in.value(-1.0f, 4.0f), limits,
-                                                    collide, softness, breakForce, breakTorque}));
+                                                    collide, softness, breakForce, breakTorque, friction}));
             break;
         }
         trace("  -> " + describe(joints.back()));
@@ -340,7 +341,7 @@ struct Story {
         for (const float r : readings) {
           if (!std::isfinite(r) && !in.sawExtreme()) std::abort();
         }
-        const int what = in.choice(6);
+        const int what = in.choice(7);
         trace("  joint setting " + std::to_string(what));
         if (what == 0) world.setJointLimits(joint, {in.flag(), in.value(-4.0f, 4.0f), in.value(-4.0f, 4.0f)});
         if (what == 1)
@@ -351,6 +352,7 @@ struct Story {
         if (what == 3) world.setJointSoftness(joint, {in.value(0.0f, 60.0f), in.value(0.0f, 2.0f)});
         if (what == 4) world.setJointBreakForce(joint, in.value(-10.0f, 2000.0f));
         if (what == 5) world.setJointCollideConnected(joint, in.flag());
+        if (what == 6) world.setJointFriction(joint, in.value(-1.0f, 50.0f));
         break;
       }
       case 11: {

@@ -63,7 +63,11 @@ void World::Impl::step(float dt) {
   detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   if (bodies.rollingCount > 0) detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());
   bodies.clearForces();
-  if (def.ccd) detail::solveContinuous(bodies, *broadPhase, filters, tuning.linearSlop);
+  if (def.ccd) {
+    if (!joints.empty()) detail::jointGroups(bodies, joints, jointGroups);
+    detail::solveContinuous(bodies, *broadPhase, filters, tuning.linearSlop,
+                            joints.empty() ? std::span<const std::uint32_t>() : jointGroups);
+  }
   if (def.penetrationResponse == PenetrationResponse::Revert)
     revert.apply(bodies, *broadPhase, pairs, contacts, filters, tuning.linearSlop);
   detail::guardFiniteStates(bodies, events.faults);

@@ -38,6 +38,7 @@ struct World::Impl {
   std::vector<detail::Contact> previousContacts;
   detail::StepSolver stepSolver;
   std::vector<detail::Joint> joints;
+  std::vector<std::uint32_t> jointGroups;  // the step's, for the continuous pass
   std::vector<std::uint32_t> freeJoints;
   std::size_t jointCount = 0;
   detail::StepEvents events;

@@ -70,6 +70,11 @@ void checkBreak(float value, const std::string& who, const char* field) {
     fail(who, std::string(field) + " must be > 0 (kUnbreakable for none), got " + formatFloat(value));
 }
 
+void checkFriction(float value, const std::string& who, const char* field) {
+  if (!isFinite(value) || value < 0.0f)
+    fail(who, std::string(field) + " must be finite and >= 0, got " + formatFloat(value));
+}
+
 void checkSwing(float swing, const std::string& who) {
   if (!isFinite(swing) || swing < 0.0f || swing > kPi)
     fail(who, "swingLimit must be within [0, pi], got " + formatFloat(swing));
@@ -201,7 +206,9 @@ JointId World::createBallJoint(const BallJointDef& def) {
   Joint joint = w.jointAt(def.a, def.b, def.anchor, std::nullopt, JointType::Ball, false);
   checkSoftness(def.softness, "ball joint", "softness");
   checkBreak(def.breakForce, "ball joint", "breakForce");
+  checkFriction(def.frictionTorque, "ball joint", "frictionTorque");
   joint.softness = def.softness;
+  joint.friction = def.frictionTorque;
   joint.breakForce = def.breakForce;
   joint.collideConnected = def.collideConnected;
   return w.addJoint(joint);
@@ -218,6 +225,13 @@ JointId World::Impl::addAxialJoint(const Def& def, JointType type) {
   checkSoftness(def.softness, who, "softness");
   checkBreak(def.breakForce, who, "breakForce");
   checkBreak(def.breakTorque, who, "breakTorque");
+  if constexpr (requires { def.frictionTorque; }) {
+    checkFriction(def.frictionTorque, who, "frictionTorque");
+    joint.friction = def.frictionTorque;
+  } else {
+    checkFriction(def.frictionForce, who, "frictionForce");
+    joint.friction = def.frictionForce;
+  }
   joint.limits = def.limits;
   joint.motor = def.motor;
   joint.spring = def.spring;
@@ -259,6 +273,8 @@ JointId World::createConeJoint(const ConeJointDef& def) {
   Joint joint = w.jointAt(def.a, def.b, def.anchor, def.axis, JointType::Cone, true);
   checkSwing(def.swingLimit, who);
   checkLimits(def.twistLimits, Coordinate::Angle, who, "twistLimits");
+  checkFriction(def.frictionTorque, who, "frictionTorque");
+  joint.friction = def.frictionTorque;
   checkSoftness(def.softness, who, "softness");
   checkBreak(def.breakForce, who, "breakForce");
   checkBreak(def.breakTorque, who, "breakTorque");
@@ -377,6 +393,8 @@ namespace {
 constexpr std::initializer_list<JointType> kAllTypes = {JointType::Distance, JointType::Ball,
                                                         JointType::Hinge,    JointType::Slider,
                                                         JointType::Fixed,    JointType::Cone};
+constexpr std::initializer_list<JointType> kFrictionTypes = {JointType::Ball, JointType::Cone,
+                                                             JointType::Hinge, JointType::Slider};
 }  // namespace
 
 JointLimits World::jointLimits(JointId id) const {
@@ -465,6 +483,16 @@ void World::setJointBreakTorque(JointId id, float torque) {
                              {JointType::Hinge, JointType::Slider, JointType::Fixed, JointType::Cone});
   checkBreak(torque, "world: setJointBreakTorque", "torque");
   j.breakTorque = torque;
+}
+
+float World::jointFriction(JointId id) const {
+  return impl_->jointFor(id, "jointFriction", kFrictionTypes).friction;
+}
+void World::setJointFriction(JointId id, float friction) {
+  Joint& j = impl_->jointFor(id, "setJointFriction", kFrictionTypes);
+  checkFriction(friction, "world: setJointFriction", "friction");
+  j.friction = friction;
+  impl_->wakeJoint(j);
 }
 
 bool World::jointCollideConnected(JointId id) const {

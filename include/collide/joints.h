@@ -87,6 +87,9 @@ struct BallJointDef {
   bool collideConnected = false;
   JointSoftness softness{};
   float breakForce = kUnbreakable;  // N
+  // The joint's friction: the most torque it spends against the bodies' relative turning (N m,
+  // >= 0; 0 = none). A ragdoll's joints or a stiff pin come to rest with it.
+  float frictionTorque = 0.0f;
 };
 
 // A hinge (revolute) joint: the bodies share the anchor and turn about `axis` only (doors, wheels,
@@ -104,6 +107,7 @@ struct HingeJointDef {
   JointSoftness softness{};          // of the point and axis rows, and of the limits
   float breakForce = kUnbreakable;   // N
   float breakTorque = kUnbreakable;  // N m
+  float frictionTorque = 0.0f;       // N m, >= 0: the most torque spent against turning about the axis
 };
 
 // A slider (prismatic) joint: b keeps its rotation relative to a and moves along `axis` (fixed in a)
@@ -121,6 +125,7 @@ struct SliderJointDef {
   JointSoftness softness{};
   float breakForce = kUnbreakable;
   float breakTorque = kUnbreakable;
+  float frictionForce = 0.0f;  // N, >= 0: the most force spent against sliding along the axis
 };
 
 // A fixed (weld) joint: the bodies keep their relative pose, as if one rigid body (breakable
@@ -151,6 +156,7 @@ struct ConeJointDef {
   JointSoftness softness{};  // of the point rows and of the limits
   float breakForce = kUnbreakable;
   float breakTorque = kUnbreakable;
+  float frictionTorque = 0.0f;  // N m, >= 0: the most torque spent against the relative turning
 };
 
 }  // namespace collide

@@ -259,6 +259,9 @@ class World {
   void setJointBreakForce(JointId id, float force);  // > 0; kUnbreakable for none
   float jointBreakTorque(JointId id) const;
   void setJointBreakTorque(JointId id, float torque);
+  // A ball, cone or hinge joint's friction torque (N m), a slider's friction force (N); >= 0.
+  float jointFriction(JointId id) const;
+  void setJointFriction(JointId id, float friction);
   bool jointCollideConnected(JointId id) const;
   void setJointCollideConnected(JointId id, bool collide);
 

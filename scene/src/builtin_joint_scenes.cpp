@@ -53,7 +53,8 @@ Json pendulum() {
 }
 
 // A bridge of 40 planks (2 kg, 0.25 m) hinged end to end between two static posts 9 m apart,
-// hanging as a circular arc from posts 4 m up, with a 50 kg crate set on its middle.
+// hanging as a circular arc from posts 4 m up, with a 50 kg crate set on its middle. Its pins have
+// friction (2 N m): without it a hanging bridge swings on for ever, as a frictionless one would.
 Json bridge() {
   Json doc = demoDocument();
   doc["settings"]["steps"] = 600;
@@ -61,7 +62,7 @@ Json bridge() {
   Json& constraints = doc["constraints"] = Json::array();
   bodies.push_back(groundPlane());
   constexpr int kPlanks = 40;
-  constexpr double kSpan = 9.0, kLength = 10.0, kHeight = 4.0;
+  constexpr double kSpan = 9.0, kLength = 10.0, kHeight = 4.0, kPinFriction = 2.0;
   // The arc of length kLength over the chord kSpan: sin(t) / t = kSpan / kLength, t = half the
   // arc's angle (Newton's method from 1).
   double t = 1.0;
@@ -92,11 +93,13 @@ Json bridge() {
     bodies.push_back(plank);
     Json hinge = joint("hinge", previous, name, vec(x0, y0, 0));
     hinge["axis"] = vec(0, 0, 1);
+    hinge["friction"] = num(kPinFriction);
     constraints.push_back(hinge);
     previous = name;
   }
   Json last = joint("hinge", previous, "post_right", vec(rightX, rightY, 0));
   last["axis"] = vec(0, 0, 1);
+  last["friction"] = num(kPinFriction);
   constraints.push_back(last);
   // On the middle planks (the arc's lowest point), just above them.
   Json crate = body("crate", "dynamic", box(0.3, 0.3, 0.3), vec(0, onArc(0).second + 0.025 + 0.3 + 0.01, 0));
@@ -107,8 +110,10 @@ Json bridge() {
 
 // One ragdoll of 11 bodies standing at (x, y, z): pelvis, torso and head on cone joints, arms on
 // cone shoulders and hinge elbows, legs on cone hips and hinge knees, each joint within a human's
-// range (radians). Neighbours do not collide; other limbs do.
+// range (radians), with a little friction (3 N m), as a body's joints have: without it a limb
+// resting on a stair edge rocks on for ever. Neighbours do not collide; other limbs do.
 void addRagdoll(Json& bodies, Json& constraints, const std::string& tag, double x, double y, double z) {
+  constexpr double kJointFriction = 3.0;
   const auto at = [&](double dx, double dy, double dz) { return vec(x + dx, y + dy, z + dz); };
   const auto limb = [&](const std::string& part, Json shape, const Json& position) {
     bodies.push_back(body(tag + part, "dynamic", std::move(shape), position));
@@ -122,6 +127,7 @@ void addRagdoll(Json& bodies, Json& constraints, const std::string& tag, double 
     j["axis"] = axis;
     j["swing"] = num(swing);
     j["twist"] = Json::array({num(-twist), num(twist)});
+    j["friction"] = num(kJointFriction);
     constraints.push_back(j);
   };
   const auto hinge = [&](const std::string& a, const std::string& b, const Json& anchor, double lo,
@@ -129,6 +135,7 @@ void addRagdoll(Json& bodies, Json& constraints, const std::string& tag, double 
     Json j = joint("hinge", tag + a, tag + b, anchor);
     j["axis"] = vec(1, 0, 0);
     j["limits"] = Json::array({num(lo), num(hi)});
+    j["friction"] = num(kJointFriction);
     constraints.push_back(j);
   };
   cone("pelvis", "torso", at(0, 1.1, 0), vec(0, 1, 0), 0.5, 0.4);

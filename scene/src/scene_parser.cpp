@@ -428,13 +428,13 @@ Constraint readConstraint(const JsonNode& node, const std::map<std::string, std:
                          "collide_connected", "break_force", "stiffness", "damping"});
       break;
     case JointType::Ball:
-      node.expectObject(
-          {"type", "name", "a", "b", "anchor", "collide_connected", "break_force", "stiffness", "damping"});
+      node.expectObject({"type", "name", "a", "b", "anchor", "collide_connected", "break_force", "stiffness",
+                         "damping", "friction"});
       break;
     case JointType::Hinge:
     case JointType::Slider:
       node.expectObject({"type", "name", "a", "b", "anchor", "axis", "limits", "motor", "collide_connected",
-                         "break_force", "break_torque", "stiffness", "damping"});
+                         "break_force", "break_torque", "stiffness", "damping", "friction"});
       break;
     case JointType::Fixed:
       node.expectObject({"type", "name", "a", "b", "anchor", "collide_connected", "break_force",
@@ -442,7 +442,7 @@ Constraint readConstraint(const JsonNode& node, const std::map<std::string, std:
       break;
     case JointType::Cone:
       node.expectObject({"type", "name", "a", "b", "anchor", "axis", "swing", "twist", "collide_connected",
-                         "break_force", "break_torque", "stiffness", "damping"});
+                         "break_force", "break_torque", "stiffness", "damping", "friction"});
       break;
   }
   if (auto n = node.find("name")) c.name = n->string();
@@ -458,6 +458,7 @@ Constraint readConstraint(const JsonNode& node, const std::map<std::string, std:
   if (auto n = node.find("break_torque")) c.breakTorque = n->positive();
   if (auto n = node.find("stiffness")) c.softness.hertz = n->nonNegative();
   if (auto n = node.find("damping")) c.softness.dampingRatio = n->nonNegative();
+  if (auto n = node.find("friction")) c.friction = n->nonNegative();
   if (c.type == JointType::Fixed) {
     if (auto n = node.find("anchor")) c.anchor = n->vec3();
     return c;

@@ -27,6 +27,7 @@ JointId createJoint(World& world, const Constraint& c, BodyId a, BodyId b) {
       BallJointDef def{.a = a, .b = b, .anchor = anchor, .collideConnected = c.collideConnected};
       def.softness = c.softness;
       def.breakForce = c.breakForce;
+      def.frictionTorque = c.friction;
       return world.createBallJoint(def);
     }
     case JointType::Hinge: {
@@ -37,6 +38,7 @@ JointId createJoint(World& world, const Constraint& c, BodyId a, BodyId b) {
       def.softness = c.softness;
       def.breakForce = c.breakForce;
       def.breakTorque = c.breakTorque;
+      def.frictionTorque = c.friction;
       return world.createHingeJoint(def);
     }
     case JointType::Slider: {
@@ -47,6 +49,7 @@ JointId createJoint(World& world, const Constraint& c, BodyId a, BodyId b) {
       def.softness = c.softness;
       def.breakForce = c.breakForce;
       def.breakTorque = c.breakTorque;
+      def.frictionForce = c.friction;
       return world.createSliderJoint(def);
     }
     case JointType::Fixed: {
@@ -64,6 +67,7 @@ JointId createJoint(World& world, const Constraint& c, BodyId a, BodyId b) {
       def.softness = c.softness;
       def.breakForce = c.breakForce;
       def.breakTorque = c.breakTorque;
+      def.frictionTorque = c.friction;
       return world.createConeJoint(def);
     }
   }

@@ -35,9 +35,33 @@ float impactTime(const Shape& a, const Sweep& sweepA, const Shape& b, const Swee
 
 }  // namespace
 
+namespace {
+
+void moveToSweepFraction(const BodyRecord& record, BodyState& state, const Sweep& sweep, float fraction) {
+  const Transform stop = sweep.at(fraction);
+  state.rotation = stop.rotation;
+  state.centerOfMass = stop.position + stop.rotation * record.localCenterOfMass;
+  state.inverseInertiaWorld = worldInverseInertia(record.inverseInertiaLocal, state.rotation);
+}
+
+}  // namespace
+
 ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhase, const PairFilters& filters,
-                                float linearSlop) {
+                                float linearSlop, std::span<const std::uint32_t> jointGroup) {
   ContinuousStats stats;
+  // Per joint group (indexed by its id, a body index), the earliest stop of its bodies; and each
+  // grouped body's sweep as the solve left it, for the group's stop.
+  thread_local std::vector<float> groupStop;
+  thread_local std::vector<Sweep> groupSweeps;
+  const bool grouped = !jointGroup.empty();
+  if (grouped) {
+    groupStop.assign(bodies.records.size(), 1.0f);
+    groupSweeps.resize(bodies.records.size());
+    for (std::uint32_t i = 0; i < jointGroup.size(); ++i) {
+      if (jointGroup[i] != kNoJointGroup && hasValidPose(bodies.states[i]))
+        groupSweeps[i] = bodySweep(bodies.records[i], bodies.states[i]);
+    }
+  }
   ToiSettings settings;
   settings.targetSeparation = linearSlop;
   settings.tolerance = std::max(0.25f * linearSlop, 1e-4f);
@@ -97,10 +121,19 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
     });
     if (first >= 1.0f) continue;
     ++stats.stopped;
-    const Transform stop = sweep.at(first);
-    state.rotation = stop.rotation;
-    state.centerOfMass = stop.position + stop.rotation * record.localCenterOfMass;
-    state.inverseInertiaWorld = worldInverseInertia(record.inverseInertiaLocal, state.rotation);
+    moveToSweepFraction(record, state, sweep, first);
+    if (grouped && jointGroup[i] != kNoJointGroup) {
+      groupStop[jointGroup[i]] = std::min(groupStop[jointGroup[i]], first);
+    }
+  }
+  if (grouped && stats.stopped > 0) {
+    for (std::uint32_t i = 0; i < jointGroup.size(); ++i) {
+      if (jointGroup[i] == kNoJointGroup || !(groupStop[jointGroup[i]] < 1.0f)) continue;
+      const BodyRecord& record = bodies.records[i];
+      if (!record.alive || !record.awake || record.type != BodyType::Dynamic) continue;
+      if (!hasValidPose(bodies.states[i])) continue;
+      moveToSweepFraction(record, bodies.states[i], groupSweeps[i], groupStop[jointGroup[i]]);
+    }
   }
   return stats;
 }

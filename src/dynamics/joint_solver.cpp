@@ -2,8 +2,10 @@
 // position projection, the joints' loads and breaking, and their poses.
 #include "dynamics/joint_solver.h"
 
+#include "dynamics/continuous.h"
 #include "dynamics/joints/joint_rows.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace collide::detail {
@@ -82,42 +84,44 @@ void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float 
   }
 }
 
-namespace {
-
-// The joints whose anchors coincide, rigidly: their gap is projected.
-bool hasRigidPoint(const Joint& joint) {
-  switch (joint.type) {
-    case JointType::Ball:
-    case JointType::Hinge:
-    case JointType::Fixed:
-    case JointType::Cone:
-      return joint.softness.hertz == 0.0f;
-    case JointType::Distance:
-    case JointType::Slider:
-      return false;
-  }
-  return false;
-}
-
-}  // namespace
-
 void projectJoints(const JointSolverView& view, std::vector<Joint>& joints) {
   for (int pass = 0; pass < kJointProjectionPasses; ++pass) {
     bool projected = false;
     for (Joint& joint : joints) {
       if (!joint.active) continue;
-      if (joint.type == JointType::Distance) {
-        projected |= projectDistance(view, joint);
-      } else if (hasRigidPoint(joint)) {
-        projected |= projectPoint(jointFrame(view, joint));
-      }
+      if (joint.type == JointType::Distance) projected |= projectDistance(view, joint);
     }
     if (!projected) break;
   }
 }
 
+void jointGroups(const BodyStorage& storage, const std::vector<Joint>& joints,
+                 std::vector<std::uint32_t>& groupOf) {
+  groupOf.assign(storage.records.size(), kNoJointGroup);
+  const auto root = [&](std::uint32_t i) {
+    while (groupOf[i] != i) i = groupOf[i] = groupOf[groupOf[i]];
+    return i;
+  };
+  for (const Joint& joint : joints) {
+    if (!joint.alive || !joint.active) continue;
+    const BodyRecord& a = storage.records[joint.bodyA];
+    const BodyRecord& b = storage.records[joint.bodyB];
+    if (a.type != BodyType::Dynamic || b.type != BodyType::Dynamic) continue;
+    for (const std::uint32_t body : {joint.bodyA, joint.bodyB}) {
+      if (groupOf[body] == kNoJointGroup) groupOf[body] = body;
+    }
+    const std::uint32_t rootA = root(joint.bodyA);
+    const std::uint32_t rootB = root(joint.bodyB);
+    groupOf[std::max(rootA, rootB)] = std::min(rootA, rootB);
+  }
+  for (std::uint32_t i = 0; i < groupOf.size(); ++i) {
+    if (groupOf[i] != kNoJointGroup) groupOf[i] = root(i);
+  }
+}
+
 JointLoad jointLoad(const Joint& joint, float h) {
-  const float axial = joint.springImpulse + joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
+  const float axial = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x +
+                      joint.lowerImpulse - joint.upperImpulse;
   float force = glm::length(joint.linearImpulse);
   float torque = glm::length(joint.angularImpulse);
   switch (joint.type) {
@@ -126,7 +130,7 @@ JointLoad jointLoad(const Joint& joint, float h) {
       torque = 0.0f;
       break;
     case JointType::Ball:
-      torque = 0.0f;
+      torque = glm::length(joint.frictionImpulse);
       break;
     case JointType::Hinge:
       torque = glm::length(Vec3(axial, joint.angularImpulse.y, joint.angularImpulse.z));
@@ -137,7 +141,8 @@ JointLoad jointLoad(const Joint& joint, float h) {
     case JointType::Fixed:
       break;
     case JointType::Cone:
-      torque = std::abs(joint.swingImpulse) + std::abs(joint.lowerImpulse - joint.upperImpulse);
+      torque = std::abs(joint.swingImpulse) + std::abs(joint.lowerImpulse - joint.upperImpulse) +
+               glm::length(joint.frictionImpulse);
       break;
   }
   return {force / h, torque / h};

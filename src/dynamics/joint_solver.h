@@ -35,7 +35,9 @@ struct Joint {
   Quat localFrameB{1.0f, 0.0f, 0.0f, 0.0f};
   bool collideConnected = true;  // false: its bodies are kept apart in the pair filters
   bool alive = false;
-  bool active = false;  // this step: at least one awake dynamic body
+  bool active = false;          // this step: at least one awake dynamic body
+  bool inTree = false;          // this pass: its rigid rows are solved directly with its tree (joint_tree.h)
+  std::uint8_t treeLimits = 0;  // this pass: the limits its tree solves with them (joints/joint_rows.h bits)
   std::uint32_t generation = 1;
 
   JointSoftness softness;         // the point rows (and, but for the fixed joint, every row)
@@ -44,6 +46,7 @@ struct Joint {
   JointMotor motor;
   JointSpring spring;
   float swingLimit = kPi;  // cone
+  float friction = 0.0f;   // N m (ball, cone, hinge) or N (slider): the joint's friction
   float breakForce = kUnbreakable;
   float breakTorque = kUnbreakable;
 
@@ -62,9 +65,10 @@ struct Joint {
   float lowerImpulse = 0.0f;
   float upperImpulse = 0.0f;
   float swingImpulse = 0.0f;
+  Vec3 frictionImpulse{0.0f};  // ball and cone: angular, on B; hinge and slider: x along the axis
 
   void resetImpulses() {
-    linearImpulse = angularImpulse = Vec3(0.0f);
+    linearImpulse = angularImpulse = frictionImpulse = Vec3(0.0f);
     impulse = springImpulse = motorImpulse = lowerImpulse = upperImpulse = swingImpulse = 0.0f;
   }
 };
@@ -88,17 +92,23 @@ void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float 
                  bool useBias);
 
 // Per substep, after the position update: the length a rigid distance joint lost or gained beyond
-// kJointLengthSlop, and the gap a rigid point block's anchors opened beyond kBallJointGapSlop, are
-// removed by moving its bodies (non-linear Gauss-Seidel on positions, Box2D v2's and Jolt's
-// position iterations), over the joints in order, pass after pass while one is still off, at most
-// kJointProjectionPasses times. The soft joint holds a link within the slop on its own; under the
-// load of a whipping chain it gives, and the passes take the give back. Below the slop nothing
-// moves: a projection there would only cost a spinning pair its angular momentum (positions moved
-// without turning the velocities).
+// kJointLengthSlop is removed by moving its bodies (non-linear Gauss-Seidel on positions, Box2D
+// v2's and Jolt's position iterations), over the joints in order, pass after pass while one is
+// still off, at most kJointProjectionPasses times. Below the slop nothing moves: a projection there
+// would only cost a spinning pair its angular momentum (positions moved without turning the
+// velocities). The other rigid joints of a tree are projected through it (JointTree::project);
+// a joint that closes a loop is held by its soft rows alone: projected one by one, it and the tree
+// undid each other's moves every substep, and a loaded bridge shook.
 inline constexpr float kJointLengthSlop = 0.005f;   // of the joint's length
-inline constexpr float kBallJointGapSlop = 0.001f;  // m
+inline constexpr float kBallJointGapSlop = 0.001f;  // m (or rad): the tree's projection slop
 inline constexpr int kJointProjectionPasses = 128;
 void projectJoints(const JointSolverView& view, std::vector<Joint>& joints);
+
+// The groups of dynamic bodies the step's active joints connect: groupOf[body] is the lowest body
+// index of its group, kNoJointGroup (continuous.h) for a body without such a joint. The continuous
+// pass stops a group together.
+void jointGroups(const BodyStorage& storage, const std::vector<Joint>& joints,
+                 std::vector<std::uint32_t>& groupOf);
 
 // The force and torque a joint carried in the last substep (its accumulated impulses over h).
 struct JointLoad {

@@ -95,9 +95,8 @@ void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults
   }
 }
 
-void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
-                       std::vector<Joint>& joints, const StepSettings& settings, float dt,
-                       std::vector<FaultEvent>& faults) {
+void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<Joint>& joints,
+                       const StepSettings& settings, float dt, std::vector<FaultEvent>& faults) {
   const float h = dt / static_cast<float>(settings.substeps);
   gatherBodies(storage, settings.gravity);
   faultFields_.assign(bodies_.size(), 0);
@@ -110,6 +109,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   JointSolverView view{bodies_, infos_, solverOf_, storage};
   prepareJoints(view, joints);
+  jointTree_.prepare(view, joints);
   // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
   // joint past it made a net draped over a ball shiver instead of sleeping).
   const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
@@ -117,13 +117,17 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts,
     integrateVelocities(bodies_, infos_, storage, h);
     guard();  // before a bad velocity reaches a contact
     warmStartJoints(view, joints);
+    jointTree_.warmStart(view, joints, h);
     contacts_.warmStart(bodies_);
     solveJoints(view, joints, h, rigidHertz, true);
+    jointTree_.solve(view, joints, h, rigidHertz, true);
     contacts_.solve(bodies_, h, true);
     integratePositions(bodies_, infos_, h);
     if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
+    jointTree_.project(view, joints);
     projectJoints(view, joints);
     solveJoints(view, joints, h, rigidHertz, false);
+    jointTree_.solve(view, joints, h, rigidHertz, false);
     for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false);
     guard();
   }

@@ -7,7 +7,8 @@
 //   3. restitution, the impulses back into the contacts, the new poses and velocities back into the
 //      body storage (inertia refreshed), and bodies the guard stopped frozen and reported.
 // Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
-// last word on penetration.
+// last word on penetration: first the rigid rows of joint trees, solved directly (joint_tree.h),
+// then the joints' Gauss-Seidel rows (springs, motors, limits, and the joints no tree takes).
 #pragma once
 
 #include "bodies/body_storage.h"
@@ -15,6 +16,7 @@
 #include "dynamics/contact_projection.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
+#include "dynamics/joint_tree.h"
 #include "dynamics/solver_body.h"
 
 #include <collide/events.h>
@@ -53,6 +55,7 @@ class StepSolver {
   std::vector<std::uint8_t> faultFields_;
   ContactSolver contacts_;
   ContactProjection projection_;
+  JointTree jointTree_;
 };
 
 }  // namespace collide::detail

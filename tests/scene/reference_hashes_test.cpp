@@ -38,12 +38,12 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"revert-project", 120, 0x8491a7fbcc272714},
     {"revert-soft", 120, 0x7d561b2c39fd7e2d},
     {"breakable", 120, 0x3ead5165968c2a4f},
-    {"chain", 120, 0xbc97e1f0772826f9},
+    {"chain", 120, 0x4984d37605e54d63},
     {"tunneling", 120, 0x935a5f9071b1f803},
-    {"pendulum", 120, 0xb982569fecd9ae3f},
-    {"bridge", 120, 0x1888d6834d2b1395},
-    {"ragdolls", 120, 0x8a5535d21ac90ed0},
-    {"machine", 120, 0x53deebc759a36311},
+    {"pendulum", 120, 0x473d3d605f47ba3a},
+    {"bridge", 120, 0x5222e231cea3d601},
+    {"ragdolls", 120, 0x075a1451c6a2aff5},
+    {"machine", 120, 0x294ef790a54a89f7},
 };
 
 std::string hex(std::uint64_t value) {

@@ -127,10 +127,10 @@ TEST(SceneWorld, EveryJointTypeFromAFileGetsItsFields) {
       {"type": "hinge", "a": "frame", "b": "door", "anchor": [0, 1, 0], "axis": [0, 0, 1],
        "limits": [-0.7853982, 0.7853982], "motor": {"speed": 0, "max_torque": 1}, "name": "trapdoor"},
       {"type": "slider", "a": "frame", "b": "carriage", "anchor": [3, 3, 0], "axis": [1, 0, 0],
-       "limits": [-1, 1], "motor": {"speed": 0.5, "max_force": 20}, "break_force": 1000},
+       "limits": [-1, 1], "motor": {"speed": 0.5, "max_force": 20}, "break_force": 1000, "friction": 3},
       {"type": "fixed", "a": "carriage", "b": "plate", "stiffness": 5, "damping": 0.7, "break_torque": 200},
       {"type": "cone", "a": "frame", "b": "arm", "anchor": [0, 3, 0], "axis": [-1, 0, 0], "swing": 0.5,
-       "twist": [-0.2, 0.3], "collide_connected": true},
+       "twist": [-0.2, 0.3], "collide_connected": true, "friction": 0.5},
       {"type": "distance", "a": "frame", "b": "weight", "limits": [0, 2.5], "break_force": 100000}]})",
                              "joints.json");
   SceneWorld sw = buildWorld(s);
@@ -145,6 +145,8 @@ TEST(SceneWorld, EveryJointTypeFromAFileGetsItsFields) {
   EXPECT_EQ(w.jointType(slider), JointType::Slider);
   EXPECT_EQ(w.jointMotor(slider), (JointMotor{true, 0.5f, 20.0f}));
   EXPECT_EQ(w.jointBreakForce(slider), 1000.0f);
+  EXPECT_EQ(w.jointFriction(slider), 3.0f);
+  EXPECT_EQ(w.jointFriction(hinge), 0.0f);
   EXPECT_EQ(w.jointType(fixed), JointType::Fixed);
   EXPECT_EQ(w.jointSoftness(fixed), (JointSoftness{5.0f, 0.7f}));
   EXPECT_EQ(w.jointAngularSoftness(fixed), (JointSoftness{5.0f, 0.7f}));
@@ -153,6 +155,7 @@ TEST(SceneWorld, EveryJointTypeFromAFileGetsItsFields) {
   EXPECT_EQ(w.coneSwingLimit(cone), 0.5f);
   EXPECT_EQ(w.jointLimits(cone), (JointLimits{true, -0.2f, 0.3f}));
   EXPECT_TRUE(w.jointCollideConnected(cone));
+  EXPECT_EQ(w.jointFriction(cone), 0.5f);
   EXPECT_EQ(w.jointType(rope), JointType::Distance);
   EXPECT_EQ(w.jointLimits(rope), (JointLimits{true, 0.0f, 2.5f}));
   EXPECT_EQ(w.jointBreakForce(rope), 100000.0f);

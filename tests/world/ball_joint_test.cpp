@@ -138,6 +138,26 @@ TEST(BallJoint, JointedBodiesDoNotCollideUnlessTold) {
   }
 }
 
+TEST(BallJoint, FrictionHoldsARodBelowItsTorque) {
+  // At 30 degrees gravity turns the rod about the pivot with m g (L/2) sin 30 = 2.45 N m: a friction
+  // of 3 N m holds it, one of 2 N m does not; a fixed joint has no friction to set.
+  Pendulum held(30.0f * kPi / 180.0f);
+  held.world.setJointFriction(held.joint, 3.0f);
+  Pendulum slipping(30.0f * kPi / 180.0f);
+  slipping.world.setJointFriction(slipping.joint, 2.0f);
+  for (int step = 0; step < 120; ++step) {
+    held.world.step(kDt);
+    slipping.world.step(kDt);
+  }
+  EXPECT_NEAR(held.angle(), 30.0f * kPi / 180.0f, 1e-3f);
+  EXPECT_LT(slipping.angle(), 25.0f * kPi / 180.0f);
+  EXPECT_EQ(held.world.jointFriction(held.joint), 3.0f);
+  EXPECT_THROW(held.world.setJointFriction(held.joint, -0.5f), Error);
+  const BodyId other = held.world.createBody(test::boxBody(Vec3(5.0f, 2.0f, 0.0f), Vec3(0.1f), 1.0f));
+  const JointId weld = held.world.createFixedJoint({.a = held.rod, .b = other});
+  EXPECT_THROW(held.world.setJointFriction(weld, 1.0f), Error);
+}
+
 TEST(BallJoint, BadDefinitionsAreRefusedNamingTheField) {
   World world;
   const BodyId ground = world.createBody(test::groundBox());
@@ -160,6 +180,9 @@ TEST(BallJoint, BadDefinitionsAreRefusedNamingTheField) {
   refused({box, particle, Vec3(0.0f, 2.0f, 0.0f)}, "particle's anchor must be its centre");
   const BodyId otherStatic = test::staticAnchor(world, Vec3(5.0f));
   refused({ground, otherStatic, Vec3(0.0f)}, "at least one body must be dynamic");
+  BallJointDef rough{box, ground, Vec3(0.0f, 2.0f, 0.0f)};
+  rough.frictionTorque = -1.0f;
+  refused(rough, "frictionTorque must be finite and >= 0, got -1");
   EXPECT_EQ(world.constraintCount(), 0u);
   // A particle at its centre is a ball joint of the lecture's particles.
   EXPECT_NO_THROW(world.createBallJoint({box, particle, Vec3(3.0f, 2.0f, 0.0f)}));

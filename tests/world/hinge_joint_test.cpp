@@ -157,6 +157,34 @@ TEST(HingeJoint, MotorWithoutEnoughTorqueSaturatesAtItsMaximum) {
   EXPECT_NEAR(w.world.jointMotorForce(w.joint), kTorque, 1e-3f * kTorque);
 }
 
+TEST(HingeJoint, FrictionHoldsBelowItsTorqueAndSlowsAboveIt) {
+  // A rod hinged at its top, at 30 degrees: gravity's torque about the pivot is m g (L/2) sin 30
+  // = 2.45 N m. A friction of 3 N m holds it where it is; one of 1 N m lets it swing with angular
+  // acceleration (2.45 - 1) / I_pivot.
+  const float gravityTorque = HingedRod::kMass * kG * 0.5f * HingedRod::kLength * std::sin(30.0f * kDegree);
+  const float pivotInertia =
+      HingedRod::kMass *
+          (HingedRod::kLength * HingedRod::kLength + HingedRod::kThickness * HingedRod::kThickness) / 12.0f +
+      HingedRod::kMass * 0.25f * HingedRod::kLength * HingedRod::kLength;
+  {
+    HingedRod held(30.0f * kDegree);
+    held.world.setJointFriction(held.joint, 3.0f);
+    for (int step = 0; step < 120; ++step) held.world.step(kDt);
+    EXPECT_NEAR(held.swing(), 30.0f * kDegree, 0.1f * kDegree);
+    EXPECT_NEAR(held.world.jointTorque(held.joint), gravityTorque, 0.02f * gravityTorque);
+  }
+  {
+    constexpr float kFriction = 1.0f;
+    HingedRod slipping(30.0f * kDegree);
+    slipping.world.setJointFriction(slipping.joint, kFriction);
+    for (int step = 0; step < 6; ++step) slipping.world.step(kDt);  // 0.1 s: it turns 0.4 degrees
+    const float alpha = slipping.world.jointSpeed(slipping.joint) / (6.0f * kDt);
+    // The swing is a turn about -z (toward the bottom), the joint's angle about +z.
+    EXPECT_NEAR(-alpha, (gravityTorque - kFriction) / pivotInertia,
+                0.02f * (gravityTorque - kFriction) / pivotInertia);
+  }
+}
+
 TEST(HingeJoint, SpringSwingsAtItsFrequency) {
   // A spring of 1 Hz on the wheel's own inertia: the angle oscillates with a period of 1 s.
   MotorWheel w({});

@@ -1,16 +1,21 @@
-// The ball (spherical) joint: the point block alone, C = pB - pA.
+// The ball (spherical) joint: the point block, C = pB - pA, and its friction against turning.
 #include "dynamics/joints/joint_rows.h"
 
 namespace collide::detail {
 
 void warmStartBall(const JointSolverView& view, Joint& joint) {
   const JointFrame f = jointFrame(view, joint);
-  applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
+  applyAngularImpulse(f.a, f.b, joint.frictionImpulse);
+  if (!joint.inTree) applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
 }
 
 void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
   const JointFrame f = jointFrame(view, joint);
+  solveAngularFriction(f, joint.friction, h, joint.frictionImpulse);
+  if (joint.inTree) return;
   solvePoint(f, rowSoftness(joint.softness, rigidHertz, h, useBias), joint.linearImpulse);
 }
+
+void equalityRowsBall(const JointFrame& f, Joint& joint, EqualityRows& rows) { addPointRows(f, joint, rows); }
 
 }  // namespace collide::detail

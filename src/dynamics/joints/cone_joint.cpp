@@ -44,30 +44,52 @@ void warmStartCone(const JointSolverView& view, Joint& joint) {
   const JointFrame f = jointFrame(view, joint);
   const ConeRows rows = coneRows(f, joint);
   // The swing limit is an upper limit on phi: its impulse turns b back, about -n.
-  applyAngularImpulse(
-      f.a, f.b,
-      -joint.swingImpulse * rows.swingAxis + (joint.lowerImpulse - joint.upperImpulse) * rows.twistAxis);
-  applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
+  const bool treeSwing = joint.treeLimits & kSwingLimitBit;
+  const float lower = joint.treeLimits & kLowerLimitBit ? 0.0f : joint.lowerImpulse;
+  const float upper = joint.treeLimits & kUpperLimitBit ? 0.0f : joint.upperImpulse;
+  applyAngularImpulse(f.a, f.b,
+                      -(treeSwing ? 0.0f : joint.swingImpulse) * rows.swingAxis +
+                          (lower - upper) * rows.twistAxis + joint.frictionImpulse);
+  if (!joint.inTree) applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
 }
 
 void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
   const JointFrame f = jointFrame(view, joint);
   const ConeRows rows = coneRows(f, joint);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
+  solveAngularFriction(f, joint.friction, h, joint.frictionImpulse);
   if (rows.swingAxis != Vec3(0.0f)) {
     const JointRow row = angularRow(f.a, f.b, rows.swingAxis);
-    solveUpperLimit(f, row, rows.swing, joint.swingLimit, soft, h, joint.swingImpulse);
+    if (!(joint.treeLimits & kSwingLimitBit))
+      solveUpperLimit(f, row, rows.swing, joint.swingLimit, soft, h, joint.swingImpulse);
   } else {
     joint.swingImpulse = 0.0f;
   }
   if (rows.twistAxis != Vec3(0.0f)) {
     const JointRow row = angularRow(f.a, f.b, rows.twistAxis);
-    solveLowerLimit(f, row, rows.twist, joint.limits.lower, soft, h, joint.lowerImpulse);
-    solveUpperLimit(f, row, rows.twist, joint.limits.upper, soft, h, joint.upperImpulse);
+    if (!(joint.treeLimits & kLowerLimitBit))
+      solveLowerLimit(f, row, rows.twist, joint.limits.lower, soft, h, joint.lowerImpulse);
+    if (!(joint.treeLimits & kUpperLimitBit))
+      solveUpperLimit(f, row, rows.twist, joint.limits.upper, soft, h, joint.upperImpulse);
   } else {
     joint.lowerImpulse = joint.upperImpulse = 0.0f;
   }
-  solvePoint(f, soft, joint.linearImpulse);
+  if (!joint.inTree) solvePoint(f, soft, joint.linearImpulse);
+}
+
+void equalityRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows) { addPointRows(f, joint, rows); }
+
+void limitRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  const ConeRows cone = coneRows(f, joint);
+  if (cone.swingAxis != Vec3(0.0f)) {
+    const JointRow row = angularRow(f.a, f.b, cone.swingAxis);
+    rows.add(negatedRow(row), joint.swingLimit - cone.swing, &joint.swingImpulse, kSwingLimitBit);
+  }
+  if (cone.twistAxis != Vec3(0.0f)) {
+    const JointRow row = angularRow(f.a, f.b, cone.twistAxis);
+    rows.add(row, cone.twist - joint.limits.lower, &joint.lowerImpulse, kLowerLimitBit);
+    rows.add(negatedRow(row), joint.limits.upper - cone.twist, &joint.upperImpulse, kUpperLimitBit);
+  }
 }
 
 }  // namespace collide::detail

@@ -64,12 +64,14 @@ Matrix6 weldInverseMass(const JointFrame& f) {
 }  // namespace
 
 void warmStartFixed(const JointSolverView& view, Joint& joint) {
+  if (joint.inTree) return;
   const JointFrame f = jointFrame(view, joint);
   applyAngularImpulse(f.a, f.b, joint.angularImpulse);
   applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
 }
 
 void solveFixed(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
+  if (joint.inTree) return;
   const JointFrame f = jointFrame(view, joint);
   const Softness linear = rowSoftness(joint.softness, rigidHertz, h, useBias);
   const Softness angular = rowSoftness(joint.angularSoftness, rigidHertz, h, useBias);
@@ -85,6 +87,11 @@ void solveFixed(const JointSolverView& view, Joint& joint, float h, float rigidH
   joint.angularImpulse += l;
   applyImpulse(f.a, f.b, f.rA, f.rB, p);
   applyAngularImpulse(f.a, f.b, l);
+}
+
+void equalityRowsFixed(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  addPointRows(f, joint, rows);
+  addRotationRows(f, joint, rows);
 }
 
 }  // namespace collide::detail

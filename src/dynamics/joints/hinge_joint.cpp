@@ -24,7 +24,16 @@ HingeAxes hingeAxes(const JointFrame& f) {
 }
 
 float axialImpulse(const Joint& joint) {
-  return joint.springImpulse + joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
+  return joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x + joint.lowerImpulse -
+         joint.upperImpulse;
+}
+
+// The axial impulse the joint's own warm start applies: without the limits its tree applies.
+float ownAxialImpulse(const Joint& joint) {
+  float impulse = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x;
+  if (!(joint.treeLimits & kLowerLimitBit)) impulse += joint.lowerImpulse;
+  if (!(joint.treeLimits & kUpperLimitBit)) impulse -= joint.upperImpulse;
+  return impulse;
 }
 
 void solveAxisRows(const JointFrame& f, const HingeAxes& axes, const Softness& soft, Vec3& accumulated) {
@@ -52,6 +61,10 @@ void solveAxisRows(const JointFrame& f, const HingeAxes& axes, const Softness& s
 void warmStartHinge(const JointSolverView& view, Joint& joint) {
   const JointFrame f = jointFrame(view, joint);
   const HingeAxes axes = hingeAxes(f);
+  if (joint.inTree) {
+    applyAngularImpulse(f.a, f.b, ownAxialImpulse(joint) * axes.axis);
+    return;
+  }
   applyAngularImpulse(f.a, f.b,
                       joint.angularImpulse.y * axes.across1 + joint.angularImpulse.z * axes.across2 +
                           axialImpulse(joint) * axes.axis);
@@ -66,12 +79,32 @@ void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidH
   const float angle = twistAngle(glm::conjugate(f.frameA) * f.frameB);
   solveSpring(f, turn, angle, joint.spring, h, joint.springImpulse);
   solveMotor(f, turn, joint.motor, h, joint.motorImpulse);
+  solveRowFriction(f, turn, joint.friction, h, joint.frictionImpulse.x);
   if (joint.limits.enabled) {
-    solveLowerLimit(f, turn, angle, joint.limits.lower, soft, h, joint.lowerImpulse);
-    solveUpperLimit(f, turn, angle, joint.limits.upper, soft, h, joint.upperImpulse);
+    if (!(joint.treeLimits & kLowerLimitBit))
+      solveLowerLimit(f, turn, angle, joint.limits.lower, soft, h, joint.lowerImpulse);
+    if (!(joint.treeLimits & kUpperLimitBit))
+      solveUpperLimit(f, turn, angle, joint.limits.upper, soft, h, joint.upperImpulse);
   }
+  if (joint.inTree) return;
   solveAxisRows(f, axes, soft, joint.angularImpulse);
   solvePoint(f, soft, joint.linearImpulse);
+}
+
+void equalityRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  const HingeAxes axes = hingeAxes(f);
+  const Vec3 misalignment = glm::cross(axes.axis, axes.axisB);
+  rows.add(angularRow(f.a, f.b, axes.across1), glm::dot(axes.across1, misalignment), &joint.angularImpulse.y);
+  rows.add(angularRow(f.a, f.b, axes.across2), glm::dot(axes.across2, misalignment), &joint.angularImpulse.z);
+  addPointRows(f, joint, rows);
+}
+
+void limitRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  if (!joint.limits.enabled) return;
+  const JointRow turn = angularRow(f.a, f.b, hingeAxes(f).axis);
+  const float angle = twistAngle(glm::conjugate(f.frameA) * f.frameB);
+  rows.add(turn, angle - joint.limits.lower, &joint.lowerImpulse, kLowerLimitBit);
+  rows.add(negatedRow(turn), joint.limits.upper - angle, &joint.upperImpulse, kUpperLimitBit);
 }
 
 }  // namespace collide::detail

@@ -102,16 +102,6 @@ void solvePoint(const JointFrame& f, const Softness& soft, Vec3& accumulated) {
   applyImpulse(f.a, f.b, f.rA, f.rB, impulse);
 }
 
-bool projectPoint(const JointFrame& f) {
-  const float gap = glm::length(f.d);
-  if (!(gap > kBallJointGapSlop)) return false;
-  const Mat3 k = pointInverseMass(f.a, f.b, f.rA, f.rB);
-  if (!(glm::determinant(k) > 0.0f)) return false;
-  const Vec3 excess = (1.0f - kBallJointGapSlop / gap) * f.d;
-  applyPositionImpulse(f.a, f.b, f.rA, f.rB, -(glm::inverse(k) * excess));
-  return true;
-}
-
 // qB qA^-1 is the turn from frame A to frame B in the world; its vector part is sin(angle / 2)
 // times the axis, so twice it is the rotation vector to first order (the short way round).
 Vec3 rotationError(const Quat& frameA, const Quat& frameB) {
@@ -130,6 +120,25 @@ void solveRotation(const JointFrame& f, const Softness& soft, Vec3& accumulated)
   accumulated += impulse;
   applyAngularImpulse(f.a, f.b, impulse);
 }
+
+void addPointRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  for (int i = 0; i < 3; ++i) {
+    Vec3 axis(0.0f);
+    axis[i] = 1.0f;
+    rows.add(linearRow(f, axis, f.rA), f.d[i], &joint.linearImpulse[i]);
+  }
+}
+
+void addRotationRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  const Vec3 error = rotationError(f.frameA, f.frameB);
+  for (int i = 0; i < 3; ++i) {
+    Vec3 axis(0.0f);
+    axis[i] = 1.0f;
+    rows.add(angularRow(f.a, f.b, axis), error[i], &joint.angularImpulse[i]);
+  }
+}
+
+JointRow negatedRow(const JointRow& row) { return {-row.linear, -row.angularA, -row.angularB, row.mass}; }
 
 JointRow makeRow(const JointBody& a, const JointBody& b, const Vec3& linear, const Vec3& angularA,
                  const Vec3& angularB) {
@@ -165,6 +174,25 @@ void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float
   }
 }
 
+namespace {
+
+void turnBy(SolverBody& body, const Vec3& turn) {
+  body.deltaRotation = glm::normalize(body.deltaRotation + 0.5f * Quat(0.0f, turn) * body.deltaRotation);
+}
+
+}  // namespace
+
+void applyRowPosition(const JointBody& a, const JointBody& b, const JointRow& row, float lambda) {
+  if (a.solver) {
+    a.solver->deltaPosition -= (a.inverseMass * lambda) * row.linear;
+    turnBy(*a.solver, -(a.inverseInertia * (lambda * row.angularA)));
+  }
+  if (b.solver) {
+    b.solver->deltaPosition += (b.inverseMass * lambda) * row.linear;
+    turnBy(*b.solver, b.inverseInertia * (lambda * row.angularB));
+  }
+}
+
 void solveSpring(const JointFrame& f, const JointRow& row, float position, const JointSpring& spring, float h,
                  float& accumulated) {
   if (!spring.enabled || spring.hertz <= 0.0f || row.mass == 0.0f) return;
@@ -184,6 +212,24 @@ void solveMotor(const JointFrame& f, const JointRow& row, const JointMotor& moto
   const float most = h * motor.maxForce;
   accumulated = std::clamp(old + impulse, -most, most);
   applyRow(f.a, f.b, row, accumulated - old);
+}
+
+void solveRowFriction(const JointFrame& f, const JointRow& row, float friction, float h, float& accumulated) {
+  if (!(friction > 0.0f) || row.mass == 0.0f) return;
+  solveMotor(f, row, JointMotor{true, 0.0f, friction}, h, accumulated);
+}
+
+void solveAngularFriction(const JointFrame& f, float friction, float h, Vec3& accumulated) {
+  if (!(friction > 0.0f)) return;
+  const Mat3 k = f.a.inverseInertia + f.b.inverseInertia;
+  if (!(glm::determinant(k) > 0.0f)) return;
+  const Vec3 impulse = -(glm::inverse(k) * (f.b.angularVelocity() - f.a.angularVelocity()));
+  const Vec3 old = accumulated;
+  accumulated += impulse;
+  const float most = h * friction;
+  const float length = glm::length(accumulated);
+  if (length > most) accumulated *= most / length;
+  applyAngularImpulse(f.a, f.b, accumulated - old);
 }
 
 namespace {

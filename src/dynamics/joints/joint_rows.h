@@ -7,6 +7,8 @@
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 
+#include <array>
+
 namespace collide::detail {
 
 // One end of a joint: the body's current pose, velocities and masses (zero for a body the solver
@@ -62,8 +64,6 @@ Mat3 skew(const Vec3& r);
 // PointConstraintPart).
 Mat3 pointInverseMass(const JointBody& a, const JointBody& b, const Vec3& rA, const Vec3& rB);
 void solvePoint(const JointFrame& f, const Softness& soft, Vec3& accumulated);
-// The rigid point block's projection: the gap beyond kBallJointGapSlop removed along the gap.
-bool projectPoint(const JointFrame& f);
 
 // The rotation block: frame B's rotation relative to frame A (in the world, as a rotation vector e
 // of qB qA^-1) driven back to zero, K = IA^-1 + IB^-1 (the fixed and the slider joint).
@@ -86,6 +86,8 @@ JointRow linearRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA);
 JointRow angularRow(const JointBody& a, const JointBody& b, const Vec3& axis);
 float rowSpeed(const JointBody& a, const JointBody& b, const JointRow& row);
 void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
+// The row's positional impulse (kg m along it): each body moved and turned as its masses say.
+void applyRowPosition(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
 
 // The free coordinate's rows, in Box2D v3's order (spring, motor, limits), given its position.
 // The spring pulls position towards spring.target in both passes; the motor's accumulated impulse
@@ -95,29 +97,72 @@ void solveSpring(const JointFrame& f, const JointRow& row, float position, const
                  float& accumulated);
 void solveMotor(const JointFrame& f, const JointRow& row, const JointMotor& motor, float h,
                 float& accumulated);
+// Friction: the row's speed driven to zero with at most h friction of impulse (a motor at rest), or
+// for a ball or cone joint the whole relative angular velocity, its impulse clamped in length.
+void solveRowFriction(const JointFrame& f, const JointRow& row, float friction, float h, float& accumulated);
+void solveAngularFriction(const JointFrame& f, float friction, float h, Vec3& accumulated);
 void solveLowerLimit(const JointFrame& f, const JointRow& row, float position, float lower,
                      const Softness& soft, float h, float& accumulated);
 void solveUpperLimit(const JointFrame& f, const JointRow& row, float position, float upper,
                      const Softness& soft, float h, float& accumulated);
 
-// The per-type pieces, one file each.
+// A joint's rigid equality rows, for the direct solve of joint trees (joint_tree.h): each row's
+// Jacobian, its position error C and the accumulated impulse it adds to (the same component the
+// type's own Gauss-Seidel rows keep and its warm start applies). At most six (the fixed joint).
+struct EqualityRow {
+  JointRow row;
+  float error = 0.0f;
+  float* accumulated = nullptr;
+  // A limit's row (Joint::treeLimits bit): one-sided, error its distance to the limit (>= 0
+  // allowed), row oriented so that a positive impulse pushes away from the limit.
+  std::uint8_t limitBit = 0;
+};
+inline constexpr int kMaxJointTreeRows = 8;  // a hinge's five and its two limits; a cone's three and three
+struct EqualityRows {
+  std::array<EqualityRow, kMaxJointTreeRows> rows{};
+  int count = 0;
+  void add(const JointRow& row, float error, float* accumulated, std::uint8_t limitBit = 0) {
+    rows[static_cast<std::size_t>(count++)] = {row, error, accumulated, limitBit};
+  }
+};
+// Joint::treeLimits bits.
+inline constexpr std::uint8_t kLowerLimitBit = 1, kUpperLimitBit = 2, kSwingLimitBit = 4;
+// The row of a one-sided limit in the direction its impulse pushes (the upper limit's is the
+// coordinate's row negated).
+JointRow negatedRow(const JointRow& row);
+
+// The point block's three rows along the world axes (accumulating joint.linearImpulse), and the
+// rotation block's (accumulating joint.angularImpulse).
+void addPointRows(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void addRotationRows(const JointFrame& f, Joint& joint, EqualityRows& rows);
+
+// The per-type pieces, one file each. A joint in a tree (Joint::inTree) leaves its equality rows
+// to the tree solve and solves only its springs, motors and limits here.
 void warmStartDistance(const JointSolverView& view, Joint& joint);
 void solveDistance(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
 bool projectDistance(const JointSolverView& view, Joint& joint);
 
 void warmStartBall(const JointSolverView& view, Joint& joint);
 void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+void equalityRowsBall(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 void warmStartHinge(const JointSolverView& view, Joint& joint);
 void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+void equalityRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void limitRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 void warmStartSlider(const JointSolverView& view, Joint& joint);
 void solveSlider(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+void equalityRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void limitRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 void warmStartFixed(const JointSolverView& view, Joint& joint);
 void solveFixed(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+void equalityRowsFixed(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 void warmStartCone(const JointSolverView& view, Joint& joint);
 void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+void equalityRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void limitRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 }  // namespace collide::detail

@@ -26,7 +26,16 @@ SliderRows sliderRows(const JointFrame& f) {
 }
 
 float axialImpulse(const Joint& joint) {
-  return joint.springImpulse + joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
+  return joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x + joint.lowerImpulse -
+         joint.upperImpulse;
+}
+
+// The axial impulse the joint's own warm start applies: without the limits its tree applies.
+float ownAxialImpulse(const Joint& joint) {
+  float impulse = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x;
+  if (!(joint.treeLimits & kLowerLimitBit)) impulse += joint.lowerImpulse;
+  if (!(joint.treeLimits & kUpperLimitBit)) impulse -= joint.upperImpulse;
+  return impulse;
 }
 
 // The coupling of two rows through the bodies' masses: row i's impulse changes row j's speed by
@@ -58,8 +67,9 @@ void solveAcrossRows(const JointFrame& f, const SliderRows& rows, const Softness
 void warmStartSlider(const JointSolverView& view, Joint& joint) {
   const JointFrame f = jointFrame(view, joint);
   const SliderRows rows = sliderRows(f);
+  applyRow(f.a, f.b, rows.along, joint.inTree ? ownAxialImpulse(joint) : axialImpulse(joint));
+  if (joint.inTree) return;
   applyAngularImpulse(f.a, f.b, joint.angularImpulse);
-  applyRow(f.a, f.b, rows.along, axialImpulse(joint));
   applyRow(f.a, f.b, rows.across1, joint.linearImpulse.y);
   applyRow(f.a, f.b, rows.across2, joint.linearImpulse.z);
 }
@@ -71,12 +81,31 @@ void solveSlider(const JointSolverView& view, Joint& joint, float h, float rigid
   const float offset = glm::dot(rows.axis, f.d);
   solveSpring(f, rows.along, offset, joint.spring, h, joint.springImpulse);
   solveMotor(f, rows.along, joint.motor, h, joint.motorImpulse);
+  solveRowFriction(f, rows.along, joint.friction, h, joint.frictionImpulse.x);
   if (joint.limits.enabled) {
-    solveLowerLimit(f, rows.along, offset, joint.limits.lower, soft, h, joint.lowerImpulse);
-    solveUpperLimit(f, rows.along, offset, joint.limits.upper, soft, h, joint.upperImpulse);
+    if (!(joint.treeLimits & kLowerLimitBit))
+      solveLowerLimit(f, rows.along, offset, joint.limits.lower, soft, h, joint.lowerImpulse);
+    if (!(joint.treeLimits & kUpperLimitBit))
+      solveUpperLimit(f, rows.along, offset, joint.limits.upper, soft, h, joint.upperImpulse);
   }
+  if (joint.inTree) return;
   solveRotation(f, soft, joint.angularImpulse);
   solveAcrossRows(f, rows, soft, joint.linearImpulse);
+}
+
+void equalityRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  const SliderRows slider = sliderRows(f);
+  addRotationRows(f, joint, rows);
+  rows.add(slider.across1, glm::dot(slider.across1.linear, f.d), &joint.linearImpulse.y);
+  rows.add(slider.across2, glm::dot(slider.across2.linear, f.d), &joint.linearImpulse.z);
+}
+
+void limitRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  if (!joint.limits.enabled) return;
+  const SliderRows slider = sliderRows(f);
+  const float offset = glm::dot(slider.axis, f.d);
+  rows.add(slider.along, offset - joint.limits.lower, &joint.lowerImpulse, kLowerLimitBit);
+  rows.add(negatedRow(slider.along), joint.limits.upper - offset, &joint.upperImpulse, kUpperLimitBit);
 }
 
 }  // namespace collide::detail

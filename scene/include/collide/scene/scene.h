@@ -57,6 +57,7 @@ struct Constraint {
   JointSoftness softness;
   float breakForce = kUnbreakable;
   float breakTorque = kUnbreakable;
+  float friction = 0.0f;  // ball, cone, hinge: N m; slider: N
   // false: a and b do not collide with each other (the default of every type but distance, which
   // keeps the scene format's first meaning: true)
   bool collideConnected = true;

@@ -1,0 +1,643 @@
+// The direct solve of joint trees (joint_tree.h).
+#include "dynamics/joint_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numeric>
+
+namespace collide::detail {
+
+namespace {
+
+// The rigid rows a joint type holds exactly (its equality rows); 0 for a type the tree does not take.
+int equalityRowCount(const Joint& joint) {
+  if (joint.softness.hertz > 0.0f) return 0;
+  switch (joint.type) {
+    case JointType::Ball:
+    case JointType::Cone:
+      return 3;
+    case JointType::Hinge:
+    case JointType::Slider:
+      return 5;
+    case JointType::Fixed:
+      return joint.angularSoftness.hertz > 0.0f ? 0 : 6;
+    case JointType::Distance:
+      return 0;
+  }
+  return 0;
+}
+
+void equalityRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  rows.count = 0;
+  switch (joint.type) {
+    case JointType::Ball:
+      equalityRowsBall(f, joint, rows);
+      break;
+    case JointType::Hinge:
+      equalityRowsHinge(f, joint, rows);
+      break;
+    case JointType::Slider:
+      equalityRowsSlider(f, joint, rows);
+      break;
+    case JointType::Fixed:
+      equalityRowsFixed(f, joint, rows);
+      break;
+    case JointType::Cone:
+      equalityRowsCone(f, joint, rows);
+      break;
+    case JointType::Distance:
+      break;
+  }
+}
+
+// The limit rows a joint type can add to its tree (at most), and those it has now.
+int limitRowCapacity(const Joint& joint) {
+  switch (joint.type) {
+    case JointType::Hinge:
+    case JointType::Slider:
+      return 2;
+    case JointType::Cone:
+      return 3;
+    default:
+      return 0;
+  }
+}
+
+void limitRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+  switch (joint.type) {
+    case JointType::Hinge:
+      limitRowsHinge(f, joint, rows);
+      break;
+    case JointType::Slider:
+      limitRowsSlider(f, joint, rows);
+      break;
+    case JointType::Cone:
+      limitRowsCone(f, joint, rows);
+      break;
+    default:
+      break;
+  }
+}
+
+// The solver body a joint's end gives the tree: a dynamic rigid body the step moves. Static,
+// kinematic and sleeping bodies are the ground the tree hangs from; a particle has no rotation for
+// the rows' angular part, and its joints stay in the Gauss-Seidel passes.
+std::int32_t treeBody(const JointSolverView& view, std::uint32_t body) {
+  const std::int32_t j = view.solverOf[body];
+  if (j == kNoSolverBody) return -1;
+  const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
+  return info.dynamic && !info.particle && !info.faulted ? j : -1;
+}
+
+std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t i) {
+  while (parent[static_cast<std::size_t>(i)] != i) {
+    parent[static_cast<std::size_t>(i)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    i = parent[static_cast<std::size_t>(i)];
+  }
+  return i;
+}
+
+// Row i of a joint's Jacobian on one of its bodies: (linear, angular) on body B, minus on body A.
+void jacobianRow(const JointRow& row, bool onB, double out[6]) {
+  const double sign = onB ? 1.0 : -1.0;
+  const Vec3& angular = onB ? row.angularB : row.angularA;
+  for (int k = 0; k < 3; ++k) {
+    out[k] = sign * row.linear[k];
+    out[3 + k] = sign * angular[k];
+  }
+}
+
+// In place inverse of the n x n matrix a (row-major), Gauss-Jordan with partial pivoting; false if
+// a pivot falls below a relative tolerance (rows that lost their rank). The body nodes' matrices are
+// symmetric but indefinite once a ground joint's rows join them, hence the pivoting.
+bool invert(double* a, int n) {
+  int pivotOf[kMaxNodeSize];
+  double scale = 0.0;
+  for (int i = 0; i < n * n; ++i) scale = std::max(scale, std::abs(a[i]));
+  if (!(scale > 0.0) || !std::isfinite(scale)) return false;
+  const double tolerance = 1e-12 * scale;
+  // Work on [a | I] folded into a: the classic in-place variant with column swaps undone at the end.
+  for (int col = 0; col < n; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < n; ++r) {
+      if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
+    }
+    pivotOf[col] = pivot;
+    if (!(std::abs(a[pivot * n + col]) > tolerance)) return false;
+    if (pivot != col) {
+      for (int k = 0; k < n; ++k) std::swap(a[col * n + k], a[pivot * n + k]);
+    }
+    const double inverse = 1.0 / a[col * n + col];
+    a[col * n + col] = 1.0;
+    for (int k = 0; k < n; ++k) a[col * n + k] *= inverse;
+    for (int r = 0; r < n; ++r) {
+      if (r == col) continue;
+      const double factor = a[r * n + col];
+      if (factor == 0.0) continue;
+      a[r * n + col] = 0.0;
+      for (int k = 0; k < n; ++k) a[r * n + k] -= factor * a[col * n + k];
+    }
+  }
+  for (int col = n - 1; col >= 0; --col) {
+    const int pivot = pivotOf[col];
+    if (pivot == col) continue;
+    for (int r = 0; r < n; ++r) std::swap(a[r * n + col], a[r * n + pivot]);
+  }
+  return true;
+}
+
+}  // namespace
+
+void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints) {
+  entries_.clear();
+  nodes_.clear();
+  treeStart_.clear();
+  const std::size_t bodyCount = view.bodies.size();
+  parentOf_.resize(bodyCount);
+  std::iota(parentOf_.begin(), parentOf_.end(), 0);
+  groundJoint_.assign(bodyCount, -1);
+  grounded_.assign(bodyCount, 0);
+  adjacencyStart_.assign(bodyCount + 1, 0);
+
+  // The forest, in joint order: a joint between two trees joins them, one within a tree closes a
+  // loop and stays Gauss-Seidel. The ground counts as a body of each tree, once: a tree's first
+  // joint to the ground joins its body's node, and a second (or a joint between two grounded trees)
+  // closes a loop through the ground. Loops are where rows can be redundant (a bridge of parallel
+  // hinges between two posts repeats its out-of-plane rows three times), which no pivot survives.
+  for (std::uint32_t i = 0; i < joints.size(); ++i) {
+    Joint& joint = joints[i];
+    joint.inTree = false;
+    joint.treeLimits = 0;
+    if (!joint.active || equalityRowCount(joint) == 0) continue;
+    const std::int32_t a = treeBody(view, joint.bodyA);
+    const std::int32_t b = treeBody(view, joint.bodyB);
+    if (a == b) continue;  // both ground
+    if (a < 0 || b < 0) {
+      const std::int32_t body = a < 0 ? b : a;
+      const std::int32_t root = findRoot(parentOf_, body);
+      if (grounded_[static_cast<std::size_t>(root)]) continue;
+      grounded_[static_cast<std::size_t>(root)] = 1;
+      groundJoint_[static_cast<std::size_t>(body)] = static_cast<std::int32_t>(entries_.size());
+    } else {
+      const std::int32_t rootA = findRoot(parentOf_, a);
+      const std::int32_t rootB = findRoot(parentOf_, b);
+      if (rootA == rootB) continue;
+      if (grounded_[static_cast<std::size_t>(rootA)] && grounded_[static_cast<std::size_t>(rootB)]) continue;
+      const std::int32_t merged = std::min(rootA, rootB);
+      parentOf_[static_cast<std::size_t>(std::max(rootA, rootB))] = merged;
+      grounded_[static_cast<std::size_t>(merged)] |=
+          grounded_[static_cast<std::size_t>(std::max(rootA, rootB))];
+      ++adjacencyStart_[static_cast<std::size_t>(a) + 1];
+      ++adjacencyStart_[static_cast<std::size_t>(b) + 1];
+    }
+    joint.inTree = true;
+    Entry& entry = entries_.emplace_back();
+    entry.joint = i;
+    entry.bodyA = a;
+    entry.bodyB = b;
+  }
+  if (entries_.empty()) return;
+
+  // Each body's tree joints (entries), in entry order.
+  for (std::size_t s = 0; s < bodyCount; ++s) adjacencyStart_[s + 1] += adjacencyStart_[s];
+  adjacency_.assign(adjacencyStart_[bodyCount], 0);
+  {
+    std::vector<std::uint32_t> fill(adjacencyStart_.begin(), adjacencyStart_.end() - 1);
+    for (std::uint32_t e = 0; e < entries_.size(); ++e) {
+      const std::int32_t a = entries_[e].bodyA;
+      const std::int32_t b = entries_[e].bodyB;
+      if (a < 0 || b < 0) continue;
+      adjacency_[fill[static_cast<std::size_t>(a)]++] = e;
+      adjacency_[fill[static_cast<std::size_t>(b)]++] = e;
+    }
+  }
+
+  // Each tree from its lowest solver body, breadth first; reversed, children come before parents.
+  bodyNode_.assign(bodyCount, -1);
+  std::vector<Node> order;
+  std::vector<std::int32_t> entryNode(entries_.size(), -1);
+  for (std::size_t root = 0; root < bodyCount; ++root) {
+    const bool hasJoints = adjacencyStart_[root + 1] > adjacencyStart_[root] || groundJoint_[root] >= 0;
+    if (!hasJoints || bodyNode_[root] >= 0) continue;
+    order.clear();
+    Node rootNode;
+    rootNode.body = static_cast<std::int32_t>(root);
+    bodyNode_[root] = 0;
+    order.push_back(rootNode);
+    for (std::size_t next = 0; next < order.size(); ++next) {
+      const Node node = order[next];
+      if (node.body < 0) {
+        // A joint node: its other body is its child.
+        const std::int32_t a = entries_[static_cast<std::size_t>(node.joint)].bodyA;
+        const std::int32_t b = entries_[static_cast<std::size_t>(node.joint)].bodyB;
+        const std::int32_t child = bodyNode_[static_cast<std::size_t>(a)] < 0 ? a : b;
+        Node body;
+        body.body = child;
+        body.parent = static_cast<std::int32_t>(next);
+        bodyNode_[static_cast<std::size_t>(child)] = static_cast<std::int32_t>(order.size());
+        order.push_back(body);
+        continue;
+      }
+      const std::size_t s = static_cast<std::size_t>(node.body);
+      for (std::uint32_t k = adjacencyStart_[s]; k < adjacencyStart_[s + 1]; ++k) {
+        const std::uint32_t e = adjacency_[k];
+        if (entryNode[e] >= 0) continue;  // the joint to the parent
+        Node joint;
+        joint.joint = static_cast<std::int32_t>(e);
+        joint.parent = static_cast<std::int32_t>(next);
+        entryNode[e] = static_cast<std::int32_t>(order.size());
+        order.push_back(joint);
+      }
+    }
+    // Reverse into nodes_: index i of order becomes first + (count - 1 - i).
+    const std::uint32_t first = static_cast<std::uint32_t>(nodes_.size());
+    const std::int32_t count = static_cast<std::int32_t>(order.size());
+    treeStart_.push_back(first);
+    for (std::int32_t i = count - 1; i >= 0; --i) {
+      Node node = order[static_cast<std::size_t>(i)];
+      if (node.parent >= 0) node.parent = static_cast<std::int32_t>(first) + (count - 1 - node.parent);
+      if (node.body >= 0) {
+        node.joint = groundJoint_[static_cast<std::size_t>(node.body)];
+        bodyNode_[static_cast<std::size_t>(node.body)] = static_cast<std::int32_t>(nodes_.size());
+      }
+      const std::int32_t index = static_cast<std::int32_t>(nodes_.size());
+      if (node.joint >= 0) entries_[static_cast<std::size_t>(node.joint)].node = index;
+      nodes_.push_back(node);
+    }
+  }
+  treeStart_.push_back(static_cast<std::uint32_t>(nodes_.size()));
+
+  // Sizes and offsets.
+  std::uint32_t matrices = 0;
+  std::uint32_t vectors = 0;
+  for (Node& node : nodes_) {
+    int rows = 0;
+    if (node.joint >= 0) {
+      const Joint& joint = joints[entries_[static_cast<std::size_t>(node.joint)].joint];
+      rows = equalityRowCount(joint) + limitRowCapacity(joint);
+    }
+    node.capacity = node.body >= 0 ? 6 + rows : rows;
+  }
+  for (Node& node : nodes_) {
+    const int parentCapacity = node.parent >= 0 ? nodes_[static_cast<std::size_t>(node.parent)].capacity : 0;
+    node.matrix = matrices;
+    matrices += static_cast<std::uint32_t>(node.capacity * node.capacity);
+    node.coupling = matrices;
+    matrices += static_cast<std::uint32_t>(node.capacity * parentCapacity);
+    node.vector = vectors;
+    vectors += static_cast<std::uint32_t>(node.capacity);
+  }
+  matrices_.resize(matrices);
+  addedInertia_.resize(bodyCount);
+  effectiveInverseInertia_.resize(bodyCount);
+  for (const Node& node : nodes_) {
+    if (node.body >= 0)
+      effectiveInverseInertia_[static_cast<std::size_t>(node.body)] =
+          view.infos[static_cast<std::size_t>(node.body)].inverseInertiaWorld;
+  }
+  rhs_.resize(vectors);
+  solution_.resize(vectors);
+}
+
+// The rows of every tree joint at the current pose: its equality rows and the limits the tree
+// takes this pass. At the warm start, the limits it took in the last pass (their impulses are the
+// tree's to apply); in a solve pass, each limit reached (at or past it) or still pushing (its
+// impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
+void JointTree::buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, bool warmStart) {
+  EqualityRows candidates;
+  for (Entry& entry : entries_) {
+    Joint& joint = joints[entry.joint];
+    entry.frame = jointFrame(view, joint);
+    equalityRows(entry.frame, joint, entry.rows);
+    if (!joint.inTree || limitRowCapacity(joint) == 0) {
+      joint.treeLimits = 0;
+      continue;
+    }
+    candidates.count = 0;
+    limitRows(entry.frame, joint, candidates);
+    std::uint8_t taken = 0;
+    for (int i = 0; i < candidates.count; ++i) {
+      const EqualityRow& row = candidates.rows[static_cast<std::size_t>(i)];
+      const bool take =
+          warmStart ? (joint.treeLimits & row.limitBit) != 0 : row.error <= 0.0f || *row.accumulated > 0.0f;
+      if (!take) continue;
+      entry.rows.rows[static_cast<std::size_t>(entry.rows.count++)] = row;
+      taken |= row.limitBit;
+    }
+    joint.treeLimits = taken;
+  }
+  addGeometricStiffness(view, joints, h);
+}
+
+// Drops the limit rows of a tree whose impulse would pull (the solve's total below 0): those
+// limits are not reached after all. False if none was.
+bool JointTree::dropPullingLimits(std::vector<Joint>& joints, std::size_t first, std::size_t last,
+                                  const Softness& soft) {
+  bool dropped = false;
+  for (std::size_t n = first; n < last; ++n) {
+    const Node& node = nodes_[n];
+    if (node.joint < 0) continue;
+    Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+    const double* lambda = solution_.data() + node.vector + (node.body >= 0 ? 6 : 0);
+    int kept = 0;
+    for (int i = 0; i < entry.rows.count; ++i) {
+      EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+      const float total =
+          *row.accumulated + soft.massScale * float(lambda[i]) - soft.impulseScale * *row.accumulated;
+      if (row.limitBit != 0 && total < 0.0f) {
+        joints[entry.joint].treeLimits &= static_cast<std::uint8_t>(~row.limitBit);
+        dropped = true;
+        continue;
+      }
+      entry.rows.rows[static_cast<std::size_t>(kept++)] = row;
+    }
+    entry.rows.count = kept;
+  }
+  return dropped;
+}
+
+// A light body pulled hard at an anchor off its centre (a chain link under a heavy load) swings
+// back into line as a spring of stiffness |f| |r| about the axes across r: the load f turns with the
+// body (the geometric stiffness of the joint force). Under a 1000 N load a 0.1 kg link does so at
+// over 1000 rad/s, which the rows linearised at the substep's start overshoot whenever that rate
+// times h passes 2: the link turns further each substep and the chain tears (a 100 kg ball under
+// 20 such links). Tournier et al. ("Stable Constrained Dynamics", 2015) take the stiffness into
+// the system implicitly; its share of the substep's inertia, h^2 |f| |r| (1 - r r^T / |r|^2), with f
+// the last substep's load, is what the tree's bodies get here. It is inertia only across the
+// anchor's lever, at most a substep's worth: nothing for an unloaded joint, negligible for a limb
+// carrying its weight, and it vanishes as h does. The tree's warm start and velocity passes turn
+// the bodies through it; the joints' internal impulses still cancel, so momentum is kept. The
+// projection uses the bodies' own inertia: through the stiffened one, its Newton steps after a
+// plank chain's hard landing moved the planks off their rows instead of onto them.
+void JointTree::addGeometricStiffness(const JointSolverView& view, std::vector<Joint>& joints, float h) {
+  for (const Node& node : nodes_) {
+    if (node.body < 0) continue;
+    const std::size_t body = static_cast<std::size_t>(node.body);
+    addedInertia_[body] = Mat3(0.0f);
+  }
+  const auto add = [&](std::int32_t body, const Vec3& r, float impulse) {
+    if (body < 0) return;
+    const float lever = glm::length(r);
+    if (!(lever > 0.0f) || !(impulse > 0.0f)) return;
+    const Vec3 n = r / lever;
+    addedInertia_[static_cast<std::size_t>(body)] +=
+        (h * impulse * lever) * (Mat3(1.0f) - glm::outerProduct(n, n));
+  };
+  for (const Entry& entry : entries_) {
+    const Joint& joint = joints[entry.joint];
+    if (joint.type == JointType::Slider) continue;  // its linear rows hold no point
+    const float impulse = glm::length(joint.linearImpulse);
+    add(entry.bodyA, entry.frame.rA, impulse);
+    add(entry.bodyB, entry.frame.rB, impulse);
+  }
+  for (const Node& node : nodes_) {
+    if (node.body < 0) continue;
+    const std::size_t body = static_cast<std::size_t>(node.body);
+    const Mat3& inverse = view.infos[body].inverseInertiaWorld;
+    effectiveInverseInertia_[body] = addedInertia_[body] == Mat3(0.0f)
+                                         ? inverse
+                                         : glm::inverse(glm::inverse(inverse) + addedInertia_[body]);
+  }
+  for (Entry& entry : entries_) {
+    if (entry.bodyA >= 0)
+      entry.frame.a.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyA)];
+    if (entry.bodyB >= 0)
+      entry.frame.b.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyB)];
+  }
+}
+
+void JointTree::warmStart(const JointSolverView& view, std::vector<Joint>& joints, float h) {
+  if (entries_.empty()) return;
+  buildRows(view, joints, h, true);
+  for (Entry& entry : entries_) {
+    if (!joints[entry.joint].inTree) continue;
+    for (int i = 0; i < entry.rows.count; ++i) {
+      const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+      applyRow(entry.frame.a, entry.frame.b, row.row, *row.accumulated);
+    }
+  }
+}
+
+void JointTree::solve(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
+                      bool useBias) {
+  if (entries_.empty()) return;
+  h_ = h;
+  buildRows(view, joints, h, false);
+  const Softness soft = rowSoftness(JointSoftness{}, rigidHertz, h, useBias);
+  for (std::size_t t = 0; t + 1 < treeStart_.size(); ++t) {
+    const std::size_t first = treeStart_[t];
+    const std::size_t last = treeStart_[t + 1];
+    bool solved = false;
+    for (int round = 0; round < kLimitRounds; ++round) {
+      solved = fillTree(view, first, last, soft.biasRate, false) && factorTree(first, last);
+      if (!solved) break;
+      solveTree(first, last);
+      if (round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
+    }
+    for (std::size_t n = first; n < last; ++n) {
+      if (nodes_[n].joint < 0) continue;
+      Joint& joint = joints[entries_[static_cast<std::size_t>(nodes_[n].joint)].joint];
+      joint.inTree = solved;
+      if (!solved) joint.treeLimits = 0;
+    }
+    if (!solved) continue;
+    forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
+      float impulse = soft.massScale * float(lambda) - soft.impulseScale * *row.accumulated;
+      // A limit still pulling after the last round: held at zero, as the Gauss-Seidel row would.
+      if (row.limitBit != 0) impulse = std::max(impulse, -*row.accumulated);
+      *row.accumulated += impulse;
+      applyRow(entry.frame.a, entry.frame.b, row.row, impulse);
+    });
+  }
+}
+
+void JointTree::project(const JointSolverView& view, std::vector<Joint>& joints) {
+  if (entries_.empty()) return;
+  for (std::size_t t = 0; t + 1 < treeStart_.size(); ++t) {
+    const std::size_t first = treeStart_[t];
+    const std::size_t last = treeStart_[t + 1];
+    for (int iteration = 0; iteration < kTreeProjectionIterations; ++iteration) {
+      buildTreeRows(view, joints, first, last);
+      bool off = false;
+      forEachRow(first, last, [&](Entry&, EqualityRow& row, double) {
+        off = off || !(std::abs(row.error) <= kBallJointGapSlop);
+      });
+      if (!off || !fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
+      solveTree(first, last);
+      forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
+        applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
+      });
+    }
+  }
+}
+
+// The rows of one tree at the current pose (the projection's: bodies with their own inertia).
+void JointTree::buildTreeRows(const JointSolverView& view, std::vector<Joint>& joints, std::size_t first,
+                              std::size_t last) {
+  for (std::size_t n = first; n < last; ++n) {
+    if (nodes_[n].joint < 0) continue;
+    Entry& entry = entries_[static_cast<std::size_t>(nodes_[n].joint)];
+    Joint& joint = joints[entry.joint];
+    entry.frame = jointFrame(view, joint);
+    equalityRows(entry.frame, joint, entry.rows);
+  }
+}
+
+// D of every node of a tree (a body's masses and its ground joint's rows; zero for a joint), H(node,
+// parent) (minus the joint's Jacobian on the body, transposed where the body is the child) and the
+// right-hand side G v + b at the bodies' current velocities. False if a body cannot take part
+// (stopped by the fault guard, or an inertia without an inverse).
+bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
+                         bool positions) {
+  const auto begin = matrices_.begin() + nodes_[first].matrix;
+  const auto end = last < nodes_.size() ? matrices_.begin() + nodes_[last].matrix : matrices_.end();
+  std::fill(begin, end, 0.0);
+  for (std::size_t n = first; n < last; ++n) {
+    Node& node = nodes_[n];
+    const int rows = node.joint >= 0 ? entries_[static_cast<std::size_t>(node.joint)].rows.count : 0;
+    node.size = (node.body >= 0 ? 6 : 0) + rows;
+  }
+  double g[6];
+  for (std::size_t n = first; n < last; ++n) {
+    const Node& node = nodes_[n];
+    double* d = matrices_.data() + node.matrix;
+    double* rhs = rhs_.data() + node.vector;
+    const int size = node.size;
+    int rowsAt = 0;  // where the node's joint rows start among its unknowns
+    if (node.body >= 0) {
+      const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(node.body)];
+      if (info.faulted || !(info.inverseMass > 0.0f)) return false;
+      const glm::dmat3 inverseInertia(positions
+                                          ? info.inverseInertiaWorld
+                                          : effectiveInverseInertia_[static_cast<std::size_t>(node.body)]);
+      if (!(std::abs(glm::determinant(inverseInertia)) > 0.0)) return false;
+      const glm::dmat3 inertia = glm::inverse(inverseInertia);
+      const double mass = 1.0 / double(info.inverseMass);
+      for (int k = 0; k < 3; ++k) {
+        d[k * size + k] = mass;
+        for (int c = 0; c < 3; ++c) d[(3 + k) * size + 3 + c] = inertia[c][k];
+      }
+      for (int k = 0; k < 6; ++k) rhs[k] = 0.0;
+      rowsAt = 6;
+    }
+    if (node.joint >= 0) {
+      const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+      for (int i = 0; i < entry.rows.count; ++i) {
+        const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+        const double speed = positions ? 0.0 : double(rowSpeed(entry.frame.a, entry.frame.b, row.row));
+        // A limit not reached yet is speculative: only the approach that would cross it this
+        // substep (limitImpulse's rule).
+        const double bias = row.limitBit != 0 && row.error > 0.0f ? double(row.error) / double(h_)
+                                                                  : double(biasRate) * double(row.error);
+        rhs[rowsAt + i] = speed + bias;
+        if (node.body < 0) continue;
+        // A ground joint's rows within its body's node: [[M, -G^T], [-G, 0]].
+        jacobianRow(row.row, entry.bodyB == node.body, g);
+        for (int k = 0; k < 6; ++k) {
+          d[(rowsAt + i) * size + k] = -g[k];
+          d[k * size + rowsAt + i] = -g[k];
+        }
+      }
+    }
+    if (node.parent < 0) continue;
+    const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
+    double* coupling = matrices_.data() + node.coupling;
+    if (node.body >= 0) {
+      // A body under the joint that holds it: H(body, joint) = -G^T, rows 0..5.
+      const Entry& entry = entries_[static_cast<std::size_t>(parent.joint)];
+      for (int i = 0; i < entry.rows.count; ++i) {
+        jacobianRow(entry.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == node.body, g);
+        for (int k = 0; k < 6; ++k) coupling[k * parent.size + i] = -g[k];
+      }
+    } else {
+      // A joint under one of its bodies: H(joint, body) = -G, columns 0..5.
+      const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+      for (int i = 0; i < entry.rows.count; ++i) {
+        jacobianRow(entry.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == parent.body, g);
+        for (int k = 0; k < 6; ++k) coupling[i * parent.size + k] = -g[k];
+      }
+    }
+  }
+  return true;
+}
+
+// Leaves first: D^-1 of each node, its coupling turned into W = D^-1 H(node, parent), and the
+// parent's D less H^T W (the Schur complement; on a tree it touches the parent only).
+bool JointTree::factorTree(std::size_t first, std::size_t last) {
+  double w[kMaxNodeSize * kMaxNodeSize];
+  for (std::size_t n = first; n < last; ++n) {
+    const Node& node = nodes_[n];
+    double* inverse = matrices_.data() + node.matrix;
+    if (!invert(inverse, node.size)) return false;
+    if (node.parent < 0) continue;
+    const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
+    const int rows = node.size;
+    const int cols = parent.size;
+    double* coupling = matrices_.data() + node.coupling;
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        double sum = 0.0;
+        for (int k = 0; k < rows; ++k) sum += inverse[r * rows + k] * coupling[k * cols + c];
+        w[r * cols + c] = sum;
+      }
+    }
+    double* d = matrices_.data() + parent.matrix;
+    for (int r = 0; r < cols; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        double sum = 0.0;
+        for (int k = 0; k < rows; ++k) sum += coupling[k * cols + r] * w[k * cols + c];
+        d[r * cols + c] -= sum;
+      }
+    }
+    std::copy(w, w + rows * cols, coupling);
+  }
+  return true;
+}
+
+// Forward (leaves first) z_parent -= W^T z, then back from the root x = D^-1 z - W x_parent: the
+// rows' impulses, lambda = -K^-1 rhs.
+void JointTree::solveTree(std::size_t first, std::size_t last) {
+  std::copy(rhs_.begin() + nodes_[first].vector,
+            rhs_.begin() + nodes_[last - 1].vector + nodes_[last - 1].size,
+            solution_.begin() + nodes_[first].vector);
+  for (std::size_t n = first; n < last; ++n) {
+    const Node& node = nodes_[n];
+    if (node.parent < 0) continue;
+    const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
+    const double* w = matrices_.data() + node.coupling;
+    const double* z = solution_.data() + node.vector;
+    double* zParent = solution_.data() + parent.vector;
+    for (int c = 0; c < parent.size; ++c) {
+      double sum = 0.0;
+      for (int k = 0; k < node.size; ++k) sum += w[k * parent.size + c] * z[k];
+      zParent[c] -= sum;
+    }
+  }
+  double x[kMaxNodeSize];
+  for (std::size_t n = last; n-- > first;) {
+    const Node& node = nodes_[n];
+    const double* inverse = matrices_.data() + node.matrix;
+    double* z = solution_.data() + node.vector;
+    for (int r = 0; r < node.size; ++r) {
+      double sum = 0.0;
+      for (int k = 0; k < node.size; ++k) sum += inverse[r * node.size + k] * z[k];
+      x[r] = sum;
+    }
+    if (node.parent >= 0) {
+      const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
+      const double* w = matrices_.data() + node.coupling;
+      const double* xParent = solution_.data() + parent.vector;
+      for (int r = 0; r < node.size; ++r) {
+        double sum = 0.0;
+        for (int k = 0; k < parent.size; ++k) sum += w[r * parent.size + k] * xParent[k];
+        x[r] -= sum;
+      }
+    }
+    std::copy(x, x + node.size, z);
+  }
+}
+
+}  // namespace collide::detail

@@ -1,0 +1,125 @@
+// The direct solve of joint trees (Baraff, "Linear-Time Dynamics using Lagrange Multipliers",
+// SIGGRAPH 1996). Gauss-Seidel passes information one joint per pass, so a heavy body at the end of
+// a light chain, a bridge under a load or a ragdoll's limbs stretch their joints until the passes
+// catch up. Solved as one system, the rigid rows of a tree of joints are met exactly in each pass,
+// whatever the masses.
+//
+// The system of a pass, for the velocity change dv of the bodies and the impulses lambda of the
+// rows (M the bodies' masses, G the rows' Jacobian, v the velocities, b the position bias):
+//   [ M  -G^T ] [ dv     ]   [ 0      ]
+//   [ -G   0  ] [ lambda ] = [ Gv + b ]
+// Its graph has a node per body and per joint, an edge where a joint holds a body. On a tree,
+// eliminating the nodes leaves first (children before parents) makes no fill: a block LDL^T in
+// time linear in the nodes. A joint to a static or kinematic body has one body node; its rows join
+// that body's node (a joint node with no child would have a zero pivot). A joint that closes a
+// loop (through the ground too: a tree hangs from it by one joint at most), a soft joint and a
+// distance joint stay in the Gauss-Seidel passes (joint_solver.h), as do every joint's springs,
+// motors and limits.
+//
+// The solution lambda is the rows' whole impulse for the pass; the soft step applies
+// massScale * lambda - impulseScale * accumulated, the rule of every soft row (contact_solver.h)
+// with the tree's coupled effective mass in place of the row's own.
+#pragma once
+
+#include "dynamics/joint_solver.h"
+#include "dynamics/joints/joint_rows.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace collide::detail {
+
+// Newton steps of the projection at most, each from the rows at the pose the last one left.
+inline constexpr int kTreeProjectionIterations = 4;
+// Solves of a pass at most: after each, the limits whose impulse would pull leave the tree.
+inline constexpr int kLimitRounds = 3;
+// A node's unknowns at most: a body's six and a ground joint's rows with its limits.
+inline constexpr int kMaxNodeSize = 6 + kMaxJointTreeRows;
+
+class JointTree {
+ public:
+  // Once per step, after prepareJoints: the forest of the active rigid joints and its order.
+  void prepare(const JointSolverView& view, std::vector<Joint>& joints);
+  // Per substep, after warmStartJoints (which leaves a tree joint's rigid rows out): the rows'
+  // accumulated impulses applied, through the inertia the tree's bodies solve with.
+  void warmStart(const JointSolverView& view, std::vector<Joint>& joints, float h);
+  // One pass (useBias as in solveJoints): each tree's rows at the bodies' current pose, factored and
+  // solved, the impulses applied. A tree whose factor fails (rows that lost their rank) hands its
+  // joints to the Gauss-Seidel pass that follows (Joint::inTree false for that pass).
+  void solve(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
+             bool useBias);
+
+  // After the position update: a tree whose rows are off by more than kBallJointGapSlop (m or rad)
+  // is moved back onto them by Newton steps on positions through the same system, K lambda = -C
+  // (post-stabilisation, Cline and Pai 2003), with the bodies' own inertia. Velocities are not
+  // touched. A whipping chain opens its joints by the curvature of its links' paths, which no
+  // velocity row sees.
+  void project(const JointSolverView& view, std::vector<Joint>& joints);
+
+  // Joints solved in trees this step (for tests and statistics).
+  std::size_t jointCount() const { return entries_.size(); }
+
+ private:
+  struct Node {
+    std::int32_t body = -1;    // solver body of a body node, -1 for a joint node
+    std::int32_t joint = -1;   // entry in entries_ of a joint node, or of a body node's ground joint
+    std::int32_t parent = -1;  // node index, -1 for a root
+    int size = 0;      // this pass's unknowns: 6 (+ the ground joint's rows) for a body, the rows for a joint
+    int capacity = 0;  // the most it can have (every limit taken); its blocks are laid out for it
+    std::uint32_t matrix = 0;    // offset of D, then D^-1 (size x size) in matrices_
+    std::uint32_t coupling = 0;  // offset of H(node, parent), then D^-1 H (size x parent's size)
+    std::uint32_t vector = 0;    // offset of the node's unknowns in rhs_ and solution_
+  };
+  struct Entry {
+    std::uint32_t joint = 0;  // index in the world's joints
+    std::int32_t node = -1;   // its joint node, or the body node whose ground joint it is
+    std::int32_t bodyA = -1;  // its bodies' solver bodies in the tree, -1 for the ground
+    std::int32_t bodyB = -1;
+    EqualityRows rows;  // this pass's rows
+    JointFrame frame;   // this pass's bodies and frame
+  };
+
+  // The right-hand side: G v + biasRate C for a velocity pass, C alone for the projection.
+  bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
+                bool positions);
+  void buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, bool warmStart);
+  bool dropPullingLimits(std::vector<Joint>& joints, std::size_t first, std::size_t last,
+                         const Softness& soft);
+  void addGeometricStiffness(const JointSolverView& view, std::vector<Joint>& joints, float h);
+  void buildTreeRows(const JointSolverView& view, std::vector<Joint>& joints, std::size_t first,
+                     std::size_t last);
+  bool factorTree(std::size_t first, std::size_t last);
+  void solveTree(std::size_t first, std::size_t last);
+  // f(entry, row, lambda) for every row of the tree's joints, lambda from the last solveTree.
+  template <typename F>
+  void forEachRow(std::size_t first, std::size_t last, F&& f) {
+    for (std::size_t n = first; n < last; ++n) {
+      const Node& node = nodes_[n];
+      if (node.joint < 0) continue;
+      Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+      const double* lambda = solution_.data() + node.vector + (node.body >= 0 ? 6 : 0);
+      for (int i = 0; i < entry.rows.count; ++i)
+        f(entry, entry.rows.rows[static_cast<std::size_t>(i)], lambda[i]);
+    }
+  }
+
+  float h_ = 0.0f;  // the substep of the last solve pass
+  std::vector<Entry> entries_;
+  std::vector<Node> nodes_;               // per tree, in elimination order (leaves first, root last)
+  std::vector<std::uint32_t> treeStart_;  // tree t's nodes: [treeStart_[t], treeStart_[t + 1])
+  std::vector<double> matrices_;
+  std::vector<double> rhs_;
+  std::vector<double> solution_;
+  // prepare's scratch
+  std::vector<std::int32_t> parentOf_;
+  std::vector<std::int32_t> groundJoint_;
+  std::vector<std::uint8_t> grounded_;  // per union-find root: the tree hangs from the ground
+  std::vector<std::uint32_t> adjacencyStart_;
+  std::vector<std::uint32_t> adjacency_;
+  std::vector<std::int32_t> bodyNode_;
+  // Per solver body of a tree: the inertia its loads add this pass, and its inverse inertia with it.
+  std::vector<Mat3> addedInertia_;
+  std::vector<Mat3> effectiveInverseInertia_;
+};
+
+}  // namespace collide::detail
