@@ -7,6 +7,14 @@
 //  - Inertia: Bullet's own (calculateLocalInertia: exact for boxes and spheres, the bounding box's
 //    for a hull), as Bullet users get it by default.
 //  - Margins: Bullet's defaults (0.04 m around hulls, inside boxes, none on triangle meshes).
+//  - Joints: ball -> btPoint2PointConstraint, hinge -> btHingeConstraint (limits, motor; friction as
+//    a motor at rest), cone -> btConeTwistConstraint (swing and twist spans; Bullet's twist is
+//    symmetric, so the larger of the two limits), slider -> btSliderConstraint, fixed ->
+//    btFixedConstraint; collideConnected false disables the pair's collisions as collide does. A
+//    cone or ball joint's friction and a soft joint have no Bullet counterpart here and are left
+//    out; a distance joint is refused.
+//  - Layers: a scene with layers or masks other than the defaults gives Bullet the same bits as its
+//    collision filter group and mask (both engines test them both ways).
 //  - Materials: Bullet multiplies the two bodies' friction (and restitution). The scene's pair
 //    values (e.g. friction 0.5 per pair, averaged) are reproduced by giving every dynamic body
 //    sqrt(pair value) and every static body pairValue(dynamic, static) / sqrt(dynamic pair value);
@@ -14,11 +22,13 @@
 //    refused with an Error instead of being silently approximated.
 #include "engines.h"
 
+#include <collide/body.h>
 #include <collide/error.h>
 #include <collide/shapes.h>
 
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -79,6 +89,7 @@ struct BulletWorld {
   std::vector<std::vector<int>> meshIndices;
   std::vector<std::unique_ptr<btRigidBody>> bodies;  // per scene body
   std::vector<Vec3> localCenters;                    // per scene body: centre of mass in the shape frame
+  std::vector<std::unique_ptr<btTypedConstraint>> constraints;
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;
@@ -170,6 +181,83 @@ class ShapeMaker {
 
 namespace {
 
+// A joint frame at `anchor` whose x axis is `axis` (world), in a body's centre-of-mass frame.
+btTransform frameIn(const btRigidBody& body, const Vec3& anchor, const Vec3& axis) {
+  const Vec3 x = glm::normalize(axis);
+  const Vec3 helper = std::abs(x.x) < 0.9f ? Vec3(1.0f, 0.0f, 0.0f) : Vec3(0.0f, 1.0f, 0.0f);
+  const Vec3 y = glm::normalize(glm::cross(helper, x));
+  const Vec3 z = glm::cross(x, y);
+  const btMatrix3x3 basis(x.x, y.x, z.x, x.y, y.y, z.y, x.z, y.z, z.z);
+  return body.getWorldTransform().inverse() * btTransform(basis, toBt(anchor));
+}
+
+void addConstraints(const scene::Scene& scene, BulletWorld& w) {
+  std::map<std::string, std::size_t, std::less<>> index;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) index[scene.bodies[i].def.name] = i;
+  const btScalar substep = scene.dt;  // Bullet's one internal step per frame
+  for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
+    const scene::Constraint& c = scene.constraints[k];
+    btRigidBody& a = *w.bodies[index.at(c.a)];
+    btRigidBody& b = *w.bodies[index.at(c.b)];
+    const std::string who = scene.source + ": Bullet side: constraints[" + std::to_string(k) + "]: ";
+    if (c.softness.hertz > 0.0f) throw Error(who + "soft joints are not translated");
+    const Vec3 anchor = c.anchor ? *c.anchor : fromBt(b.getCenterOfMassPosition());
+    std::unique_ptr<btTypedConstraint> joint;
+    switch (c.type) {
+      case JointType::Distance:
+        throw Error(who + "distance joints are not translated");
+      case JointType::Ball:
+        joint =
+            std::make_unique<btPoint2PointConstraint>(a, b, a.getWorldTransform().inverse() * toBt(anchor),
+                                                      b.getWorldTransform().inverse() * toBt(anchor));
+        break;
+      case JointType::Hinge: {
+        const btTransform fa = frameIn(a, anchor, c.axis), fb = frameIn(b, anchor, c.axis);
+        auto hinge = std::make_unique<btHingeConstraint>(
+            a, b, fa.getOrigin(), fb.getOrigin(), fa.getBasis().getColumn(0), fb.getBasis().getColumn(0));
+        if (c.limits.enabled) hinge->setLimit(c.limits.lower, c.limits.upper);
+        if (c.motor.enabled) {
+          hinge->enableAngularMotor(true, c.motor.speed, c.motor.maxForce * substep);
+        } else if (c.friction > 0.0f) {
+          hinge->enableAngularMotor(true, 0.0f, c.friction * substep);
+        }
+        joint = std::move(hinge);
+        break;
+      }
+      case JointType::Cone: {
+        auto cone = std::make_unique<btConeTwistConstraint>(a, b, frameIn(a, anchor, c.axis),
+                                                            frameIn(b, anchor, c.axis));
+        const float twist =
+            c.limits.enabled ? std::max(std::abs(c.limits.lower), std::abs(c.limits.upper)) : kPi;
+        cone->setLimit(c.swing, c.swing, twist);
+        joint = std::move(cone);
+        break;
+      }
+      case JointType::Slider: {
+        auto slider = std::make_unique<btSliderConstraint>(a, b, frameIn(a, anchor, c.axis),
+                                                           frameIn(b, anchor, c.axis), true);
+        slider->setLowerLinLimit(c.limits.enabled ? c.limits.lower : 1.0f);
+        slider->setUpperLinLimit(c.limits.enabled ? c.limits.upper : -1.0f);  // lower > upper: free
+        slider->setLowerAngLimit(0.0f);
+        slider->setUpperAngLimit(0.0f);
+        if (c.motor.enabled) {
+          slider->setPoweredLinMotor(true);
+          slider->setTargetLinMotorVelocity(c.motor.speed);
+          slider->setMaxLinMotorForce(c.motor.maxForce);
+        }
+        joint = std::move(slider);
+        break;
+      }
+      case JointType::Fixed:
+        joint = std::make_unique<btFixedConstraint>(a, b, frameIn(a, anchor, Vec3(1, 0, 0)),
+                                                    frameIn(b, anchor, Vec3(1, 0, 0)));
+        break;
+    }
+    w.world.addConstraint(joint.get(), !c.collideConnected);
+    w.constraints.push_back(std::move(joint));
+  }
+}
+
 // The scene in Bullet: every body with its shape, mass, friction and restitution.
 std::unique_ptr<BulletWorld> buildBullet(const scene::Scene& scene) {
   auto w = std::make_unique<BulletWorld>();
@@ -181,6 +269,9 @@ std::unique_ptr<BulletWorld> buildBullet(const scene::Scene& scene) {
       productValues(scene, scene.world.bouncinessCombine, &BodyDef::bounciness, "bounciness");
   ShapeMaker maker(*w);
   w->localCenters.resize(scene.bodies.size());
+  bool filtered = false;
+  for (const scene::Body& b : scene.bodies)
+    filtered = filtered || b.def.layer != 1 || b.def.mask != kAllLayers;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDef& def = scene.bodies[i].def;
     if (def.type == BodyType::Kinematic)
@@ -202,8 +293,16 @@ std::unique_ptr<BulletWorld> buildBullet(const scene::Scene& scene) {
       body->setLinearVelocity(toBt(def.linearVelocity));
       body->setAngularVelocity(toBt(def.angularVelocity));
     }
-    w->world.addRigidBody(body.get());
+    if (filtered) {
+      if (def.group != 0)
+        throw Error(scene.source + ": Bullet side: body '" + def.name +
+                    "': collision groups are not translated");
+      w->world.addRigidBody(body.get(), static_cast<int>(def.layer), static_cast<int>(def.mask));
+    } else {
+      w->world.addRigidBody(body.get());
+    }
   }
+  addConstraints(scene, *w);
   return w;
 }
 

@@ -113,7 +113,7 @@ Json bridge() {
 // range (radians), with a little friction (3 N m), as a body's joints have: without it a limb
 // resting on a stair edge rocks on for ever. Neighbours do not collide; other limbs do.
 void addRagdoll(Json& bodies, Json& constraints, const std::string& tag, double x, double y, double z) {
-  constexpr double kJointFriction = 3.0;
+  constexpr double kJointFriction = 3.0;  // N m
   const auto at = [&](double dx, double dy, double dz) { return vec(x + dx, y + dy, z + dz); };
   const auto limb = [&](const std::string& part, Json shape, const Json& position) {
     bodies.push_back(body(tag + part, "dynamic", std::move(shape), position));
@@ -225,6 +225,64 @@ Json machine() {
     Json crate = body("crate_" + std::to_string(k), "dynamic", box(0.15, 0.15, 0.15),
                       vec(3.7 + 0.3 * k, 0.41 + 0.31 * k, 0));
     bodies.push_back(crate);
+  }
+  return doc;
+}
+
+// Box2D v3's and Box3D's joint_grid benchmark in 3D: a 100 x 100 grid of 1 kg spheres (0.4 m,
+// 1 m apart) in a vertical plane, each joined by ball joints to its neighbours to the left and
+// above, hanging from seven static spheres in the middle of its top row. The spheres do not collide
+// with each other (layer 2, a mask without it): the grid measures the joints alone.
+Json jointGrid() {
+  Json doc = demoDocument();
+  doc["settings"]["steps"] = 600;
+  Json& bodies = doc["bodies"];
+  Json& constraints = doc["constraints"] = Json::array();
+  constexpr int kSide = 100;
+  constexpr double kTop = 100.0;
+  const auto name = [](int column, int row) {
+    return "s_" + std::to_string(column) + "_" + std::to_string(row);
+  };
+  for (int column = 0; column < kSide; ++column) {
+    for (int row = 0; row < kSide; ++row) {
+      const bool pinned = row == 0 && column >= kSide / 2 - 3 && column <= kSide / 2 + 3;
+      Json ball = body(name(column, row), pinned ? "static" : "dynamic", sphere(0.4),
+                       vec(column - kSide / 2, kTop - row, 0));
+      if (!pinned) ball["mass"] = num(1);
+      ball["layer"] = 2;
+      ball["mask"] = 0xFFFFFFFFu & ~2u;
+      bodies.push_back(ball);
+      const bool leftPinned = row == 0 && column - 1 >= kSide / 2 - 3 && column - 1 <= kSide / 2 + 3;
+      if (column > 0 && !(pinned && leftPinned)) {
+        constraints.push_back(joint("ball", name(column - 1, row), name(column, row),
+                                    vec(column - 0.5 - kSide / 2, kTop - row, 0)));
+      }
+      if (row > 0) {
+        constraints.push_back(joint("ball", name(column, row - 1), name(column, row),
+                                    vec(column - kSide / 2, kTop - row + 0.5, 0)));
+      }
+    }
+  }
+  return doc;
+}
+
+// 100 ragdolls (1,100 bodies, 1,000 joints) dropped in a 5 x 5 x 4 stack onto the ground, each
+// tipped by a sideways push so that they tumble into a pile.
+Json ragdollPile() {
+  Json doc = demoDocument();
+  doc["settings"]["steps"] = 600;
+  Json& bodies = doc["bodies"];
+  Json& constraints = doc["constraints"] = Json::array();
+  bodies.push_back(groundBox());
+  for (int k = 0; k < 100; ++k) {
+    const int column = k % 5, rank = (k / 5) % 5, level = k / 25;
+    const std::string tag = "doll_" + std::to_string(k) + "_";
+    const std::size_t first = bodies.size();
+    addRagdoll(bodies, constraints, tag, 1.2 * (column - 2), 0.2 + 2.0 * level, 1.2 * (rank - 2));
+    const double push = 0.5 + 0.25 * (k % 3);
+    for (std::size_t b = first; b < bodies.size(); ++b) {
+      bodies[b]["velocity"] = vec(k % 2 == 0 ? push : -push, 0, k % 4 < 2 ? push : -push);
+    }
   }
   return doc;
 }

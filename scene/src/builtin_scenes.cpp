@@ -23,6 +23,8 @@ Json pendulum();
 Json bridge();
 Json ragdolls();
 Json machine();
+Json jointGrid();
+Json ragdollPile();
 }  // namespace builtin
 
 namespace {
@@ -63,6 +65,10 @@ const std::vector<Entry>& registry() {
        builtin::ragdolls},
       {{"machine", "a motorised windmill of welded blades batting balls, and a lift on a motorised slider"},
        builtin::machine},
+      {{"joint-grid", "Box3D's joint_grid: 10,000 spheres in a 100x100 grid of ball joints, hanging"},
+       builtin::jointGrid},
+      {{"ragdoll-pile", "100 ragdolls (1,100 bodies, 1,000 joints) dropped into a pile"},
+       builtin::ragdollPile},
   };
   return entries;
 }

@@ -44,6 +44,8 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"bridge", 120, 0x5222e231cea3d601},
     {"ragdolls", 120, 0x075a1451c6a2aff5},
     {"machine", 120, 0x294ef790a54a89f7},
+    {"joint-grid", 10, 0x8223a6d4e0ea6d8f},
+    {"ragdoll-pile", 30, 0x2bea2599d5d7d7b3},
 };
 
 std::string hex(std::uint64_t value) {
