@@ -110,43 +110,49 @@ void jacobianRow(const JointRow& row, bool onB, double out[6]) {
   }
 }
 
-// In place inverse of the n x n matrix a (row-major), Gauss-Jordan with partial pivoting; false if
-// a pivot falls below a relative tolerance (rows that lost their rank). The body nodes' matrices are
-// symmetric but indefinite once a ground joint's rows join them, hence the pivoting.
-bool invert(double* a, int n) {
-  int pivotOf[kMaxNodeSize];
+// In place LDL^T of the symmetric n x n matrix a (row-major, lower triangle read): L unit lower
+// below the diagonal, D on it. No pivoting is needed: every node's matrix is quasi-definite, a
+// body's masses (positive definite) and then its ground joint's rows, whose block is negative
+// definite once the body is eliminated, and such a matrix factors stably in any order (Vanderbei,
+// "Symmetric quasi-definite matrices", 1995). False if a pivot falls below a relative tolerance:
+// rows that lost their rank.
+bool factorLdl(double* a, int n) {
   double scale = 0.0;
-  for (int i = 0; i < n * n; ++i) scale = std::max(scale, std::abs(a[i]));
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k <= i; ++k) scale = std::max(scale, std::abs(a[i * n + k]));
+  }
   if (!(scale > 0.0) || !std::isfinite(scale)) return false;
   const double tolerance = 1e-12 * scale;
-  // Work on [a | I] folded into a: the classic in-place variant with column swaps undone at the end.
-  for (int col = 0; col < n; ++col) {
-    int pivot = col;
-    for (int r = col + 1; r < n; ++r) {
-      if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
+  double ld[kMaxNodeSize];  // row j of L times D
+  for (int j = 0; j < n; ++j) {
+    double* rowJ = a + j * n;
+    double pivot = rowJ[j];
+    for (int k = 0; k < j; ++k) {
+      ld[k] = rowJ[k] * a[k * n + k];
+      pivot -= rowJ[k] * ld[k];
     }
-    pivotOf[col] = pivot;
-    if (!(std::abs(a[pivot * n + col]) > tolerance)) return false;
-    if (pivot != col) {
-      for (int k = 0; k < n; ++k) std::swap(a[col * n + k], a[pivot * n + k]);
+    if (!(std::abs(pivot) > tolerance)) return false;
+    rowJ[j] = pivot;
+    const double inversePivot = 1.0 / pivot;
+    for (int i = j + 1; i < n; ++i) {
+      double* rowI = a + i * n;
+      double sum = rowI[j];
+      for (int k = 0; k < j; ++k) sum -= rowI[k] * ld[k];
+      rowI[j] = sum * inversePivot;
     }
-    const double inverse = 1.0 / a[col * n + col];
-    a[col * n + col] = 1.0;
-    for (int k = 0; k < n; ++k) a[col * n + k] *= inverse;
-    for (int r = 0; r < n; ++r) {
-      if (r == col) continue;
-      const double factor = a[r * n + col];
-      if (factor == 0.0) continue;
-      a[r * n + col] = 0.0;
-      for (int k = 0; k < n; ++k) a[r * n + k] -= factor * a[col * n + k];
-    }
-  }
-  for (int col = n - 1; col >= 0; --col) {
-    const int pivot = pivotOf[col];
-    if (pivot == col) continue;
-    for (int r = 0; r < n; ++r) std::swap(a[r * n + col], a[r * n + pivot]);
   }
   return true;
+}
+
+// x = L^-1 x, the columns of the n x cols block x (row-major) in turn.
+void forwardSubstitute(const double* ldl, int n, double* x, int cols) {
+  for (int i = 1; i < n; ++i) {
+    for (int k = 0; k < i; ++k) {
+      const double l = ldl[i * n + k];
+      if (l == 0.0) continue;
+      for (int c = 0; c < cols; ++c) x[i * cols + c] -= l * x[k * cols + c];
+    }
+  }
 }
 
 }  // namespace
@@ -215,12 +221,19 @@ void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints)
     }
   }
 
-  // Each tree from its lowest solver body, breadth first; reversed, children come before parents.
+  // Each tree breadth first from its root; reversed, children come before parents. A grounded tree
+  // is rooted at the body its ground joint holds, an other from its lowest solver body. Below a
+  // joint node there must be no ground: a subtree held by it can be unable to move along one of the
+  // joint's rows (a grid's link to the body beside a pin, along the line to the pin), and that
+  // row's pivot is zero.
   bodyNode_.assign(bodyCount, -1);
   std::vector<Node> order;
   std::vector<std::int32_t> entryNode(entries_.size(), -1);
-  for (std::size_t root = 0; root < bodyCount; ++root) {
-    const bool hasJoints = adjacencyStart_[root + 1] > adjacencyStart_[root] || groundJoint_[root] >= 0;
+  for (std::size_t candidate = 0; candidate < 2 * bodyCount; ++candidate) {
+    const std::size_t root = candidate % bodyCount;
+    const bool grounded = groundJoint_[root] >= 0;
+    if (candidate < bodyCount ? !grounded : grounded) continue;
+    const bool hasJoints = adjacencyStart_[root + 1] > adjacencyStart_[root] || grounded;
     if (!hasJoints || bodyNode_[root] >= 0) continue;
     order.clear();
     Node rootNode;
@@ -306,12 +319,19 @@ void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints)
 // takes this pass. At the warm start, the limits it took in the last pass (their impulses are the
 // tree's to apply); in a solve pass, each limit reached (at or past it) or still pushing (its
 // impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
-void JointTree::buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, bool warmStart) {
+// The biased pass comes at the warm start's pose (only velocities change in between), so it keeps
+// the warm start's frames and equality rows and takes its limits afresh.
+void JointTree::buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, RowPass pass) {
   EqualityRows candidates;
   for (Entry& entry : entries_) {
     Joint& joint = joints[entry.joint];
-    entry.frame = jointFrame(view, joint);
-    equalityRows(entry.frame, joint, entry.rows);
+    if (pass == RowPass::SolveAtWarmStartPose) {
+      entry.rows.count = entry.equalityCount;
+    } else {
+      entry.frame = jointFrame(view, joint);
+      equalityRows(entry.frame, joint, entry.rows);
+      entry.equalityCount = entry.rows.count;
+    }
     if (!joint.inTree || limitRowCapacity(joint) == 0) {
       joint.treeLimits = 0;
       continue;
@@ -321,15 +341,15 @@ void JointTree::buildRows(const JointSolverView& view, std::vector<Joint>& joint
     std::uint8_t taken = 0;
     for (int i = 0; i < candidates.count; ++i) {
       const EqualityRow& row = candidates.rows[static_cast<std::size_t>(i)];
-      const bool take =
-          warmStart ? (joint.treeLimits & row.limitBit) != 0 : row.error <= 0.0f || *row.accumulated > 0.0f;
+      const bool take = pass == RowPass::WarmStart ? (joint.treeLimits & row.limitBit) != 0
+                                                   : row.error <= 0.0f || *row.accumulated > 0.0f;
       if (!take) continue;
       entry.rows.rows[static_cast<std::size_t>(entry.rows.count++)] = row;
       taken |= row.limitBit;
     }
     joint.treeLimits = taken;
   }
-  addGeometricStiffness(view, joints, h);
+  if (pass != RowPass::SolveAtWarmStartPose) addGeometricStiffness(view, joints, h);
 }
 
 // Drops the limit rows of a tree whose impulse would pull (the solve's total below 0): those
@@ -411,7 +431,7 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, std::vector<J
 
 void JointTree::warmStart(const JointSolverView& view, std::vector<Joint>& joints, float h) {
   if (entries_.empty()) return;
-  buildRows(view, joints, h, true);
+  buildRows(view, joints, h, RowPass::WarmStart);
   for (Entry& entry : entries_) {
     if (!joints[entry.joint].inTree) continue;
     for (int i = 0; i < entry.rows.count; ++i) {
@@ -425,7 +445,7 @@ void JointTree::solve(const JointSolverView& view, std::vector<Joint>& joints, f
                       bool useBias) {
   if (entries_.empty()) return;
   h_ = h;
-  buildRows(view, joints, h, false);
+  buildRows(view, joints, h, useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve);
   const Softness soft = rowSoftness(JointSoftness{}, rigidHertz, h, useBias);
   for (std::size_t t = 0; t + 1 < treeStart_.size(); ++t) {
     const std::size_t first = treeStart_[t];
@@ -564,79 +584,76 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
   return true;
 }
 
-// Leaves first: D^-1 of each node, its coupling turned into W = D^-1 H(node, parent), and the
-// parent's D less H^T W (the Schur complement; on a tree it touches the parent only).
+// Leaves first: each node's D = L D L^T, its coupling turned into Y = L^-1 H(node, parent), and
+// the parent's D less H^T D^-1 H = Y^T D^-1 Y (the Schur complement; on a tree it touches the
+// parent only). Only lower triangles are read.
 bool JointTree::factorTree(std::size_t first, std::size_t last) {
-  double w[kMaxNodeSize * kMaxNodeSize];
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
-    double* inverse = matrices_.data() + node.matrix;
-    if (!invert(inverse, node.size)) return false;
+    const double* ldl = matrices_.data() + node.matrix;
+    if (!factorLdl(matrices_.data() + node.matrix, node.size)) return false;
     if (node.parent < 0) continue;
     const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
     const int rows = node.size;
     const int cols = parent.size;
-    double* coupling = matrices_.data() + node.coupling;
-    for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) {
-        double sum = 0.0;
-        for (int k = 0; k < rows; ++k) sum += inverse[r * rows + k] * coupling[k * cols + c];
-        w[r * cols + c] = sum;
-      }
-    }
+    double* y = matrices_.data() + node.coupling;
+    forwardSubstitute(ldl, rows, y, cols);
     double* d = matrices_.data() + parent.matrix;
-    for (int r = 0; r < cols; ++r) {
-      for (int c = 0; c < cols; ++c) {
-        double sum = 0.0;
-        for (int k = 0; k < rows; ++k) sum += coupling[k * cols + r] * w[k * cols + c];
-        d[r * cols + c] -= sum;
+    for (int k = 0; k < rows; ++k) {
+      const double* yk = y + k * cols;
+      const double inversePivot = 1.0 / ldl[k * rows + k];
+      for (int r = 0; r < cols; ++r) {
+        const double scaled = yk[r] * inversePivot;
+        if (scaled == 0.0) continue;
+        for (int c = 0; c <= r; ++c) d[r * cols + c] -= scaled * yk[c];
       }
     }
-    std::copy(w, w + rows * cols, coupling);
   }
   return true;
 }
 
-// Forward (leaves first) z_parent -= W^T z, then back from the root x = D^-1 z - W x_parent: the
-// rows' impulses, lambda = -K^-1 rhs.
+// Forward (leaves first) u = D^-1 L^-1 z, z_parent -= Y^T u; then back from the root
+// x = L^-T (u - D^-1 Y x_parent): the rows' impulses, lambda = -K^-1 rhs.
 void JointTree::solveTree(std::size_t first, std::size_t last) {
   std::copy(rhs_.begin() + nodes_[first].vector,
             rhs_.begin() + nodes_[last - 1].vector + nodes_[last - 1].size,
             solution_.begin() + nodes_[first].vector);
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
+    const double* ldl = matrices_.data() + node.matrix;
+    double* z = solution_.data() + node.vector;
+    const int size = node.size;
+    forwardSubstitute(ldl, size, z, 1);
+    for (int k = 0; k < size; ++k) z[k] /= ldl[k * size + k];
     if (node.parent < 0) continue;
     const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
-    const double* w = matrices_.data() + node.coupling;
-    const double* z = solution_.data() + node.vector;
+    const double* y = matrices_.data() + node.coupling;
     double* zParent = solution_.data() + parent.vector;
-    for (int c = 0; c < parent.size; ++c) {
-      double sum = 0.0;
-      for (int k = 0; k < node.size; ++k) sum += w[k * parent.size + c] * z[k];
-      zParent[c] -= sum;
+    for (int k = 0; k < size; ++k) {
+      const double* yk = y + k * parent.size;
+      for (int c = 0; c < parent.size; ++c) zParent[c] -= yk[c] * z[k];
     }
   }
-  double x[kMaxNodeSize];
   for (std::size_t n = last; n-- > first;) {
     const Node& node = nodes_[n];
-    const double* inverse = matrices_.data() + node.matrix;
-    double* z = solution_.data() + node.vector;
-    for (int r = 0; r < node.size; ++r) {
-      double sum = 0.0;
-      for (int k = 0; k < node.size; ++k) sum += inverse[r * node.size + k] * z[k];
-      x[r] = sum;
-    }
+    const double* ldl = matrices_.data() + node.matrix;
+    double* x = solution_.data() + node.vector;
+    const int size = node.size;
     if (node.parent >= 0) {
       const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
-      const double* w = matrices_.data() + node.coupling;
+      const double* y = matrices_.data() + node.coupling;
       const double* xParent = solution_.data() + parent.vector;
-      for (int r = 0; r < node.size; ++r) {
+      for (int r = 0; r < size; ++r) {
         double sum = 0.0;
-        for (int k = 0; k < parent.size; ++k) sum += w[r * parent.size + k] * xParent[k];
-        x[r] -= sum;
+        for (int k = 0; k < parent.size; ++k) sum += y[r * parent.size + k] * xParent[k];
+        x[r] -= sum / ldl[r * size + r];
       }
     }
-    std::copy(x, x + node.size, z);
+    for (int i = size - 1; i >= 0; --i) {
+      double sum = x[i];
+      for (int k = i + 1; k < size; ++k) sum -= ldl[k * size + i] * x[k];
+      x[i] = sum;
+    }
   }
 }
 

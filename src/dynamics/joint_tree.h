@@ -45,7 +45,8 @@ class JointTree {
   void warmStart(const JointSolverView& view, std::vector<Joint>& joints, float h);
   // One pass (useBias as in solveJoints): each tree's rows at the bodies' current pose, factored and
   // solved, the impulses applied. A tree whose factor fails (rows that lost their rank) hands its
-  // joints to the Gauss-Seidel pass that follows (Joint::inTree false for that pass).
+  // joints to the Gauss-Seidel pass that follows (Joint::inTree false for that pass). The biased
+  // pass must follow warmStart with no position update between: it reuses the warm start's rows.
   void solve(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
              bool useBias);
 
@@ -75,14 +76,16 @@ class JointTree {
     std::int32_t node = -1;   // its joint node, or the body node whose ground joint it is
     std::int32_t bodyA = -1;  // its bodies' solver bodies in the tree, -1 for the ground
     std::int32_t bodyB = -1;
-    EqualityRows rows;  // this pass's rows
-    JointFrame frame;   // this pass's bodies and frame
+    EqualityRows rows;      // this pass's rows: the equality rows, then the limits taken
+    int equalityCount = 0;  // the equality rows among them
+    JointFrame frame;       // this pass's bodies and frame
   };
 
   // The right-hand side: G v + biasRate C for a velocity pass, C alone for the projection.
   bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
                 bool positions);
-  void buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, bool warmStart);
+  enum class RowPass { WarmStart, SolveAtWarmStartPose, Solve };
+  void buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, RowPass pass);
   bool dropPullingLimits(std::vector<Joint>& joints, std::size_t first, std::size_t last,
                          const Softness& soft);
   void addGeometricStiffness(const JointSolverView& view, std::vector<Joint>& joints, float h);
