@@ -94,8 +94,8 @@ void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidH
 void equalityRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows) {
   const HingeAxes axes = hingeAxes(f);
   const Vec3 misalignment = glm::cross(axes.axis, axes.axisB);
-  rows.add(angularRow(f.a, f.b, axes.across1), glm::dot(axes.across1, misalignment), &joint.angularImpulse.y);
-  rows.add(angularRow(f.a, f.b, axes.across2), glm::dot(axes.across2, misalignment), &joint.angularImpulse.z);
+  rows.add(angularTreeRow(axes.across1), glm::dot(axes.across1, misalignment), &joint.angularImpulse.y);
+  rows.add(angularTreeRow(axes.across2), glm::dot(axes.across2, misalignment), &joint.angularImpulse.z);
   addPointRows(f, joint, rows);
 }
 

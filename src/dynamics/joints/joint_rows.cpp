@@ -125,7 +125,7 @@ void addPointRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
   for (int i = 0; i < 3; ++i) {
     Vec3 axis(0.0f);
     axis[i] = 1.0f;
-    rows.add(linearRow(f, axis, f.rA), f.d[i], &joint.linearImpulse[i]);
+    rows.add(linearTreeRow(f, axis, f.rA), f.d[i], &joint.linearImpulse[i]);
   }
 }
 
@@ -134,7 +134,7 @@ void addRotationRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
   for (int i = 0; i < 3; ++i) {
     Vec3 axis(0.0f);
     axis[i] = 1.0f;
-    rows.add(angularRow(f.a, f.b, axis), error[i], &joint.angularImpulse[i]);
+    rows.add(angularTreeRow(axis), error[i], &joint.angularImpulse[i]);
   }
 }
 
@@ -157,6 +157,12 @@ JointRow linearRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA) {
 JointRow angularRow(const JointBody& a, const JointBody& b, const Vec3& axis) {
   return makeRow(a, b, Vec3(0.0f), axis, axis);
 }
+
+JointRow linearTreeRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA) {
+  return {axis, glm::cross(leverA, axis), glm::cross(f.rB, axis), 0.0f};
+}
+
+JointRow angularTreeRow(const Vec3& axis) { return {Vec3(0.0f), axis, axis, 0.0f}; }
 
 float rowSpeed(const JointBody& a, const JointBody& b, const JointRow& row) {
   return glm::dot(row.linear, b.linearVelocity() - a.linearVelocity()) +

@@ -84,6 +84,10 @@ JointRow makeRow(const JointBody& a, const JointBody& b, const Vec3& linear, con
 JointRow linearRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA);
 // A row of relative rotation about an axis.
 JointRow angularRow(const JointBody& a, const JointBody& b, const Vec3& axis);
+// The same rows without their mass (0): the equality rows of a joint tree, which solves them with
+// the tree's coupled mass instead.
+JointRow linearTreeRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA);
+JointRow angularTreeRow(const Vec3& axis);
 float rowSpeed(const JointBody& a, const JointBody& b, const JointRow& row);
 void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
 // The row's positional impulse (kg m along it): each body moved and turned as its masses say.
