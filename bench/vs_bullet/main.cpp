@@ -49,15 +49,19 @@ const std::vector<SceneInfo> kReferenceScenes = {{"R1", "pile", 0.34},
                                                  {"R3", "pyramid", 0.63},
                                                  {"R4", "terrain", 0.16},
                                                  {"B1", "billiards", {}}};
+// The joint benchmarks (issue scenes, not run by default): Box3D's joint grid and a ragdoll pile.
+const std::vector<SceneInfo> kJointScenes = {{"J1", "joint-grid", 0.5}, {"J2", "ragdoll-pile", 0.5}};
 
 SceneInfo resolveScene(const std::string& arg) {
-  for (const SceneInfo& s : kReferenceScenes) {
-    if (arg == s.id || arg == s.name) return s;
+  for (const std::vector<SceneInfo>* list : {&kReferenceScenes, &kJointScenes}) {
+    for (const SceneInfo& s : *list) {
+      if (arg == s.id || arg == s.name) return s;
+    }
   }
   if (scene::isBuiltinScene(arg)) return {arg, arg, {}};
   if (std::filesystem::exists(arg)) return {std::filesystem::path(arg).filename().string(), arg, {}};
   throw Error("--scene: '" + arg +
-              "' is not a reference scene (R1 R2 R3 R4 B1 or pile rain pyramid terrain billiards), a "
+              "' is not a benchmark scene (R1 R2 R3 R4 B1 J1 J2 or their names), a "
               "built-in scene or a file");
 }
 
@@ -261,7 +265,8 @@ int main(int argc, char** argv) try {
   app.add_option("--steps", steps, "steps per run (default: the scene's settings.steps, 600)")
       ->check(CLI::PositiveNumber);
   app.add_option("--scene", sceneArgs,
-                 "R1 R2 R3 R4 B1 (or pile rain pyramid terrain billiards, any built-in or a "
+                 "R1 R2 R3 R4 B1 J1 J2 (or pile rain pyramid terrain billiards joint-grid ragdoll-pile, any "
+                 "built-in or a "
                  "scene file); repeatable; default all five");
   app.add_option("--json", jsonPath, "also write the results to this JSON file");
   CLI11_PARSE(app, argc, argv);
