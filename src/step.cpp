@@ -51,7 +51,7 @@ void World::Impl::step(float dt) {
   // Newton impacts need a bounciness above 0, from a body or a pre-solve callback.
   if (def.impactModel != ImpactModel::Newton || bodies.bouncyCount > 0 || preSolve)
     impacts.run(bodies, contacts, def.impactModel, tuning, def.gravity, dt);
-  stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults);
+  stepSolver.solve(bodies, contacts, joints, solverSettings(def), dt, events.faults, tasks);
   lastSubstep = dt / static_cast<float>(def.substeps);
   detail::findBrokenJoints(bodies, joints, lastSubstep, events.jointBreaks);
   for (const JointBreakEvent& broken : events.jointBreaks) {

@@ -65,6 +65,7 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   validateWorldDef(def);
   impl_->def = def;
   impl_->broadPhase = createBroadPhase(def.broadPhase);
+  impl_->tasks.configure(def.workerCount, def.enqueueTask, def.finishTask, def.userTaskContext);
 }
 
 World::~World() = default;
@@ -88,6 +89,7 @@ void World::setDef(const WorldDef& def) {
       w.def.penetrationResponse != PenetrationResponse::Revert) {
     detail::takeCurrentPosesAsValid(w.bodies);  // revert goes back no further than this switch
   }
+  w.tasks.configure(def.workerCount, def.enqueueTask, def.finishTask, def.userTaskContext);
   w.def = def;
 }
 

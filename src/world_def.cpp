@@ -61,6 +61,11 @@ void validateWorldDef(const WorldDef& def) {
   if (!isFinite(def.gravity))
     throw Error("world: gravity must be finite, got " + detail::formatVec(def.gravity));
   if (def.substeps < 1) throw Error("world: substeps must be >= 1, got " + std::to_string(def.substeps));
+  if (def.workerCount < 1 || def.workerCount > kMaxWorkers)
+    throw Error("world: workerCount must be 1 to " + std::to_string(kMaxWorkers) + ", got " +
+                std::to_string(def.workerCount));
+  if ((def.enqueueTask == nullptr) != (def.finishTask == nullptr))
+    throw Error("world: enqueueTask and finishTask come together (one is set, the other null)");
   const ContactTuning& t = def.contact;
   const auto check = [](float value, bool ok, const char* field) {
     if (!isFinite(value) || !ok)

@@ -4,6 +4,7 @@
 
 #include <collide/world.h>
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "contacts/contact_events.h"
@@ -30,6 +31,7 @@ void validateWorldDef(const WorldDef& def);
 
 struct World::Impl {
   WorldDef def;
+  detail::TaskRunner tasks;  // the step's parallel loops (workers as def says)
   detail::BodyStorage bodies;
   std::unique_ptr<BroadPhase> broadPhase;
   std::vector<ProxyPair> pairs;  // the broad phase's pairs of the last step

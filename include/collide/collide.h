@@ -13,6 +13,7 @@
 #include <collide/queries.h>
 #include <collide/settings.h>
 #include <collide/shapes.h>
+#include <collide/tasks.h>
 #include <collide/world.h>
 
 namespace collide {

@@ -17,6 +17,7 @@
 #include <collide/queries.h>
 #include <collide/settings.h>
 #include <collide/shapes.h>
+#include <collide/tasks.h>
 
 #include <cstdint>
 #include <functional>
@@ -89,6 +90,15 @@ struct WorldDef {
   bool persistEvents = false;
   SleepTuning sleep{};
   ContactTuning contact{};
+  // Workers for the step's parallel stages (include/collide/tasks.h, docs/threads.md), 1 to
+  // kMaxWorkers. One runs the step on the calling thread and creates no thread. More, without
+  // enqueueTask, start workerCount - 1 threads of the world's own; with enqueueTask (and finishTask,
+  // both or neither) the engine's job system runs the tasks, userTaskContext passed to both. The
+  // result is the same, bit for bit, at every worker count.
+  int workerCount = 1;
+  EnqueueTaskCallback* enqueueTask = nullptr;
+  FinishTaskCallback* finishTask = nullptr;
+  void* userTaskContext = nullptr;
 };
 
 class World {

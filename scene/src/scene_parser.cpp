@@ -201,7 +201,7 @@ Shape readShape(const JsonNode& node, const LoadContext& context, int compoundDe
 void readSettings(const JsonNode& node, Scene& scene) {
   node.expectObject({"gravity", "dt", "steps", "substeps", "broadphase", "ccd", "sleeping",
                      "bounciness_combine", "friction_combine", "impact_model", "friction_model",
-                     "penetration_response", "persist_events", "restitution_threshold"});
+                     "penetration_response", "persist_events", "restitution_threshold", "workers"});
   WorldDef& w = scene.world;
   if (auto n = node.find("gravity")) w.gravity = n->vec3();
   if (auto n = node.find("dt")) {
@@ -210,6 +210,7 @@ void readSettings(const JsonNode& node, Scene& scene) {
   }
   if (auto n = node.find("steps")) scene.steps = n->integer(0, kMaxSteps);
   if (auto n = node.find("substeps")) w.substeps = n->integer(1, kMaxSubsteps);
+  if (auto n = node.find("workers")) w.workerCount = n->integer(1, kMaxWorkers);
   if (auto n = node.find("broadphase")) {
     w.broadPhase.type = withPath(*n, [&] { return parseBroadPhaseType(n->string()); });
   }

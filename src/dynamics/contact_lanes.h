@@ -69,17 +69,34 @@ class LaneContactSolver final : public ContactLanes {
 
   int width() const override { return kWidth; }
 
-  void build(const ContactBatchInput& in) override {
+  void build(const ContactBatchInput& in, TaskRunner& tasks) override {
     pushOutSpeed_ = in.pushOutSpeed;
     restitutionThreshold_ = in.restitutionThreshold;
     // Each colour's contacts fill its batches in order, kWidth a batch (the overflow one a batch).
-    std::array<std::uint32_t, kGraphColors + 2> batchStart{};
     for (int color = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
       const std::uint32_t count = in.colorStart[color + 1] - in.colorStart[color];
-      batchStart[color + 1] = batchStart[color] + (count + perBatch - 1) / perBatch;
+      batchStart_[color + 1] = batchStart_[color] + (count + perBatch - 1) / perBatch;
     }
-    batches_.resize(batchStart[kGraphColors + 1]);
+    batches_.resize(batchStart_[kGraphColors + 1]);
+    // Batch b's first contact in the order.
+    const auto firstContact = [&](std::uint32_t b) {
+      int color = 0;
+      while (batchStart_[color + 1] <= b && color < kGraphColors) ++color;
+      if (b >= batchStart_[kGraphColors + 1]) return static_cast<std::uint32_t>(in.order.size());
+      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
+      return in.colorStart[color] + (b - batchStart_[color]) * perBatch;
+    };
+    tasks.parallelFor(static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,
+                      [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                        fillBatches(in, begin, end, firstContact(begin), firstContact(end));
+                      });
+  }
+
+  // Batches [begin, end), whose contacts are order[firstOrder, lastOrder): each batch's lanes are
+  // independent of every other batch's, so ranges of batches fill in parallel.
+  void fillBatches(const ContactBatchInput& in, std::uint32_t begin, std::uint32_t end,
+                   std::size_t firstOrder, std::size_t lastOrder) {
     // Filled batch by batch, each cleared just before its first lane (its lines stay in cache while
     // its lanes are written). The contacts lie anywhere in the contact array, and their bodies
     // anywhere in the body arrays, so both are asked for ahead, in two stages: a contact's lines
@@ -87,9 +104,8 @@ class LaneContactSolver final : public ContactLanes {
     // state, solver body and info. (Reading the indices of a contact not yet in cache would wait
     // for it, and the prefetch would be no better than the load it replaces.)
     constexpr std::size_t kAhead = 4;
-    const std::size_t total = in.order.size();
     const auto prefetchContact = [&](std::size_t i) {
-      if (i >= total) return;
+      if (i >= lastOrder) return;
       prefetchBytes(&in.contacts[in.order[i]], offsetof(Contact, cache));
     };
     const auto prefetchBody = [&](std::uint32_t body) {
@@ -100,41 +116,68 @@ class LaneContactSolver final : public ContactLanes {
       prefetchRecord(in.infos[solver]);
     };
     const auto prefetchBodies = [&](std::size_t i) {
-      if (i >= total) return;
+      if (i >= lastOrder) return;
       const Contact& ahead = in.contacts[in.order[i]];
       prefetchBody(ahead.bodyA);
       prefetchBody(ahead.bodyB);
     };
-    for (std::size_t i = 0; i < 2 * kAhead; ++i) prefetchContact(i);
-    for (std::size_t i = 0; i < kAhead; ++i) prefetchBodies(i);
-    for (int color = 0; color <= kGraphColors; ++color) {
+    for (std::size_t i = firstOrder; i < firstOrder + 2 * kAhead; ++i) prefetchContact(i);
+    for (std::size_t i = firstOrder; i < firstOrder + kAhead; ++i) prefetchBodies(i);
+    int color = 0;
+    for (std::uint32_t b = begin; b < end; ++b) {
+      while (batchStart_[color + 1] <= b) ++color;
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      const std::uint32_t end = in.colorStart[color + 1];
-      // A pointer, not an element: an empty colour may start at the end of the batches.
-      Batch* batch = batches_.data() + batchStart[color];
-      for (std::uint32_t first = in.colorStart[color]; first < end; first += perBatch, ++batch) {
-        std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
-        batch->bodyA.fill(kNoSolverBody);
-        batch->bodyB.fill(kNoSolverBody);
-        batch->contact.fill(-1);
-        LaneInputs inputs;
-        std::memset(static_cast<void*>(&inputs), 0, sizeof(LaneInputs));
-        const std::uint32_t last = std::min(first + perBatch, end);
-        for (std::uint32_t i = first; i < last; ++i) {
-          prefetchContact(i + 2 * kAhead);
-          prefetchBodies(i + kAhead);
-          fillLane(in, *batch, inputs, static_cast<int>(i - first), in.order[i]);
-        }
-        finishBatch(*batch, inputs);
+      const std::uint32_t first = in.colorStart[color] + (b - batchStart_[color]) * perBatch;
+      const std::uint32_t last = std::min(first + perBatch, in.colorStart[color + 1]);
+      Batch* batch = batches_.data() + b;
+      std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
+      batch->bodyA.fill(kNoSolverBody);
+      batch->bodyB.fill(kNoSolverBody);
+      batch->contact.fill(-1);
+      LaneInputs inputs;
+      std::memset(static_cast<void*>(&inputs), 0, sizeof(LaneInputs));
+      for (std::uint32_t i = first; i < last; ++i) {
+        prefetchContact(i + 2 * kAhead);
+        prefetchBodies(i + kAhead);
+        fillLane(in, *batch, inputs, static_cast<int>(i - first), in.order[i]);
       }
+      finishBatch(*batch, inputs);
     }
   }
 
-  void warmStart(std::vector<SolverBody>& bodies) override {
+  // f(batch) for every batch, colour after colour (the last colour first if `backwards`). A
+  // colour's batches share no body the solver writes, so their ranges run in parallel and give
+  // what one pass in order gives, bit for bit; the overflow's batches may share bodies and run in
+  // order, on the calling thread.
+  template <typename Body>
+  void forEachBatch(TaskRunner& tasks, bool backwards, Body&& body) {
+    for (int k = 0; k <= kGraphColors; ++k) {
+      const int color = backwards ? kGraphColors - k : k;
+      const std::uint32_t first = batchStart_[color];
+      const std::uint32_t last = batchStart_[color + 1];
+      if (color == kOverflowColor) {
+        if (backwards) {
+          for (std::uint32_t i = last; i-- > first;) body(batches_[i]);
+        } else {
+          for (std::uint32_t i = first; i < last; ++i) body(batches_[i]);
+        }
+        continue;
+      }
+      tasks.parallelFor(last - first, kBatchesPerRange,
+                        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                          if (backwards) {
+                            for (std::uint32_t i = end; i-- > begin;) body(batches_[first + i]);
+                          } else {
+                            for (std::uint32_t i = begin; i < end; ++i) body(batches_[first + i]);
+                          }
+                        });
+    }
+  }
+
+  void warmStart(std::vector<SolverBody>& bodies, TaskRunner& tasks) override {
     // Backwards: it starts with the batches the last pass (the previous substep's relax) ended
     // with, still in the L2 cache, and ends with those the solve pass starts with.
-    for (std::size_t i = batches_.size(); i-- > 0;) {
-      Batch& c = batches_[i];
+    forEachBatch(tasks, true, [&](Batch& c) {
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
       for (int k = 0; k < c.pointCount; ++k) {
@@ -155,24 +198,24 @@ class LaneContactSolver final : public ContactLanes {
       addScaled(b.w, c.twistImpulse, c.twistTurnB);
       scatter(bodies, c.bodyA, c.writeA, a);
       scatter(bodies, c.bodyB, c.writeB, b);
-    }
+    });
   }
 
-  void solve(std::vector<SolverBody>& bodies, float h, bool useBias) override {
+  void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) override {
     if (useBias) {
-      solvePass<true>(bodies, h);
+      solvePass<true>(bodies, h, tasks);
     } else {
-      solvePass<false>(bodies, h);
+      solvePass<false>(bodies, h, tasks);
     }
   }
 
   // Newton's restitution on the approach velocity measured before the solve: the soft contact has
   // absorbed the impact by now, so the bounce is added at the end (Box2D v3's b2ApplyRestitution).
-  void applyRestitution(std::vector<SolverBody>& bodies) override {
+  void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) override {
     const F zero = zeroT<F>();
     const F threshold = splatT<F>(-restitutionThreshold_);
-    for (Batch& c : batches_) {
-      if (!anyW(greaterW(c.restitution, zero))) continue;
+    forEachBatch(tasks, false, [&](Batch& c) {
+      if (!anyW(greaterW(c.restitution, zero))) return;
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
       for (int k = 0; k < c.pointCount; ++k) {
@@ -197,19 +240,26 @@ class LaneContactSolver final : public ContactLanes {
       }
       scatter(bodies, c.bodyA, c.writeA, a);
       scatter(bodies, c.bodyB, c.writeB, b);
-    }
+    });
   }
 
-  void store(std::vector<Contact>& contacts) const override {
+  // Each batch writes its own contacts: ranges of batches in parallel.
+  void store(std::vector<Contact>& contacts, TaskRunner& tasks) const override {
+    tasks.parallelFor(
+        static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,
+        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { storeBatches(contacts, begin, end); });
+  }
+
+  void storeBatches(std::vector<Contact>& contacts, std::size_t begin, std::size_t end) const {
     // The contacts of a batch two places on, asked for ahead: they lie anywhere in the array.
     constexpr std::size_t kAhead = 2;
     const auto prefetchContacts = [&](std::size_t batch) {
-      if (batch >= batches_.size()) return;
+      if (batch >= end) return;
       for (const std::int32_t index : batches_[batch].contact)
         if (index >= 0) prefetchBytes(&contacts[static_cast<std::size_t>(index)], offsetof(Contact, cache));
     };
-    for (std::size_t i = 0; i < kAhead; ++i) prefetchContacts(i);
-    for (std::size_t i = 0; i < batches_.size(); ++i) {
+    for (std::size_t i = begin; i < begin + kAhead; ++i) prefetchContacts(i);
+    for (std::size_t i = begin; i < end; ++i) {
       prefetchContacts(i + kAhead);
       const Batch& c = batches_[i];
       for (int lane = 0; lane < kWidth; ++lane) {
@@ -443,10 +493,10 @@ class LaneContactSolver final : public ContactLanes {
   // Each batch: the pose change, then the normal points, the friction patch and the twist, in that
   // order, on the same gathered velocities.
   template <bool useBias>
-  void solvePass(std::vector<SolverBody>& bodies, float h) {
+  void solvePass(std::vector<SolverBody>& bodies, float h, TaskRunner& tasks) {
     const F inverseH = splatT<F>(1.0f / h);
     const F maxPushOut = splatT<F>(-pushOutSpeed_);
-    for (Batch& c : batches_) {
+    forEachBatch(tasks, false, [&](Batch& c) {
       const PoseChange pose = poseChange<useBias>(bodies, c);
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
@@ -455,7 +505,7 @@ class LaneContactSolver final : public ContactLanes {
       solveTwist(c, a, b, normalSum);
       scatter(bodies, c.bodyA, c.writeA, a);
       scatter(bodies, c.bodyB, c.writeB, b);
-    }
+    });
   }
 
   // What a batch's vectorised part (finishBatch) reads, gathered lane by lane by fillLane. Lanes
@@ -672,7 +722,10 @@ class LaneContactSolver final : public ContactLanes {
         selectW(filled, splatT<F>(kTwistRadiusScale) * radius / selectW(filled, in.count, one), zero);
   }
 
+  // Batches a parallel range takes: a few microseconds of solving.
+  static constexpr std::uint32_t kBatchesPerRange = 32;
   std::vector<Batch> batches_;
+  std::array<std::uint32_t, kGraphColors + 2> batchStart_{};  // colour c's batches: [batchStart_[c], [c + 1])
   float pushOutSpeed_ = 3.0f;
   float restitutionThreshold_ = 1.0f;
 };

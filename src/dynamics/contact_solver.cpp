@@ -62,7 +62,7 @@ ContactSolver& ContactSolver::operator=(ContactSolver&&) noexcept = default;
 void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& storage,
                             const std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
                             const std::vector<std::int32_t>& solverOf, const ContactSolverSettings& settings,
-                            float h) {
+                            float h, TaskRunner& tasks) {
   // The contacts to solve and the solver bodies each may write.
   solvedContacts_.clear();
   writtenBodies_.clear();
@@ -129,7 +129,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
       makeSoftness(std::min(2.0f * tuning.hertz, maxHertz), tuning.dampingRatio, h), settings.friction,
       tuning.frictionAnchorReach, tuning.pushOutSpeed, tuning.restitutionThreshold,
       supportMasses_.empty() ? nullptr : &supportMasses_};
-  lanes_->build(input);
+  lanes_->build(input, tasks);
 }
 
 }  // namespace collide::detail

@@ -21,6 +21,7 @@
 //     contact when the patch slides (the friction bound is reached) or drifts beyond the reach.
 #pragma once
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "dynamics/constraint_graph.h"
@@ -86,11 +87,12 @@ class ContactLanes {
  public:
   virtual ~ContactLanes() = default;
   virtual int width() const = 0;
-  virtual void build(const ContactBatchInput& input) = 0;
-  virtual void warmStart(std::vector<SolverBody>& bodies) = 0;
-  virtual void solve(std::vector<SolverBody>& bodies, float h, bool useBias) = 0;
-  virtual void applyRestitution(std::vector<SolverBody>& bodies) = 0;
-  virtual void store(std::vector<Contact>& contacts) const = 0;
+  // Each takes its batches in parallel ranges, a colour at a time (tasks: the step's workers).
+  virtual void build(const ContactBatchInput& input, TaskRunner& tasks) = 0;
+  virtual void warmStart(std::vector<SolverBody>& bodies, TaskRunner& tasks) = 0;
+  virtual void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) = 0;
+  virtual void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) = 0;
+  virtual void store(std::vector<Contact>& contacts, TaskRunner& tasks) const = 0;
 };
 
 // The widest lanes this machine runs: 8 where the AVX2 kernel is built and the processor has AVX2,
@@ -117,15 +119,20 @@ class ContactSolver {
 
   void prepare(std::vector<Contact>& contacts, const BodyStorage& storage,
                const std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
-               const std::vector<std::int32_t>& solverOf, const ContactSolverSettings& settings, float h);
+               const std::vector<std::int32_t>& solverOf, const ContactSolverSettings& settings, float h,
+               TaskRunner& tasks);
   // Per substep: apply the accumulated impulses.
-  void warmStart(std::vector<SolverBody>& bodies) { lanes_->warmStart(bodies); }
+  void warmStart(std::vector<SolverBody>& bodies, TaskRunner& tasks) { lanes_->warmStart(bodies, tasks); }
   // Per substep: one pass; useBias = false is the relax pass.
-  void solve(std::vector<SolverBody>& bodies, float h, bool useBias) { lanes_->solve(bodies, h, useBias); }
+  void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) {
+    lanes_->solve(bodies, h, useBias, tasks);
+  }
   // Once at the end: Newton's restitution from the approach velocity taken in prepare().
-  void applyRestitution(std::vector<SolverBody>& bodies) { lanes_->applyRestitution(bodies); }
+  void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) {
+    lanes_->applyRestitution(bodies, tasks);
+  }
   // The impulses back into the contacts (warm starting next step, events, response models).
-  void store(std::vector<Contact>& contacts) const { lanes_->store(contacts); }
+  void store(std::vector<Contact>& contacts, TaskRunner& tasks) const { lanes_->store(contacts, tasks); }
 
  private:
   std::unique_ptr<ContactLanes> lanes_;

@@ -55,9 +55,9 @@ constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 constexpr float kGyroscopicMinTurn = 1e-4f;
 
 void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
-                         const BodyStorage& storage, float h) {
+                         const BodyStorage& storage, float h, std::uint32_t begin, std::uint32_t end) {
   const float maxAngularSpeed = kMaxRotationPerSubstep / h;
-  for (std::size_t j = 0; j < bodies.size(); ++j) {
+  for (std::size_t j = begin; j < end; ++j) {
     const SolverBodyInfo& info = infos[j];
     if (!info.dynamic || info.faulted) continue;
     SolverBody& b = bodies[j];
@@ -82,8 +82,9 @@ void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<Solv
   }
 }
 
-void integratePositions(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos, float h) {
-  for (std::size_t j = 0; j < bodies.size(); ++j) {
+void integratePositions(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos, float h,
+                        std::uint32_t begin, std::uint32_t end) {
+  for (std::size_t j = begin; j < end; ++j) {
     const SolverBodyInfo& info = infos[j];
     if (info.faulted) continue;
     SolverBody& b = bodies[j];

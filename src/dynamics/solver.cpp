@@ -53,8 +53,13 @@ void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity) {
 // The guard inside the step: a solver body with a non-finite part is stopped where the step began
 // (its solver state back to rest, unmoved) before its value reaches another body, and frozen and
 // reported at the end of the solve (fault_guard.h).
-void StepSolver::guard() {
-  for (std::size_t j = 0; j < bodies_.size(); ++j) {
+void StepSolver::guard(TaskRunner& tasks) {
+  tasks.parallelFor(static_cast<std::uint32_t>(bodies_.size()), kBodiesPerRange,
+                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { guard(begin, end); });
+}
+
+void StepSolver::guard(std::uint32_t begin, std::uint32_t end) {
+  for (std::size_t j = begin; j < end; ++j) {
     SolverBodyInfo& info = infos_[j];
     if (info.faulted) continue;
     SolverBody& b = bodies_[j];
@@ -76,27 +81,36 @@ void StepSolver::guard() {
   }
 }
 
-void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults) {
+void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults, TaskRunner& tasks) {
+  tasks.parallelFor(static_cast<std::uint32_t>(bodies_.size()), kBodiesPerRange,
+                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                      for (std::size_t j = begin; j < end; ++j) {
+                        const SolverBodyInfo& info = infos_[j];
+                        if (info.faulted) continue;
+                        const BodyRecord& r = storage.records[info.body];
+                        BodyState& s = storage.states[info.body];
+                        const SolverBody& b = bodies_[j];
+                        s.centerOfMass = s.centerOfMass0 + b.deltaPosition;
+                        if (!info.particle) s.rotation = glm::normalize(b.deltaRotation * s.rotation0);
+                        s.linearVelocity = b.linearVelocity;
+                        s.angularVelocity = b.angularVelocity;
+                        if (info.dynamic)
+                          s.inverseInertiaWorld = worldInverseInertia(r.inverseInertiaLocal, s.rotation);
+                      }
+                    });
+  // The bodies the guard stopped, in solver order (one byte each to look at).
   for (std::size_t j = 0; j < bodies_.size(); ++j) {
+    if (faultFields_[j] == 0) continue;
     const SolverBodyInfo& info = infos_[j];
     BodyRecord& r = storage.records[info.body];
-    BodyState& s = storage.states[info.body];
-    if (info.faulted) {
-      freezeBody(r, s);
-      faults.push_back({BodyId{info.body, r.generation}, faultFields_[j]});
-      continue;
-    }
-    const SolverBody& b = bodies_[j];
-    s.centerOfMass = s.centerOfMass0 + b.deltaPosition;
-    if (!info.particle) s.rotation = glm::normalize(b.deltaRotation * s.rotation0);
-    s.linearVelocity = b.linearVelocity;
-    s.angularVelocity = b.angularVelocity;
-    if (info.dynamic) s.inverseInertiaWorld = worldInverseInertia(r.inverseInertiaLocal, s.rotation);
+    freezeBody(r, storage.states[info.body]);
+    faults.push_back({BodyId{info.body, r.generation}, faultFields_[j]});
   }
 }
 
 void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<Joint>& joints,
-                       const StepSettings& settings, float dt, std::vector<FaultEvent>& faults) {
+                       const StepSettings& settings, float dt, std::vector<FaultEvent>& faults,
+                       TaskRunner& tasks) {
   const float h = dt / static_cast<float>(settings.substeps);
   gatherBodies(storage, settings.gravity);
   faultFields_.assign(bodies_.size(), 0);
@@ -104,7 +118,7 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts, std
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
   contactSettings.gravity = settings.gravity;
-  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h);
+  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h, tasks);
   if (settings.projection)
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   JointSolverView view{bodies_, infos_, solverOf_, storage};
@@ -113,28 +127,33 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts, std
   // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
   // joint past it made a net draped over a ball shiver instead of sleeping).
   const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
+  const std::uint32_t bodyCount = static_cast<std::uint32_t>(bodies_.size());
   for (int i = 0; i < settings.substeps; ++i) {
-    integrateVelocities(bodies_, infos_, storage, h);
-    guard();  // before a bad velocity reaches a contact
+    tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      integrateVelocities(bodies_, infos_, storage, h, begin, end);
+      guard(begin, end);  // before a bad velocity reaches a contact
+    });
     warmStartJoints(view, joints);
     jointTree_.warmStart(view, joints, h);
-    contacts_.warmStart(bodies_);
+    contacts_.warmStart(bodies_, tasks);
     solveJoints(view, joints, h, rigidHertz, true);
     jointTree_.solve(view, joints, h, rigidHertz, true);
-    contacts_.solve(bodies_, h, true);
-    integratePositions(bodies_, infos_, h);
+    contacts_.solve(bodies_, h, true, tasks);
+    tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      integratePositions(bodies_, infos_, h, begin, end);
+    });
     if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
     jointTree_.project(view, joints);
     projectJoints(view, joints);
     solveJoints(view, joints, h, rigidHertz, false);
     jointTree_.solve(view, joints, h, rigidHertz, false);
-    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false);
-    guard();
+    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, tasks);
+    guard(tasks);
   }
-  contacts_.applyRestitution(bodies_);
-  guard();
-  contacts_.store(contacts);
-  writeBack(storage, faults);
+  contacts_.applyRestitution(bodies_, tasks);
+  guard(tasks);
+  contacts_.store(contacts, tasks);
+  writeBack(storage, faults, tasks);
 }
 
 }  // namespace collide::detail

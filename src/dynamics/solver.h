@@ -11,6 +11,7 @@
 // then the joints' Gauss-Seidel rows (springs, motors, limits, and the joints no tree takes).
 #pragma once
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "dynamics/contact_projection.h"
@@ -36,18 +37,23 @@ struct StepSettings {
   bool projection = false;  // PenetrationResponse::Project (contact_projection.h)
 };
 
+// Solver bodies a parallel range takes (integration, the fault guard).
+inline constexpr std::uint32_t kBodiesPerRange = 1024;
+
 class StepSolver {
  public:
   void solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<Joint>& joints,
-             const StepSettings& settings, float dt, std::vector<FaultEvent>& faults);
+             const StepSettings& settings, float dt, std::vector<FaultEvent>& faults, TaskRunner& tasks);
 
   // The contacts the last solve took, in solve order (the response models and revert walk them).
   const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
 
  private:
   void gatherBodies(BodyStorage& storage, const Vec3& gravity);
-  void writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults);
-  void guard();
+  void writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults, TaskRunner& tasks);
+  // Over every solver body, in parallel ranges; and over bodies [begin, end) (each body's own state).
+  void guard(TaskRunner& tasks);
+  void guard(std::uint32_t begin, std::uint32_t end);
 
   std::vector<SolverBody> bodies_;
   std::vector<SolverBodyInfo> infos_;

@@ -6,7 +6,8 @@
 // A hash holds for one build only (docs/determinism.md, "Its limits"): these are GCC's Release
 // build on x86-64, the build of the README's test command and of CI's first stage. Other builds
 // (the sanitized clang -O1 one, Debug) skip the comparison; their runs are still compared with
-// each other by Determinism.EveryBuiltinSceneTwiceGivesTheSameState.
+// each other by Determinism.EveryBuiltinSceneTwiceGivesTheSameState. Every build compares each
+// scene's runs at 2, 3, 4 and 8 workers with its run at one.
 #include <collide/scene/builtin_scenes.h>
 #include <collide/scene/runner.h>
 
@@ -72,6 +73,24 @@ TEST(ReferenceHashes, EveryBuiltinSceneEndsInItsRecordedState) {
     options.steps = run.steps;
     const RunSummary summary = runScene(loadBuiltinScene(run.scene), options);
     EXPECT_EQ(hex(summary.stateHash), hex(run.stateHash));
+  }
+}
+
+// The step's parallel stages split their work so that no item depends on who ran it: at every
+// worker count, each scene ends in the state it ends in on one (in every build).
+TEST(ReferenceHashes, EveryBuiltinSceneEndsInTheSameStateAtEveryWorkerCount) {
+  for (const ReferenceRun& run : kReferenceRuns) {
+    SCOPED_TRACE(std::string(run.scene));
+    RunOptions options;
+    options.steps = run.steps;
+    const Scene scene = loadBuiltinScene(run.scene);
+    const std::uint64_t oneWorker = runScene(scene, options).stateHash;
+    for (const int workers : {2, 3, 4, 8}) {
+      SCOPED_TRACE(std::to_string(workers) + " workers");
+      Scene threaded = scene;
+      threaded.world.workerCount = workers;
+      EXPECT_EQ(hex(runScene(threaded, options).stateHash), hex(oneWorker));
+    }
   }
 }
 

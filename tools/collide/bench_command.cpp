@@ -29,11 +29,13 @@ double median(std::vector<double> v) {
 
 int benchCommand(const BenchArguments& arguments) {
   using Clock = std::chrono::steady_clock;
-  const scene::Scene loaded = loadSceneArgument(
+  scene::Scene loaded = loadSceneArgument(
       arguments.scene, scene::LoadOptions{.allowOutsidePaths = arguments.allowOutsidePaths});
+  if (arguments.threads) loaded.world.workerCount = *arguments.threads;
   const int steps = arguments.steps.value_or(loaded.steps);
-  std::printf("scene %s: %zu bodies, %d steps of %.6g s, %d run(s)\n", loaded.source.c_str(),
-              loaded.bodies.size(), steps, static_cast<double>(loaded.dt), arguments.runs);
+  std::printf("scene %s: %zu bodies, %d steps of %.6g s, %d run(s), %d worker(s)\n", loaded.source.c_str(),
+              loaded.bodies.size(), steps, static_cast<double>(loaded.dt), arguments.runs,
+              loaded.world.workerCount);
   std::vector<double> cpu, wall;
   for (int run = 0; run < arguments.runs; ++run) {
     scene::SceneWorld sw = scene::buildWorld(loaded);

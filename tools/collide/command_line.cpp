@@ -59,6 +59,10 @@ int runCollide(int argc, const char* const* argv) try {
   runApp->add_option("--json", run.json, "write the summary to this JSON file");
   runApp->add_flag("--allow-outside-paths", run.allowOutsidePaths,
                    "let the scene read OBJ files outside its folder (absolute, \"..\", links leading out)");
+  runApp
+      ->add_option("--threads", run.threads,
+                   "step with this many workers (default: the scene's settings.workers, 1)")
+      ->check(wholeNumber(1, collide::kMaxWorkers));
 
   BenchArguments bench;
   CLI::App* benchApp =
@@ -72,6 +76,10 @@ int runCollide(int argc, const char* const* argv) try {
       ->check(wholeNumber(1, collide::scene::kMaxSteps));
   benchApp->add_flag("--allow-outside-paths", bench.allowOutsidePaths,
                      "let the scene read OBJ files outside its folder (absolute, \"..\", links leading out)");
+  benchApp
+      ->add_option("--threads", bench.threads,
+                   "step with this many workers (default: the scene's settings.workers, 1)")
+      ->check(wholeNumber(1, collide::kMaxWorkers));
 
   std::string exportName;
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, or export one as JSON");

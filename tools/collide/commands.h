@@ -22,6 +22,7 @@ struct RunArguments {
   std::string events;
   std::string json;
   bool allowOutsidePaths = false;  // LoadOptions::allowOutsidePaths
+  std::optional<int> threads;      // the world's workers, over the scene's settings.workers
 };
 // `collide run`: runs a scene and prints the summary. Returns 0, or kExitFaults when the world's
 // fault guard froze a body during the run (the summary and every output are written all the same).
@@ -33,6 +34,7 @@ struct BenchArguments {
   int runs = 3;
   std::optional<int> steps;
   bool allowOutsidePaths = false;
+  std::optional<int> threads;
 };
 // `collide bench`: times collide alone on a scene, ms per step, median over runs.
 int benchCommand(const BenchArguments& arguments);

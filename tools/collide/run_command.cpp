@@ -22,8 +22,9 @@ scene::Scene loadSceneArgument(const std::string& argument, const scene::LoadOpt
 }
 
 int runCommand(const RunArguments& arguments) {
-  const scene::Scene loaded = loadSceneArgument(
+  scene::Scene loaded = loadSceneArgument(
       arguments.scene, scene::LoadOptions{.allowOutsidePaths = arguments.allowOutsidePaths});
+  if (arguments.threads) loaded.world.workerCount = *arguments.threads;
   scene::RunOptions options;
   options.steps = arguments.steps;
   options.recordPath = arguments.record;

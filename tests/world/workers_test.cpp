@@ -1,0 +1,182 @@
+// The world at several workers (WorldDef::workerCount, include/collide/tasks.h): bad counts are
+// refused; one worker starts no thread; and a pile of boxes and spheres stepped on one worker, on
+// the world's own threads or on an engine's job system ends bit for bit in the same state.
+#include "support/test_job_system.h"
+#include "support/world_helpers.h"
+
+#include <collide/world.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+namespace collide {
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+std::size_t threadCount() {
+  std::size_t count = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) ++count;
+  return count;
+}
+
+// 6 x 6 x 6 boxes and spheres dropped in a loose lattice on a ground box, and a jointed chain.
+std::vector<BodyId> buildPile(World& world) {
+  world.createBody(test::groundBox());
+  std::vector<BodyId> bodies;
+  for (int x = 0; x < 6; ++x) {
+    for (int y = 0; y < 6; ++y) {
+      for (int z = 0; z < 6; ++z) {
+        const Vec3 at(0.55f * float(x) + 0.05f * float(y % 2), 0.6f + 0.55f * float(y), 0.55f * float(z));
+        bodies.push_back(world.createBody((x + y + z) % 2 == 0 ? test::boxBody(at, Vec3(0.25f), 1.0f)
+                                                               : test::sphereBody(at, 0.25f, 1.0f)));
+      }
+    }
+  }
+  BodyId previous = test::staticAnchor(world, Vec3(-2.0f, 5.0f, 0.0f));
+  for (int i = 0; i < 8; ++i) {
+    const BodyId link =
+        world.createBody(test::sphereBody(Vec3(-2.0f + 0.3f * float(i + 1), 5.0f, 0.0f), 0.1f, 0.2f));
+    world.createBallJoint({previous, link, Vec3(-2.0f + 0.3f * float(i) + 0.15f, 5.0f, 0.0f)});
+    bodies.push_back(link);
+    previous = link;
+  }
+  return bodies;
+}
+
+// Every body's pose and velocities as raw bytes: equal means bit-identical.
+std::vector<unsigned char> stateBytes(const World& world, const std::vector<BodyId>& bodies) {
+  std::vector<unsigned char> bytes;
+  const auto append = [&](const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), p, p + size);
+  };
+  for (const BodyId b : bodies) {
+    const Transform t = world.transform(b);
+    const Vec3 v = world.linearVelocity(b);
+    const Vec3 w = world.angularVelocity(b);
+    append(&t.position, sizeof t.position);
+    append(&t.rotation, sizeof t.rotation);
+    append(&v, sizeof v);
+    append(&w, sizeof w);
+  }
+  return bytes;
+}
+
+std::vector<unsigned char> runPile(WorldDef def, int steps, int switchWorkersAt = -1, int switchTo = 1) {
+  World world(def);
+  const std::vector<BodyId> bodies = buildPile(world);
+  for (int step = 0; step < steps; ++step) {
+    if (step == switchWorkersAt) {
+      def.workerCount = switchTo;
+      world.setDef(def);
+    }
+    world.step(kDt);
+  }
+  return stateBytes(world, bodies);
+}
+
+TEST(Workers, BadCountsAndHalfAJobSystemAreRefused) {
+  WorldDef def;
+  def.workerCount = 0;
+  EXPECT_THROW(World{def}, Error);
+  def.workerCount = kMaxWorkers + 1;
+  try {
+    World world(def);
+    ADD_FAILURE() << "65 workers accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "world: workerCount must be 1 to 64, got 65");
+  }
+  def.workerCount = 2;
+  def.enqueueTask = &test::TestJobSystem::enqueue;
+  EXPECT_THROW(World{def}, Error);
+  World world;
+  EXPECT_THROW(world.setDef(def), Error);
+  EXPECT_EQ(world.def().workerCount, 1);  // unchanged
+}
+
+TEST(Workers, OneWorkerStartsNoThreadAndFourStartThree) {
+  const std::size_t before = threadCount();
+  {
+    World world;
+    buildPile(world);
+    for (int step = 0; step < 5; ++step) world.step(kDt);
+    EXPECT_EQ(threadCount(), before);
+  }
+  WorldDef def;
+  def.workerCount = 4;
+  {
+    World world(def);
+    EXPECT_EQ(threadCount(), before + 3);
+  }
+  EXPECT_EQ(threadCount(), before);  // joined with the world
+}
+
+TEST(Workers, APileEndsInTheSameStateOnEveryWorkerCount) {
+  const std::vector<unsigned char> one = runPile(WorldDef{}, 240);
+  for (const int workers : {2, 3, 8}) {
+    WorldDef def;
+    def.workerCount = workers;
+    EXPECT_TRUE(runPile(def, 240) == one) << workers << " workers";
+  }
+}
+
+TEST(Workers, AnEnginesJobSystemGivesTheSameState) {
+  const std::vector<unsigned char> one = runPile(WorldDef{}, 240);
+  test::TestJobSystem jobs(3);
+  WorldDef def;
+  def.workerCount = 3;
+  def.enqueueTask = &test::TestJobSystem::enqueue;
+  def.finishTask = &test::TestJobSystem::finish;
+  def.userTaskContext = &jobs;
+  EXPECT_TRUE(runPile(def, 240) == one);
+  // The contact batches' fill went through it once a step from the first contacts on (this pile's
+  // colours are too small for the solver's passes to be split).
+  EXPECT_GT(jobs.tasks(), 200);
+}
+
+// 12 x 12 stacks of 10 boxes, resting on each other from the start: about 700 contacts a colour,
+// so that every pass of the solver splits its colours into ranges.
+std::vector<unsigned char> runStacks(const WorldDef& def, int steps) {
+  World world(def);
+  world.createBody(test::groundBox());
+  std::vector<BodyId> boxes;
+  for (int x = 0; x < 12; ++x) {
+    for (int z = 0; z < 12; ++z) {
+      for (int y = 0; y < 10; ++y) {
+        const Vec3 at(0.6f * float(x) - 3.3f, 0.25f + 0.5f * float(y), 0.6f * float(z) - 3.3f);
+        boxes.push_back(world.createBody(test::boxBody(at, Vec3(0.25f), 1.0f)));
+      }
+    }
+  }
+  for (int step = 0; step < steps; ++step) world.step(kDt);
+  return stateBytes(world, boxes);
+}
+
+TEST(Workers, StacksWhoseColoursSplitIntoRangesEndInTheSameState) {
+  const std::vector<unsigned char> one = runStacks(WorldDef{}, 30);
+  WorldDef def;
+  def.workerCount = 2;
+  EXPECT_TRUE(runStacks(def, 30) == one);
+  test::TestJobSystem jobs(2);
+  def.enqueueTask = &test::TestJobSystem::enqueue;
+  def.finishTask = &test::TestJobSystem::finish;
+  def.userTaskContext = &jobs;
+  EXPECT_TRUE(runStacks(def, 30) == one);
+  // More tasks than steps times substeps times passes: the solver's passes went through it.
+  EXPECT_GT(jobs.tasks(), 30 * 6 * 4);
+}
+
+TEST(Workers, ChangingTheWorkerCountBetweenStepsChangesNothing) {
+  const std::vector<unsigned char> one = runPile(WorldDef{}, 200);
+  EXPECT_TRUE(runPile(WorldDef{}, 200, 100, 4) == one);
+  WorldDef def;
+  def.workerCount = 3;
+  EXPECT_TRUE(runPile(def, 200, 100, 1) == one);
+}
+
+}  // namespace
+}  // namespace collide
