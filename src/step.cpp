@@ -12,6 +12,8 @@
 #include "response/contact_response.h"
 #include "response/revert.h"
 
+#include <chrono>
+
 namespace collide {
 
 namespace {
@@ -32,21 +34,39 @@ detail::StepSettings solverSettings(const WorldDef& def) {
   return settings;
 }
 
+// The wall time since the last lap, for the step's stage timings.
+class StageClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 }  // namespace
 
 void World::Impl::step(float dt) {
   const ContactTuning& tuning = def.contact;
+  StageClock clock;
+  StageTimes time;
   events.beginStep();
   detail::updateProxies(bodies, *broadPhase, dt, tuning.speculativeDistance);
   lastStats = StepStats(broadPhase->findPairs(pairs));
   if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
+  time.broadPhase = clock.lap();
   const detail::PairFilters filters{&jointedApart, &pairFilter};
   const detail::ContactUpdateCounts tested =
       contactUpdate.run(bodies, *broadPhase, pairs, contacts, previousContacts, contactSettings(def), dt,
-                        preSolve, filters, events, callbackError);
+                        preSolve, filters, events, callbackError, tasks);
   lastStats.filteredPairs = tested.filteredPairs;
   lastStats.narrowPhaseTests = tested.narrowPhaseTests;
   lastStats.reusedManifolds = tested.reusedManifolds;
+  time.narrowPhase = clock.lap();
 
   // Newton impacts need a bounciness above 0, from a body or a pre-solve callback.
   if (def.impactModel != ImpactModel::Newton || bodies.bouncyCount > 0 || preSolve)
@@ -63,6 +83,7 @@ void World::Impl::step(float dt) {
   detail::applyProlongedFriction(bodies, contacts, stepSolver.solvedContacts(), def.frictionModel, dt);
   if (bodies.rollingCount > 0) detail::applyRollingResistance(bodies, contacts, stepSolver.solvedContacts());
   bodies.clearForces();
+  time.solve = clock.lap();
   if (def.ccd) {
     if (!joints.empty()) detail::jointGroups(bodies, joints, jointGroups);
     detail::solveContinuous(bodies, *broadPhase, filters, tuning.linearSlop,
@@ -70,6 +91,7 @@ void World::Impl::step(float dt) {
   }
   if (def.penetrationResponse == PenetrationResponse::Revert)
     revert.apply(bodies, *broadPhase, pairs, contacts, filters, tuning.linearSlop);
+  time.continuous = clock.lap();
   detail::guardFiniteStates(bodies, events.faults);
   if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, joints);
 
@@ -78,7 +100,10 @@ void World::Impl::step(float dt) {
   if (bodies.sensorCount > 0)
     detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, filters, events);
   lastStats.contactPairs = touchingCount;
+  time.events = clock.lap();
   if (def.sleeping) islands.updateSleep(bodies, contacts, joints, def.sleep, dt);
+  time.islands = clock.lap();
+  lastStats.time = time;
   totalStats += lastStats;
 }
 

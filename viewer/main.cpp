@@ -186,6 +186,25 @@ struct App {
       row("contact pairs", stats.contactPairs);
       ImGui::EndTable();
     }
+    // The last step's time by stage (it varies frame to frame; the state does not).
+    if (ImGui::BeginTable("stage times", 2)) {
+      const auto stage = [](const char* label, double seconds) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(label);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f ms", seconds * 1e3);
+      };
+      const StageTimes& time = stats.time;
+      stage("broad phase", time.broadPhase);
+      stage("narrow phase", time.narrowPhase);
+      stage("solve", time.solve);
+      stage("continuous", time.continuous);
+      stage("events", time.events);
+      stage("islands and sleep", time.islands);
+      stage("step", time.total());
+      ImGui::EndTable();
+    }
   }
 
   void debugDrawing() {

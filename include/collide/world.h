@@ -30,6 +30,29 @@
 
 namespace collide {
 
+// Where a step's wall time went, in seconds, stage by stage as src/step.cpp runs them (a parallel
+// stage counts from its start on the calling thread to the end of its last range). Timings are not
+// part of the state: they differ run to run while the results do not.
+struct StageTimes {
+  double broadPhase = 0.0;   // proxies' bounds, the broad phase's update and pair finding, waking islands
+  double narrowPhase = 0.0;  // contacts: the pairs' collider tests, manifold reuse, pre-solve callbacks
+  double solve = 0.0;        // impacts, the soft step with its joints, joint breaks, friction models
+  double continuous = 0.0;   // the continuous pass and the revert response
+  double events = 0.0;       // fault guard, escaped proxies, contact and sensor events
+  double islands = 0.0;      // islands and sleeping
+
+  double total() const { return broadPhase + narrowPhase + solve + continuous + events + islands; }
+  StageTimes& operator+=(const StageTimes& step) {
+    broadPhase += step.broadPhase;
+    narrowPhase += step.narrowPhase;
+    solve += step.solve;
+    continuous += step.continuous;
+    events += step.events;
+    islands += step.islands;
+    return *this;
+  }
+};
+
 // The step's funnel (the lecture's argument for a broad phase: almost no pair collides): the
 // potential pairs, those the broad phase kept, the narrow-phase tests and the pairs in contact.
 struct StepStats {
@@ -45,6 +68,7 @@ struct StepStats {
   // computed, because the two bodies had not moved relative to each other (the manifold cache).
   std::uint64_t reusedManifolds = 0;
   std::uint64_t contactPairs = 0;  // touching, sensors left out
+  StageTimes time;
 
   StepStats() = default;
   explicit StepStats(const BroadPhaseStats& broadPhase)
@@ -62,6 +86,7 @@ struct StepStats {
     narrowPhaseTests += step.narrowPhaseTests;
     reusedManifolds += step.reusedManifolds;
     contactPairs += step.contactPairs;
+    time += step.time;
     return *this;
   }
   // The fraction of potential pairs the broad phase kept (0 when there are none).

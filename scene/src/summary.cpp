@@ -16,12 +16,20 @@ std::string hex(std::uint64_t value) {
   return text;
 }
 
+nlohmann::json stageJson(const StageTimes& t) {
+  return {{"broad_phase", t.broadPhase},
+          {"narrow_phase", t.narrowPhase},
+          {"solve", t.solve},
+          {"continuous", t.continuous},
+          {"events", t.events},
+          {"islands", t.islands},
+          {"total", t.total()}};
+}
+
 nlohmann::json statsJson(const StepStats& s) {
-  return {{"potential_pairs", s.potentialPairs},
-          {"broad_phase_pairs", s.keptPairs},
-          {"narrow_phase_tests", s.narrowPhaseTests},
-          {"reused_manifolds", s.reusedManifolds},
-          {"contact_pairs", s.contactPairs}};
+  return {{"potential_pairs", s.potentialPairs},      {"broad_phase_pairs", s.keptPairs},
+          {"narrow_phase_tests", s.narrowPhaseTests}, {"reused_manifolds", s.reusedManifolds},
+          {"contact_pairs", s.contactPairs},          {"stage_seconds", stageJson(s.time)}};
 }
 
 }  // namespace
@@ -73,6 +81,20 @@ std::string formatSummary(const RunSummary& s) {
   if (s.total.potentialPairs > 0) {
     add("in contact / potential: %.4f%%\n",
         100.0 * double(s.total.contactPairs) / double(s.total.potentialPairs));
+  }
+  // Where the step's time went, averaged over the run.
+  const StageTimes& t = s.total.time;
+  if (s.steps > 0 && t.total() > 0.0) {
+    add("\n%-24s %14s %16s\n", "time by stage", "ms/step", "share");
+    const auto stage = [&](const char* name, double seconds) {
+      add("%-24s %14.4f %15.1f%%\n", name, seconds * 1e3 / s.steps, 100.0 * seconds / t.total());
+    };
+    stage("broad phase", t.broadPhase);
+    stage("narrow phase", t.narrowPhase);
+    stage("solve", t.solve);
+    stage("continuous", t.continuous);
+    stage("events", t.events);
+    stage("islands and sleep", t.islands);
   }
   add("\nmomentum        (%.6g, %.6g, %.6g) kg m/s\n", s.momentum.x, s.momentum.y, s.momentum.z);
   add("kinetic energy  %.6g J\n", s.kineticEnergy);

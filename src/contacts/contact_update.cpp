@@ -60,10 +60,74 @@ class PairPass {
         events_(events),
         callbackError_(callbackError) {}
 
+  // How a pair's manifold is found, the cheapest exact way first: last step's placed again
+  // (Reused, written to `out`), the bounding spheres apart by more than the margin, still apart
+  // along last step's separating axis, or the proxies' collider test.
+  enum class ManifoldRoute { Reused, SpheresApart, AxisApart, Test };
+  static ManifoldRoute manifoldRoute(const ContactUpdate& s, const BodyStorage& bodies, std::uint32_t ia,
+                                     std::uint32_t ib, const Contact* previous, float margin,
+                                     const ContactTuning& tuning, Manifold& out) {
+    const BodyRecord& ra = bodies.records[ia];
+    const BodyRecord& rb = bodies.records[ib];
+    const Transform& ta = s.poses_[ia];
+    const Transform& tb = s.poses_[ib];
+    const bool sensor = ra.sensor || rb.sensor;
+    if (previous && !sensor &&
+        reuseManifold(previous->cache, previous->manifold, ta, tb, s.scaledRotations_[ia],
+                      s.scaledRotations_[ib], ra.originRadius, rb.originRadius, tuning.manifoldCacheDistance,
+                      out))
+      return ManifoldRoute::Reused;
+    // The lecture's early reject with the cheapest bounding volume, before the collider test.
+    if (glm::length(tb.position - ta.position) > ra.originRadius + rb.originRadius + margin)
+      return ManifoldRoute::SpheresApart;
+    // Two support points instead of the separating-axis test (the broad phase's fat boxes keep
+    // many such pairs, e.g. neighbours in a heap of hulls).
+    if (previous && !sensor && previous->cache.hasAxis && previous->manifold.count == 0 &&
+        separationAlong(ra.shape, ta, rb.shape, tb, ta.applyToDirection(previous->cache.separatingAxis)) >
+            margin)
+      return ManifoldRoute::AxisApart;
+    return ManifoldRoute::Test;
+  }
+
+  // The speculative margin of a pair (none for a sensor's).
+  static float pairMargin(const ContactUpdate& s, const BodyRecord& ra, const BodyRecord& rb,
+                          std::uint32_t ia, std::uint32_t ib, float dt, const ContactTuning& tuning) {
+    if (ra.sensor || rb.sensor) return 0.0f;
+    return speculativeMargin(s.velocities_[ia], s.velocities_[ib], s.spinReaches_[ia], s.spinReaches_[ib], dt,
+                             tuning.speculativeDistance);
+  }
+
+  // The proxies' collider test, and for polyhedra found apart their distance (the next step tests
+  // the separating axis first).
+  static ContactUpdate::StagedTest runTest(const BodyRecord& ra, const Transform& ta, const BodyRecord& rb,
+                                           const Transform& tb, float margin) {
+    ContactUpdate::StagedTest test;
+    collide::collide(ra.shape, ta, rb.shape, tb, test.manifold, margin);
+    const bool sensor = ra.sensor || rb.sensor;
+    if (!sensor && test.manifold.count == 0 && separatingAxisPays(ra.shape, rb.shape)) {
+      test.apart = collide::distance(ra.shape, ta, rb.shape, tb);
+      test.hasApart = true;
+    }
+    return test;
+  }
+
+  // Whether the walk takes this pair to manifoldRoute (not skipped, filtered aside, asleep or made
+  // of parts), and last step's contact of it: what stageTests needs to know ahead of the walk.
+  // The pair filters are not asked (a user's filter is called once, by the walk): a filtered pair
+  // may be tested for nothing.
+  static bool walkTests(const BodyStorage& bodies, std::uint32_t ia, std::uint32_t ib) {
+    const BodyRecord& ra = bodies.records[ia];
+    const BodyRecord& rb = bodies.records[ib];
+    if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) return false;
+    if (ra.sensor && rb.sensor) return false;
+    if (!bodies.isAwakeDynamic(ia) && !bodies.isAwakeDynamic(ib)) return false;
+    return !hasParts(ra) && !hasParts(rb);
+  }
+
   ContactUpdateCounts run() {
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       prefetchAhead(p);
-      updatePair(pairs_[p]);
+      updatePair(pairs_[p], p);
     }
     while (next_ < previous_.size()) events_.endVanished(bodies_, previous_[next_++]);
     return counts_;
@@ -118,7 +182,7 @@ class PairPass {
     for (const Contact& old : previous) events_.endVanished(bodies_, old);
   }
 
-  void updatePair(const ProxyPair& pair) {
+  void updatePair(const ProxyPair& pair, std::size_t pairIndex) {
     const std::uint64_t key = pairKey(pair.a.index, pair.b.index);
     const std::uint32_t ia = bodyOf(pair.a);
     const std::uint32_t ib = bodyOf(pair.b);
@@ -155,7 +219,7 @@ class PairPass {
     const Contact* previous = previousRange.empty() ? nullptr : &previousRange.front();
     Contact& c = contacts_.emplace_back();
     ++counts_.narrowPhaseTests;
-    const bool reused = computeManifold(ia, ib, previous, c);
+    const bool reused = computeManifold(ia, ib, previous, c, pairIndex);
     if (c.manifold.count == 0) {
       if (previous) events_.endVanished(bodies_, *previous);
       if (!c.cache.valid) {
@@ -227,55 +291,57 @@ class PairPass {
   }
 
   // The pair's manifold in c.manifold and what the next step may reuse of it in c.cache, by the
-  // cheapest exact way. Returns whether last step's manifold was placed again.
-  bool computeManifold(std::uint32_t ia, std::uint32_t ib, const Contact* previous, Contact& c) {
+  // cheapest exact way (manifoldRoute); the collider test's result from `staged` if it ran ahead.
+  // Returns whether last step's manifold was placed again.
+  bool computeManifold(std::uint32_t ia, std::uint32_t ib, const Contact* previous, Contact& c,
+                       std::size_t pairIndex) {
+    const ContactUpdate::StagedTest* staged = s_.stagedTest(pairIndex);
     const BodyRecord& ra = bodies_.records[ia];
     const BodyRecord& rb = bodies_.records[ib];
     const Transform& ta = s_.poses_[ia];
     const Transform& tb = s_.poses_[ib];
     const ContactTuning& tuning = settings_.tuning;
     const bool sensor = ra.sensor || rb.sensor;
-    const float margin = sensor
-                             ? 0.0f
-                             : speculativeMargin(s_.velocities_[ia], s_.velocities_[ib], s_.spinReaches_[ia],
-                                                 s_.spinReaches_[ib], dt_, tuning.speculativeDistance);
+    const float margin = pairMargin(s_, ra, rb, ia, ib, dt_, tuning);
     // An empty manifold is cached only if the margin exceeds the cache's tolerance: a pair found
     // apart by more than the margin then cannot touch before it moves beyond the tolerance.
     const bool cacheApart = margin > 2.0f * tuning.manifoldCacheDistance;
-    if (previous && !sensor &&
-        reuseManifold(previous->cache, previous->manifold, ta, tb, s_.scaledRotations_[ia],
-                      s_.scaledRotations_[ib], ra.originRadius, rb.originRadius, tuning.manifoldCacheDistance,
-                      c.manifold)) {
-      // A pair that has not moved relative to itself since its manifold was computed (a resting
-      // stack, a crate on the terrain).
-      c.cache = previous->cache;
-      ++counts_.reusedManifolds;
-      return true;
+    // The stage ran ahead found the route of a pair it tested (and of one found apart).
+    const ManifoldRoute route =
+        staged ? (staged->reused ? ManifoldRoute::Reused : ManifoldRoute::Test)
+        : s_.stagedRoute(pairIndex, ManifoldRoute::SpheresApart) ? ManifoldRoute::SpheresApart
+        : s_.stagedRoute(pairIndex, ManifoldRoute::AxisApart)
+            ? ManifoldRoute::AxisApart
+            : manifoldRoute(s_, bodies_, ia, ib, previous, margin, tuning, c.manifold);
+    switch (route) {
+      case ManifoldRoute::Reused:
+        if (staged) c.manifold = staged->manifold;
+        // A pair that has not moved relative to itself since its manifold was computed (a resting
+        // stack, a crate on the terrain).
+        c.cache = previous->cache;
+        ++counts_.reusedManifolds;
+        return true;
+      case ManifoldRoute::SpheresApart:
+        c.manifold.count = 0;
+        if (!sensor && cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
+        return false;
+      case ManifoldRoute::AxisApart:
+        c.manifold.count = 0;
+        if (cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
+        c.cache.separatingAxis = previous->cache.separatingAxis;
+        c.cache.hasAxis = true;
+        return false;
+      case ManifoldRoute::Test:
+        break;
     }
-    if (glm::length(tb.position - ta.position) > ra.originRadius + rb.originRadius + margin) {
-      // The bounding spheres are apart by more than the margin: the lecture's early reject with the
-      // cheapest bounding volume, before the proxies' collider test.
-      c.manifold.count = 0;
-      if (!sensor && cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
-    } else if (previous && !sensor && previous->cache.hasAxis && previous->manifold.count == 0 &&
-               separationAlong(ra.shape, ta, rb.shape, tb,
-                               ta.applyToDirection(previous->cache.separatingAxis)) > margin) {
-      // Still apart along the axis that separated them last time: two support points instead of the
-      // separating-axis test (the broad phase's fat boxes keep many such pairs, e.g. neighbours in a
-      // heap of hulls).
-      c.manifold.count = 0;
-      if (cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
-      c.cache.separatingAxis = previous->cache.separatingAxis;
-      c.cache.hasAxis = true;
-    } else {
-      collide::collide(ra.shape, ta, rb.shape, tb, c.manifold, margin);
-      if (!sensor && (c.manifold.count > 0 || cacheApart)) storeManifold(c.manifold, ta, tb, c.cache);
-      if (!sensor && c.manifold.count == 0 && separatingAxisPays(ra.shape, rb.shape)) {
-        const DistanceResult apart = collide::distance(ra.shape, ta, rb.shape, tb);
-        if (!apart.overlapping && apart.distance > margin) {
-          c.cache.separatingAxis = ta.inverseApplyToDirection(apart.normal);
-          c.cache.hasAxis = true;
-        }
+    const ContactUpdate::StagedTest test = staged ? *staged : runTest(ra, ta, rb, tb, margin);
+    c.manifold = test.manifold;
+    if (!sensor && (c.manifold.count > 0 || cacheApart)) storeManifold(c.manifold, ta, tb, c.cache);
+    if (test.hasApart) {
+      const DistanceResult& apart = test.apart;
+      if (!apart.overlapping && apart.distance > margin) {
+        c.cache.separatingAxis = ta.inverseApplyToDirection(apart.normal);
+        c.cache.hasAxis = true;
       }
     }
     return false;
@@ -392,17 +458,79 @@ void ContactUpdate::snapshotBodies(const BodyStorage& bodies, const BroadPhase& 
     proxyBodies_[k] = static_cast<std::uint32_t>(proxies[k].userValue);
 }
 
+void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
+                               const std::vector<Contact>& previous, const ContactUpdateSettings& settings,
+                               float dt, TaskRunner& tasks) {
+  stagedIndex_.resize(pairs.size());
+  staged_.resize(static_cast<std::size_t>(tasks.workerCount()));
+  for (WorkerTests& list : staged_) list.tests.clear();
+  tasks.parallelFor(
+      static_cast<std::uint32_t>(pairs.size()), kPairsPerRange,
+      [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
+        std::vector<StagedTest>& list = staged_[worker].tests;
+        Manifold scratch;
+        // Last step's contacts, merged in key order as the walk does, from where
+        // this range's first pair would find them.
+        auto cursor = std::lower_bound(
+            previous.begin(), previous.end(), pairKey(pairs[begin].a.index, pairs[begin].b.index),
+            [](const Contact& contact, std::uint64_t k) { return contact.key < k; });
+        for (std::uint32_t p = begin; p < end; ++p) {
+          stagedIndex_[p] = kNotStaged;
+          const std::uint32_t ia = proxyBodies_[pairs[p].a.index];
+          const std::uint32_t ib = proxyBodies_[pairs[p].b.index];
+          if (!PairPass::walkTests(bodies, ia, ib)) continue;
+          // Last step's contact of the pair, as the walk's merge finds it.
+          const std::uint64_t key = pairKey(pairs[p].a.index, pairs[p].b.index);
+          while (cursor != previous.end() && cursor->key < key) ++cursor;
+          const auto it = cursor;
+          const Contact* old = nullptr;
+          if (it != previous.end() && it->key == key && it->bodyA == ia && it->bodyB == ib &&
+              it->generationA == bodies.records[ia].generation &&
+              it->generationB == bodies.records[ib].generation)
+            old = &*it;
+          const BodyRecord& ra = bodies.records[ia];
+          const BodyRecord& rb = bodies.records[ib];
+          const float margin = PairPass::pairMargin(*this, ra, rb, ia, ib, dt, settings.tuning);
+          const PairPass::ManifoldRoute route =
+              PairPass::manifoldRoute(*this, bodies, ia, ib, old, margin, settings.tuning, scratch);
+          if (route == PairPass::ManifoldRoute::SpheresApart) stagedIndex_[p] = kSpheresApart;
+          if (route == PairPass::ManifoldRoute::AxisApart) stagedIndex_[p] = kAxisApart;
+          if (route == PairPass::ManifoldRoute::Reused) {
+            stagedIndex_[p] = worker << 26 | static_cast<std::uint32_t>(list.size());
+            ContactUpdate::StagedTest& placed = list.emplace_back();
+            placed.manifold = scratch;
+            placed.reused = true;
+          }
+          if (route != PairPass::ManifoldRoute::Test) continue;
+          stagedIndex_[p] = worker << 26 | static_cast<std::uint32_t>(list.size());
+          list.push_back(PairPass::runTest(ra, poses_[ia], rb, poses_[ib], margin));
+        }
+      });
+}
+
 ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                        std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
                                        std::vector<Contact>& previous, const ContactUpdateSettings& settings,
                                        float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
-                                       StepEvents& events, std::string& callbackError) {
+                                       StepEvents& events, std::string& callbackError, TaskRunner& tasks) {
   snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance);
   std::swap(contacts, previous);
   contacts.clear();
-  return PairPass(*this, bodies, pairs, contacts, previous, settings, dt, preSolve, filters, events,
-                  callbackError)
-      .run();
+  // Running ahead pays when many pairs need their collider test; when most reuse last step's
+  // manifold (a resting pile) the walk's bookkeeping is the work and staging only adds to it. Last
+  // step's share decides (either way the contacts are the same).
+  const bool manyTests = lastTests_ * kStageWhenTestedOneIn >= lastPairs_;
+  if (tasks.workerCount() > 1 && manyTests) {
+    stageTests(bodies, pairs, previous, settings, dt, tasks);
+  } else {
+    stagedIndex_.clear();
+  }
+  const ContactUpdateCounts counts = PairPass(*this, bodies, pairs, contacts, previous, settings, dt,
+                                              preSolve, filters, events, callbackError)
+                                         .run();
+  lastTests_ = counts.narrowPhaseTests - counts.reusedManifolds;
+  lastPairs_ = counts.narrowPhaseTests;
+  return counts;
 }
 
 }  // namespace collide::detail

@@ -13,8 +13,10 @@
 
 #include <collide/broadphase.h>
 #include <collide/events.h>
+#include <collide/narrowphase.h>
 #include <collide/settings.h>
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "contacts/contact_events.h"
@@ -67,15 +69,47 @@ class ContactUpdate {
   // `previous` is scratch. End events of contacts whose pair vanished go to `events`. Settings the
   // pre-solve callback gets wrong are refused, and the first such refusal is described in
   // `callbackError`.
+  // With more than one worker, the pairs' full collider tests run first, in parallel ranges (each
+  // pair's test reads only the step's snapshot), and the walk in pair order takes their results:
+  // the contacts, the events and the callbacks are those of one worker, in the same order.
   ContactUpdateCounts run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                           std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
                           std::vector<Contact>& previous, const ContactUpdateSettings& settings, float dt,
                           const PreSolveCallback& preSolve, const PairFilters& filters, StepEvents& events,
-                          std::string& callbackError);
+                          std::string& callbackError, TaskRunner& tasks);
+
+  // A pair's collider test, run ahead: the manifold, and the distance when it came out empty
+  // between polyhedra (for the separating-axis cache).
+  struct StagedTest {
+    Manifold manifold;
+    DistanceResult apart;
+    bool hasApart = false;
+    bool reused = false;  // last step's manifold placed again, not a test
+  };
+  // Pairs not tested ahead: the walk finds their route itself, or takes the one found apart.
+  static constexpr std::uint32_t kNotStaged = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kSpheresApart = 0xFFFFFFFEu;
+  static constexpr std::uint32_t kAxisApart = 0xFFFFFFFDu;
+  static constexpr std::uint32_t kPairsPerRange = 64;
 
  private:
   friend class PairPass;
   void snapshotBodies(const BodyStorage& bodies, const BroadPhase& broadPhase, float dt, float cacheDistance);
+  // The tests of the pairs whose walk will reach collide(), in parallel ranges.
+  void stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
+                  const std::vector<Contact>& previous, const ContactUpdateSettings& settings, float dt,
+                  TaskRunner& tasks);
+  // Whether the stage found the pair apart this way (PairPass::ManifoldRoute).
+  template <typename Route>
+  bool stagedRoute(std::size_t pair, Route route) const {
+    if (pair >= stagedIndex_.size()) return false;
+    return stagedIndex_[pair] == (route == Route::SpheresApart ? kSpheresApart : kAxisApart);
+  }
+  const StagedTest* stagedTest(std::size_t pair) const {
+    if (pair >= stagedIndex_.size() || stagedIndex_[pair] >= kAxisApart) return nullptr;
+    const std::uint32_t index = stagedIndex_[pair];
+    return &staged_[index >> 26].tests[index & ((1u << 26) - 1)];
+  }
 
   std::vector<Transform> poses_;
   std::vector<Mat3> scaledRotations_;  // mat3_cast(rotation) * scale
@@ -83,6 +117,19 @@ class ContactUpdate {
   std::vector<Vec3> velocities_;            // linear, for the speculative margins
   std::vector<std::uint8_t> likelyPlaced_;  // moves beyond the manifold cache's tolerance this step
   std::vector<std::uint32_t> proxyBodies_;  // the body of each broad-phase proxy slot (its user value)
+  // Per pair, its staged test (worker << 26 | index in that worker's array) or kNotStaged; empty
+  // with one worker.
+  std::vector<std::uint32_t> stagedIndex_;
+  // Per worker, apart by a cache line: each worker's push_back writes its own vector's end.
+  struct alignas(64) WorkerTests {
+    std::vector<StagedTest> tests;
+  };
+  std::vector<WorkerTests> staged_;
+  // Last step's pairs that reached the narrow phase, and of those the ones not reused: the stage
+  // runs ahead when at least one in kStageWhenTestedOneIn was tested.
+  static constexpr std::uint64_t kStageWhenTestedOneIn = 4;
+  std::uint64_t lastTests_ = 0;
+  std::uint64_t lastPairs_ = 0;
 };
 
 }  // namespace collide::detail

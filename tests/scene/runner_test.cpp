@@ -247,6 +247,15 @@ TEST(Runner, SummaryJsonHasTheTablesNumbers) {
   const std::string table = formatSummary(s);
   EXPECT_THAT(table, ::testing::HasSubstr("potential n(n-1)/2"));
   EXPECT_THAT(table, ::testing::HasSubstr("21: 5 static, 0 kinematic, 16 dynamic"));
+  // The time by stage: in the table, and in the JSON adding up to its total.
+  EXPECT_THAT(table, ::testing::HasSubstr("time by stage"));
+  const auto& stages = j["total"]["stage_seconds"];
+  double sum = 0.0;
+  for (const char* stage : {"broad_phase", "narrow_phase", "solve", "continuous", "events", "islands"})
+    sum += stages[stage].get<double>();
+  EXPECT_NEAR(stages["total"].get<double>(), sum, 1e-12);
+  EXPECT_NEAR(stages["total"].get<double>(), s.total.time.total(), 1e-12);
+  EXPECT_LE(s.total.time.total(), s.wallSeconds);
 }
 
 TEST(Runner, BreakableWallLosesBricksToTheBall) {

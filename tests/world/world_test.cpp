@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -165,6 +166,31 @@ TEST(World, StepStatsTotalsSumTheCountersAndKeepTheProxyCount) {
   EXPECT_EQ(total.reusedManifolds, 2u);
   EXPECT_EQ(total.contactPairs, 2u);
   EXPECT_DOUBLE_EQ(total.keptFraction(), 0.5);
+}
+
+// The stage timings of a step lie within the wall time around world.step(), every stage of a
+// contact-heavy step takes part, and the totals are the sum of the steps'.
+TEST(World, StageTimesCoverTheStepAndAddUp) {
+  World world;
+  world.createBody(test::groundPlane());
+  for (int i = 0; i < 64; ++i)
+    world.createBody(
+        test::boxBody(Vec3(float(i % 8) * 1.1f, 0.5f + float(i / 8) * 1.05f, 0.0f), Vec3(0.5f), 1.0f));
+  double sumOfSteps = 0.0;
+  for (int step = 0; step < 20; ++step) {
+    const auto before = std::chrono::steady_clock::now();
+    world.step(kDt);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+    const StageTimes& time = world.lastStats().time;
+    for (double stage :
+         {time.broadPhase, time.narrowPhase, time.solve, time.continuous, time.events, time.islands})
+      EXPECT_GE(stage, 0.0);
+    EXPECT_GT(time.narrowPhase, 0.0);
+    EXPECT_GT(time.solve, 0.0);
+    EXPECT_LE(time.total(), wall);
+    sumOfSteps += time.total();
+  }
+  EXPECT_NEAR(world.totalStats().time.total(), sumOfSteps, 1e-9);
 }
 
 TEST(World, ContactEventsBeginOnceWithTheImpactSpeed) {
