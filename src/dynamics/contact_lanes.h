@@ -722,8 +722,9 @@ class LaneContactSolver final : public ContactLanes {
         selectW(filled, splatT<F>(kTwistRadiusScale) * radius / selectW(filled, in.count, one), zero);
   }
 
-  // Batches a parallel range takes: a few microseconds of solving.
-  static constexpr std::uint32_t kBatchesPerRange = 32;
+  // The fewest batches a parallel range takes; the pool makes ranges longer to give each worker a
+  // few. A colour of no more batches than this runs on the calling thread.
+  static constexpr std::uint32_t kBatchesPerRange = 4;
   std::vector<Batch> batches_;
   std::array<std::uint32_t, kGraphColors + 2> batchStart_{};  // colour c's batches: [batchStart_[c], [c + 1])
   float pushOutSpeed_ = 3.0f;
