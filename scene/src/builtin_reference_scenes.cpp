@@ -123,6 +123,26 @@ Json pile() {
   return doc;
 }
 
+// The step at scale (docs/threads.md, "At scale"): 100,000 unit cubes in a 100 x 10 x 100 lattice,
+// spacing 1.1, the lowest layer resting on the ground, so that contacts start with the first step.
+Json largePile() {
+  Json doc = referenceDocument();
+  Json& bodies = doc["bodies"];
+  bodies.push_back(groundBox());
+  for (int y = 0; y < 10; ++y) {
+    for (int z = 0; z < 100; ++z) {
+      for (int x = 0; x < 100; ++x) {
+        Json b = body("box_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
+                      "dynamic", box(0.5, 0.5, 0.5), vec((x - 49.5) * 1.1, 0.5 + y * 1.1, (z - 49.5) * 1.1));
+        b["mass"] = 1;
+        b["friction"] = num(0.5);
+        bodies.push_back(b);
+      }
+    }
+  }
+  return doc;
+}
+
 // R2: 8,000 spheres (radius 0.25) in a 20 x 20 x 20 lattice, spacing 0.6, into an open container of
 // four static walls enclosing x, z in [-7, 7], 10 high, 0.5 thick. `jitter` (m) moves each sphere by
 // up to that much in x and z (a fixed seed), so that the columns of the exact lattice topple and

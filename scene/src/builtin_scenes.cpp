@@ -25,6 +25,7 @@ Json ragdolls();
 Json machine();
 Json jointGrid();
 Json ragdollPile();
+Json largePile();
 }  // namespace builtin
 
 namespace {
@@ -69,6 +70,8 @@ const std::vector<Entry>& registry() {
        builtin::jointGrid},
       {{"ragdoll-pile", "100 ragdolls (1,100 bodies, 1,000 joints) dropped into a pile"},
        builtin::ragdollPile},
+      {{"large-pile", "100,000 unit cubes in a 100x10x100 lattice, the lowest layer on the ground"},
+       builtin::largePile},
   };
   return entries;
 }

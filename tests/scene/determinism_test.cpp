@@ -19,7 +19,7 @@ namespace {
 int stepsFor(std::string_view name) {
   static const std::map<std::string, int, std::less<>> kShorter = {
       {"pile", 30},    {"rain", 40},       {"rain-jittered", 40}, {"terrain", 60},
-      {"pyramid", 60}, {"joint-grid", 10}, {"ragdoll-pile", 30}};
+      {"pyramid", 60}, {"joint-grid", 10}, {"ragdoll-pile", 30},  {"large-pile", 2}};
   const auto it = kShorter.find(name);
   return it == kShorter.end() ? 120 : it->second;
 }

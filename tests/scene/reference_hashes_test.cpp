@@ -47,6 +47,7 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"machine", 120, 0xdbae0c5ee18e8576},
     {"joint-grid", 10, 0x701524027f45688d},
     {"ragdoll-pile", 30, 0xe1910f36c7139533},
+    {"large-pile", 2, 0x01d5a781327adae6},
 };
 
 std::string hex(std::uint64_t value) {

@@ -505,9 +505,9 @@ TEST(SceneParserErrors, SettingsWithinTheirLimits) {
 TEST(SceneParserErrors, BodiesAndTrianglesWithinTheirLimits) {
   // Counted before any is read.
   std::string bodies = "0";
-  for (int i = 0; i < 100'000; ++i) bodies += ",0";
+  for (int i = 0; i < 1'000'000; ++i) bodies += ",0";
   EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [)" + bodies + "]}"),
-              HasSubstr("test.json: bodies: holds 100001 bodies, more than the limit of 100000"));
+              HasSubstr("test.json: bodies: holds 1000001 bodies, more than the limit of 1000000"));
   std::string triangles = "0";
   for (int i = 0; i < 4'000'000; ++i) triangles += ",0";
   EXPECT_THAT(

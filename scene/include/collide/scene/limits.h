@@ -25,7 +25,7 @@ inline constexpr float kMaxDt = 1.0f;  // s
 inline constexpr int kMaxSteps = 10'000'000;
 
 // Sizes.
-inline constexpr std::size_t kMaxBodies = 100'000;
+inline constexpr std::size_t kMaxBodies = 1'000'000;
 inline constexpr std::size_t kMaxMeshTriangles = 4'000'000;  // inline or from an OBJ file, triangulated
 inline constexpr std::size_t kMaxObjFaceVertices = 256;      // one polygon ("f" line) of an OBJ file
 
