@@ -269,13 +269,22 @@ int main(int argc, char** argv) try {
                  "built-in or a "
                  "scene file); repeatable; default all five");
   app.add_option("--json", jsonPath, "also write the results to this JSON file");
+  int workers = 1;
+  app.add_option("--workers", workers,
+                 "collide's workers (WorldDef::workerCount; Bullet stays single-threaded); with more than "
+                 "one, read the wall times: the CPU time counts every thread")
+      ->check(CLI::Range(1, kMaxWorkers))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   std::vector<SceneInfo> infos;
   if (sceneArgs.empty()) infos = kReferenceScenes;
   for (const std::string& a : sceneArgs) infos.push_back(resolveScene(a));
   std::vector<scene::Scene> scenes;
-  for (const SceneInfo& info : infos) scenes.push_back(loadScene(info));
+  for (const SceneInfo& info : infos) {
+    scenes.push_back(loadScene(info));
+    scenes.back().world.workerCount = workers;
+  }
 
   std::vector<std::map<Engine, Summary>> results(infos.size());
   for (int run = 0; run < runs; ++run) {
