@@ -56,7 +56,7 @@ void World::Impl::step(float dt) {
   StageTimes time;
   events.beginStep();
   detail::updateProxies(bodies, *broadPhase, dt, tuning.speculativeDistance);
-  lastStats = StepStats(broadPhase->findPairs(pairs));
+  lastStats = StepStats(broadPhase->findPairs(pairs, tasks));
   if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
   time.broadPhase = clock.lap();
   const detail::PairFilters filters{&jointedApart, &pairFilter};

@@ -24,6 +24,10 @@
 
 namespace collide {
 
+namespace detail {
+class TaskRunner;  // the world's parallel loops (src/base/task_runner.h)
+}
+
 enum class BroadPhaseType : std::uint8_t { Tree, SweepAndPrune, Grid, BruteForce };
 inline constexpr int kBroadPhaseTypeCount = 4;
 
@@ -149,6 +153,8 @@ class BroadPhase {
   // All pairs of proxies whose boxes overlap (touching counts), at least one of them movable, sorted
   // by (a.index, b.index). Every algorithm gives exactly this list. Returns the counters of the call.
   const BroadPhaseStats& findPairs(std::vector<ProxyPair>& outPairs);
+  // The same list, the algorithm's independent parts on the world's workers (the world's own call).
+  const BroadPhaseStats& findPairs(std::vector<ProxyPair>& outPairs, detail::TaskRunner& tasks);
   // The counters of the last findPairs.
   const BroadPhaseStats& lastStats() const { return stats_; }
 
@@ -233,6 +239,7 @@ class BroadPhase {
   std::vector<std::uint32_t> freeSlots_;
   std::size_t aliveCount_ = 0;
   BroadPhaseStats stats_;
+  detail::TaskRunner* tasks_ = nullptr;  // during findPairs(outPairs, tasks) only
 
  private:
   std::uint32_t resolve(ProxyId id, const char* operation) const;

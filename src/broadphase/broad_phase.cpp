@@ -136,6 +136,15 @@ void BroadPhase::setLayer(ProxyId id, std::uint32_t layer) {
   proxies_[resolve(id, "setLayer")].layer = layer;
 }
 
+const BroadPhaseStats& BroadPhase::findPairs(std::vector<ProxyPair>& outPairs, detail::TaskRunner& tasks) {
+  tasks_ = &tasks;
+  struct Clear {
+    detail::TaskRunner*& tasks;
+    ~Clear() { tasks = nullptr; }
+  } clear{tasks_};
+  return findPairs(outPairs);
+}
+
 const BroadPhaseStats& BroadPhase::findPairs(std::vector<ProxyPair>& outPairs) {
   keys_.clear();
   std::uint64_t boxTests = 0;

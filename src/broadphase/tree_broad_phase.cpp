@@ -7,6 +7,7 @@
 // the pairs between proxies that did not move cost nothing to find again (a broad phase that touches
 // only what moved). Each call then walks the persistent set once: pairs whose fat boxes separated are
 // dropped, and pairs whose tight boxes overlap are reported, so the output is exact, like the others.
+#include "base/task_runner.h"
 #include "broadphase/broad_phase_internal.h"
 #include "broadphase/dynamic_tree.h"
 
@@ -98,21 +99,37 @@ class TreeBroadPhase final : public BroadPhase {
   bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     // 1. New fat-box overlaps of the moved proxies, against both trees (a static one only against
     //    the movable tree: static-static pairs are never wanted).
+    //    The queries only read the trees: with workers, ranges of them run in parallel, each
+    //    worker collecting into its own list; the sort below makes the order of the lists moot.
     candidates_.clear();
+    queries_.clear();
     for (const std::uint32_t i : moveBuffer_) {
       if (!moved_[i]) continue;  // removed since it was buffered
       moved_[i] = 0;
-      const Aabb query = fatBox(i);
-      auto collect = [&](const DynamicTree::Node& leaf) {
-        if (leaf.proxy != i) candidates_.push_back(pairKey(i, leaf.proxy));
-        return true;
-      };
-      auto overlapsQuery = [&](const Aabb& box) { return box.overlaps(query); };
-      movableTree_.traverse(overlapsQuery, collect, outBoxTests);
-      if (proxies_[i].motion == MotionType::Movable)
-        staticTree_.traverse(overlapsQuery, collect, outBoxTests);
+      queries_.push_back(i);
     }
     moveBuffer_.clear();
+    const std::uint32_t queryCount = static_cast<std::uint32_t>(queries_.size());
+    if (tasks_ != nullptr && tasks_->workerCount() > 1 && queryCount > kQueriesPerRange) {
+      const std::size_t workers = static_cast<std::size_t>(tasks_->workerCount());
+      if (workerCandidates_.size() < workers) workerCandidates_.resize(workers);
+      for (WorkerCandidates& w : workerCandidates_) {
+        w.keys.clear();
+        w.boxTests = 0;
+      }
+      tasks_->parallelFor(queryCount, kQueriesPerRange,
+                          [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
+                            WorkerCandidates& w = workerCandidates_[worker];
+                            for (std::uint32_t k = begin; k < end; ++k)
+                              queryMoved(queries_[k], w.keys, w.boxTests);
+                          });
+      for (const WorkerCandidates& w : workerCandidates_) {
+        candidates_.insert(candidates_.end(), w.keys.begin(), w.keys.end());
+        outBoxTests += w.boxTests;
+      }
+    } else {
+      for (const std::uint32_t i : queries_) queryMoved(i, candidates_, outBoxTests);
+    }
     std::sort(candidates_.begin(), candidates_.end());
     candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
 
@@ -147,6 +164,19 @@ class TreeBroadPhase final : public BroadPhase {
     }
     pairs_.swap(merged_);
     return true;
+  }
+
+  // The new fat-box overlaps of moved proxy i, against both trees (a static one only against the
+  // movable tree: static-static pairs are never wanted).
+  void queryMoved(std::uint32_t i, std::vector<std::uint64_t>& keys, std::uint64_t& boxTests) const {
+    const Aabb query = fatBox(i);
+    auto collect = [&](const DynamicTree::Node& leaf) {
+      if (leaf.proxy != i) keys.push_back(pairKey(i, leaf.proxy));
+      return true;
+    };
+    auto overlapsQuery = [&](const Aabb& box) { return box.overlaps(query); };
+    movableTree_.traverse(overlapsQuery, collect, boxTests);
+    if (proxies_[i].motion == MotionType::Movable) staticTree_.traverse(overlapsQuery, collect, boxTests);
   }
 
   void rayCastImpl(RayQuery& query) const override {
@@ -229,6 +259,14 @@ class TreeBroadPhase final : public BroadPhase {
   std::vector<std::uint32_t> moveBuffer_;
   std::vector<std::uint64_t> pairs_;  // sorted keys of all fat-box overlaps (persistent)
   std::vector<std::uint64_t> candidates_;
+  std::vector<std::uint32_t> queries_;  // the moved proxies still alive, in move-buffer order
+  // Per worker, on its own cache lines: the keys and box tests of its queries.
+  struct alignas(64) WorkerCandidates {
+    std::vector<std::uint64_t> keys;
+    std::uint64_t boxTests = 0;
+  };
+  std::vector<WorkerCandidates> workerCandidates_;
+  static constexpr std::uint32_t kQueriesPerRange = 128;
   std::vector<std::uint64_t> merged_;
 };
 
