@@ -104,16 +104,18 @@ Json billiards() {
   return doc;
 }
 
-// R1: 4,096 unit cubes in a 16 x 16 x 16 lattice, spacing 1.1, lowest layer at y = 1.
-Json pile() {
+// Unit cubes of 1 kg on the ground in an nx x ny x nz lattice, spacing 1.1, centred on the origin in
+// x and z, the lowest layer's centres at y = lowestY.
+static Json cubeLattice(int nx, int ny, int nz, double lowestY) {
   Json doc = referenceDocument();
   Json& bodies = doc["bodies"];
   bodies.push_back(groundBox());
-  for (int y = 0; y < 16; ++y) {
-    for (int z = 0; z < 16; ++z) {
-      for (int x = 0; x < 16; ++x) {
+  for (int y = 0; y < ny; ++y) {
+    for (int z = 0; z < nz; ++z) {
+      for (int x = 0; x < nx; ++x) {
         Json b = body("box_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
-                      "dynamic", box(0.5, 0.5, 0.5), vec((x - 7.5) * 1.1, 1.0 + y * 1.1, (z - 7.5) * 1.1));
+                      "dynamic", box(0.5, 0.5, 0.5),
+                      vec((x - (nx - 1) / 2.0) * 1.1, lowestY + y * 1.1, (z - (nz - 1) / 2.0) * 1.1));
         b["mass"] = 1;
         b["friction"] = num(0.5);
         bodies.push_back(b);
@@ -123,25 +125,12 @@ Json pile() {
   return doc;
 }
 
+// R1: 4,096 unit cubes in a 16 x 16 x 16 lattice, spacing 1.1, lowest layer at y = 1.
+Json pile() { return cubeLattice(16, 16, 16, 1.0); }
+
 // The step at scale (docs/threads.md, "At scale"): 100,000 unit cubes in a 100 x 10 x 100 lattice,
 // spacing 1.1, the lowest layer resting on the ground, so that contacts start with the first step.
-Json largePile() {
-  Json doc = referenceDocument();
-  Json& bodies = doc["bodies"];
-  bodies.push_back(groundBox());
-  for (int y = 0; y < 10; ++y) {
-    for (int z = 0; z < 100; ++z) {
-      for (int x = 0; x < 100; ++x) {
-        Json b = body("box_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
-                      "dynamic", box(0.5, 0.5, 0.5), vec((x - 49.5) * 1.1, 0.5 + y * 1.1, (z - 49.5) * 1.1));
-        b["mass"] = 1;
-        b["friction"] = num(0.5);
-        bodies.push_back(b);
-      }
-    }
-  }
-  return doc;
-}
+Json largePile() { return cubeLattice(100, 10, 100, 0.5); }
 
 // R2: 8,000 spheres (radius 0.25) in a 20 x 20 x 20 lattice, spacing 0.6, into an open container of
 // four static walls enclosing x, z in [-7, 7], 10 high, 0.5 thick. `jitter` (m) moves each sphere by

@@ -1,4 +1,4 @@
-// Joint trees solved directly (src/dynamics/joint_tree.h) against the known answers: a
+// Joint trees solved directly (src/dynamics/joint_tree.h) against known answers: a
 // 50-link chain released from the horizontal stretches less than 1 % in total; a 100 kg ball under
 // 20 links of 0.1 kg stays within 2 % of the chain's length, at rest and swinging; internal joint
 // forces keep a tumbling free chain's linear and angular momentum; a chain built from its free end
