@@ -196,12 +196,7 @@ struct App {
         ImGui::Text("%.3f ms", seconds * 1e3);
       };
       const StageTimes& time = stats.time;
-      stage("broad phase", time.broadPhase);
-      stage("narrow phase", time.narrowPhase);
-      stage("solve", time.solve);
-      stage("continuous", time.continuous);
-      stage("events", time.events);
-      stage("islands and sleep", time.islands);
+      for (const StageTimes::Stage& entry : StageTimes::kStages) stage(entry.label, time.*entry.seconds);
       stage("step", time.total());
       ImGui::EndTable();
     }

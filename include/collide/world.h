@@ -41,14 +41,29 @@ struct StageTimes {
   double events = 0.0;       // fault guard, escaped proxies, contact and sensor events
   double islands = 0.0;      // islands and sleeping
 
-  double total() const { return broadPhase + narrowPhase + solve + continuous + events + islands; }
+  // The stages in step order, with the names reports print (`label`) and write (`key`, snake
+  // case): collide run's table and JSON and the viewer's panel all walk this one list.
+  struct Stage {
+    const char* label;
+    const char* key;
+    double StageTimes::*seconds;
+  };
+  static constexpr Stage kStages[] = {
+      {"broad phase", "broad_phase", &StageTimes::broadPhase},
+      {"narrow phase", "narrow_phase", &StageTimes::narrowPhase},
+      {"solve", "solve", &StageTimes::solve},
+      {"continuous", "continuous", &StageTimes::continuous},
+      {"events", "events", &StageTimes::events},
+      {"islands and sleep", "islands", &StageTimes::islands},
+  };
+
+  double total() const {
+    double sum = 0.0;
+    for (const Stage& stage : kStages) sum += this->*stage.seconds;
+    return sum;
+  }
   StageTimes& operator+=(const StageTimes& step) {
-    broadPhase += step.broadPhase;
-    narrowPhase += step.narrowPhase;
-    solve += step.solve;
-    continuous += step.continuous;
-    events += step.events;
-    islands += step.islands;
+    for (const Stage& stage : kStages) this->*stage.seconds += step.*stage.seconds;
     return *this;
   }
 };

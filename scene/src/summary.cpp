@@ -17,13 +17,10 @@ std::string hex(std::uint64_t value) {
 }
 
 nlohmann::json stageJson(const StageTimes& t) {
-  return {{"broad_phase", t.broadPhase},
-          {"narrow_phase", t.narrowPhase},
-          {"solve", t.solve},
-          {"continuous", t.continuous},
-          {"events", t.events},
-          {"islands", t.islands},
-          {"total", t.total()}};
+  nlohmann::json json;
+  for (const StageTimes::Stage& stage : StageTimes::kStages) json[stage.key] = t.*stage.seconds;
+  json["total"] = t.total();
+  return json;
 }
 
 nlohmann::json statsJson(const StepStats& s) {
@@ -86,15 +83,10 @@ std::string formatSummary(const RunSummary& s) {
   const StageTimes& t = s.total.time;
   if (s.steps > 0 && t.total() > 0.0) {
     add("\n%-24s %14s %16s\n", "time by stage", "ms/step", "share");
-    const auto stage = [&](const char* name, double seconds) {
-      add("%-24s %14.4f %15.1f%%\n", name, seconds * 1e3 / s.steps, 100.0 * seconds / t.total());
-    };
-    stage("broad phase", t.broadPhase);
-    stage("narrow phase", t.narrowPhase);
-    stage("solve", t.solve);
-    stage("continuous", t.continuous);
-    stage("events", t.events);
-    stage("islands and sleep", t.islands);
+    for (const StageTimes::Stage& stage : StageTimes::kStages) {
+      const double seconds = t.*stage.seconds;
+      add("%-24s %14.4f %15.1f%%\n", stage.label, seconds * 1e3 / s.steps, 100.0 * seconds / t.total());
+    }
   }
   add("\nmomentum        (%.6g, %.6g, %.6g) kg m/s\n", s.momentum.x, s.momentum.y, s.momentum.z);
   add("kinetic energy  %.6g J\n", s.kineticEnergy);
