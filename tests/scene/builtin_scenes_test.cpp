@@ -4,7 +4,7 @@
 #include <collide/scene/reference_scenes.h>
 #include <collide/scene/runner.h>
 
-#include "scenes_in_this_build.h"
+#include "builtin_scene_runs.h"
 
 #include <gtest/gtest.h>
 
@@ -15,21 +15,23 @@
 namespace collide::scene {
 namespace {
 
-TEST(BuiltinScenes, EveryOneLoadsAndRunsTenSteps) {
-  for (const BuiltinScene& builtin : builtinScenes()) {
-    if (!stepsInThisBuild(builtin.name)) continue;
-    SCOPED_TRACE(std::string(builtin.name));
-    const Scene scene = loadBuiltinScene(builtin.name);
-    RunOptions options;
-    options.steps = 10;
-    const RunSummary s = runScene(scene, options);
-    EXPECT_EQ(s.steps, 10);
-    EXPECT_EQ(s.staticBodies + s.kinematicBodies + s.dynamicBodies, int(scene.bodies.size()));
-    EXPECT_TRUE(std::isfinite(s.kineticEnergy));
-    // The export is the same document: parsing it gives the same bodies.
-    EXPECT_EQ(parseScene(builtinSceneJson(builtin.name)).bodies.size(), scene.bodies.size());
-  }
+class EveryBuiltinScene : public testing::TestWithParam<std::string> {};
+
+TEST_P(EveryBuiltinScene, LoadsAndRunsTenSteps) {
+  const std::string& name = GetParam();
+  const Scene scene = loadBuiltinScene(name);
+  RunOptions options;
+  options.steps = 10;
+  const RunSummary s = runScene(scene, options);
+  EXPECT_EQ(s.steps, 10);
+  EXPECT_EQ(s.staticBodies + s.kinematicBodies + s.dynamicBodies, int(scene.bodies.size()));
+  EXPECT_TRUE(std::isfinite(s.kineticEnergy));
+  // The export is the same document: parsing it gives the same bodies.
+  EXPECT_EQ(parseScene(builtinSceneJson(name)).bodies.size(), scene.bodies.size());
 }
+
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, EveryBuiltinScene, testing::ValuesIn(builtinScenesSteppedHere()),
+                         sceneTestName);
 
 TEST(BuiltinScenes, UnknownNameIsAnError) {
   EXPECT_FALSE(isBuiltinScene("no-such-scene"));
