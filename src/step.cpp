@@ -55,7 +55,7 @@ void World::Impl::step(float dt) {
   StageClock clock;
   StageTimes time;
   events.beginStep();
-  detail::updateProxies(bodies, *broadPhase, dt, tuning.speculativeDistance);
+  proxyUpdate.run(bodies, *broadPhase, dt, tuning.speculativeDistance, tasks);
   lastStats = StepStats(broadPhase->findPairs(pairs, tasks));
   if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
   time.broadPhase = clock.lap();

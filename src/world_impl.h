@@ -5,6 +5,7 @@
 #include <collide/world.h>
 
 #include "base/task_runner.h"
+#include "bodies/body_bounds.h"
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "contacts/contact_events.h"
@@ -35,6 +36,7 @@ struct World::Impl {
   detail::BodyStorage bodies;
   std::unique_ptr<BroadPhase> broadPhase;
   std::vector<ProxyPair> pairs;  // the broad phase's pairs of the last step
+  detail::ProxyUpdate proxyUpdate;
   detail::ContactUpdate contactUpdate;
   std::vector<detail::Contact> contacts;  // in pair order
   std::vector<detail::Contact> previousContacts;

@@ -54,7 +54,7 @@ Aabb grownForStep(const BodyStorage& bodies, std::uint32_t index, float dt, floa
   return withinFloatRange(box.expanded(speculativeDistance + turn));
 }
 
-// What updateProxies decides for a body: is its proxy updated, and is its box grown from the last
+// What ProxyUpdate decides for a body: is its proxy updated, and is its box grown from the last
 // one or computed anew.
 struct BoxVerdict {
   bool updated = false;
@@ -70,16 +70,17 @@ class BoxVerdicts {
  public:
   static constexpr std::uint32_t kAhead = 16;
 
-  explicit BoxVerdicts(const BodyStorage& bodies)
-      : bodies_(bodies), count_(static_cast<std::uint32_t>(bodies.records.size())) {
-    for (std::uint32_t i = 0; i < std::min(kAhead, count_); ++i) judge(i);
+  // For the bodies [begin, end), taken in order.
+  BoxVerdicts(const BodyStorage& bodies, std::uint32_t begin, std::uint32_t end)
+      : bodies_(bodies), end_(end) {
+    for (std::uint32_t i = begin; i < std::min(begin + kAhead, end_); ++i) judge(i);
   }
 
   // Body i's verdict; judges body i + kAhead and asks for the arrays of body i + kAhead / 2.
   BoxVerdict take(std::uint32_t i) {
     const BoxVerdict v = ring_[i % kAhead];
-    if (i + kAhead < count_) judge(i + kAhead);
-    if (const std::uint32_t half = i + kAhead / 2; half < count_) {
+    if (i + kAhead < end_) judge(i + kAhead);
+    if (const std::uint32_t half = i + kAhead / 2; half < end_) {
       const BoxVerdict& w = ring_[half % kAhead];
       if (w.updated && !w.reusable) prefetchShapeArrays(bodies_.records[half].shape);
     }
@@ -97,7 +98,7 @@ class BoxVerdicts {
   }
 
   const BodyStorage& bodies_;
-  std::uint32_t count_;
+  std::uint32_t end_;
   std::array<BoxVerdict, kAhead> ring_;
 };
 
@@ -130,14 +131,26 @@ Aabb proxyBounds(BodyStorage& bodies, std::uint32_t index, float dt, float specu
   return grownForStep(bodies, index, dt, speculativeDistance, currentBounds(bodies, index));
 }
 
-void updateProxies(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance) {
-  BoxVerdicts verdicts(bodies);
+void ProxyUpdate::run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance,
+                      TaskRunner& tasks) {
+  // A range's boxes cost from a few ns (a box grown from the last) to a few hundred (a hull's
+  // vertices transformed): ranges of this many bodies keep the task overhead small beside them.
+  constexpr std::uint32_t kBodiesPerRange = 512;
   const auto count = static_cast<std::uint32_t>(bodies.records.size());
+  boxes_.resize(count);
+  updated_.resize(count);
+  tasks.parallelFor(count, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+    BoxVerdicts verdicts(bodies, begin, end);
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const BoxVerdict v = verdicts.take(i);
+      updated_[i] = v.updated ? 1 : 0;
+      if (!v.updated) continue;
+      const Aabb box = v.reusable ? bodies.records[i].bounds.expanded(v.moved) : recomputeBounds(bodies, i);
+      boxes_[i] = grownForStep(bodies, i, dt, speculativeDistance, box);
+    }
+  });
   for (std::uint32_t i = 0; i < count; ++i) {
-    const BoxVerdict v = verdicts.take(i);
-    if (!v.updated) continue;
-    const Aabb box = v.reusable ? bodies.records[i].bounds.expanded(v.moved) : recomputeBounds(bodies, i);
-    broadPhase.update(bodies.records[i].proxy, grownForStep(bodies, i, dt, speculativeDistance, box));
+    if (updated_[i] != 0) broadPhase.update(bodies.records[i].proxy, boxes_[i]);
   }
 }
 

@@ -7,9 +7,11 @@
 #include <collide/broadphase.h>
 #include <collide/math.h>
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace collide::detail {
 
@@ -31,8 +33,19 @@ Aabb currentBounds(BodyStorage& bodies, std::uint32_t index);
 // of a step of dt at the body's velocities (dt 0 between steps).
 Aabb proxyBounds(BodyStorage& bodies, std::uint32_t index, float dt, float speculativeDistance);
 
-// The stage: the proxy of every awake movable body takes its box for the step of dt.
-void updateProxies(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance);
+// The stage: the proxy of every awake movable body takes its box for the step of dt. The boxes are
+// computed in parallel, in ranges of bodies (each body's reads and writes are its own); the broad
+// phase is then told of them one body after another in body order, as its structure changes with
+// each move, so the result is the same at every worker count.
+class ProxyUpdate {
+ public:
+  void run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance,
+           TaskRunner& tasks);
+
+ private:
+  std::vector<Aabb> boxes_;            // per body, the proxy's box for the step where updated_
+  std::vector<std::uint8_t> updated_;  // per body: 1 if its proxy is updated this step
+};
 
 // After the solve: a body that an impulse (a hit, a constraint) carried out of the box the step
 // predicted for it gets a box where it is now, since the queries between steps (castRay) read

@@ -12,6 +12,7 @@
 #include "broadphase/dynamic_tree.h"
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 
 namespace collide {
@@ -133,37 +134,52 @@ class TreeBroadPhase final : public BroadPhase {
     std::sort(candidates_.begin(), candidates_.end());
     candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
 
-    // 2. Merge them into the persistent set (both sorted), dropping pairs whose fat boxes no longer
-    //    overlap and reporting those whose tight boxes do. The merge keeps the output sorted.
-    merged_.clear();
-    merged_.reserve(pairs_.size() + candidates_.size());
-    auto consider = [&](std::uint64_t key) {
-      const std::uint32_t a = pairKeyFirst(key), b = pairKeySecond(key);
-      const ProxyRecord& pa = proxies_[a];
-      const ProxyRecord& pb = proxies_[b];
-      if (!pa.alive || !pb.alive) return;
-      if (pa.motion == MotionType::Static && pb.motion == MotionType::Static) return;  // slot reused
-      outBoxTests += 1;
-      if (!fatBox(a).overlaps(fatBox(b))) return;
-      merged_.push_back(key);
-      outBoxTests += 1;
-      if (pa.bounds.overlaps(pb.bounds)) outKeys.push_back(key);
+    // 2. Merge them into the persistent set (both sorted): each key of the union gets its verdict
+    //    (pairVerdict: dropped, kept, or kept and reported), then one walk in key order keeps the
+    //    kept and reports the reported, so the output stays sorted. The verdicts only read boxes:
+    //    with workers, ranges of keys are judged in parallel.
+    union_.clear();
+    union_.reserve(pairs_.size() + candidates_.size());
+    std::set_union(pairs_.begin(), pairs_.end(), candidates_.begin(), candidates_.end(),
+                   std::back_inserter(union_));
+    const auto keyCount = static_cast<std::uint32_t>(union_.size());
+    verdicts_.resize(keyCount);
+    auto judge = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t k = begin; k < end; ++k) verdicts_[k] = pairVerdict(union_[k]);
     };
-    std::size_t i = 0, j = 0;
-    while (i < pairs_.size() || j < candidates_.size()) {
-      std::uint64_t key;
-      if (j == candidates_.size() || (i < pairs_.size() && pairs_[i] < candidates_[j])) {
-        key = pairs_[i++];
-      } else if (i == pairs_.size() || candidates_[j] < pairs_[i]) {
-        key = candidates_[j++];
-      } else {
-        key = pairs_[i++];
-        ++j;
-      }
-      consider(key);
+    if (tasks_ != nullptr) {
+      tasks_->parallelFor(keyCount, kKeysPerRange, judge);
+    } else {
+      judge(0, keyCount, 0);
+    }
+    merged_.clear();
+    merged_.reserve(keyCount);
+    for (std::uint32_t k = 0; k < keyCount; ++k) {
+      const PairVerdict v = verdicts_[k];
+      outBoxTests += (v >= PairVerdict::FatApart ? 1 : 0) + (v >= PairVerdict::Kept ? 1 : 0);
+      if (v >= PairVerdict::Kept) merged_.push_back(union_[k]);
+      if (v == PairVerdict::Reported) outKeys.push_back(union_[k]);
     }
     pairs_.swap(merged_);
     return true;
+  }
+
+  // What the merge does with a key of the persistent set or the candidates, in order: its box tests
+  // are one for FatApart and two for Kept and Reported.
+  enum class PairVerdict : std::uint8_t {
+    Gone,      // a proxy was removed (or its slot holds a static proxy now, beside a static one)
+    FatApart,  // the fat boxes no longer overlap: the pair leaves the persistent set
+    Kept,      // the fat boxes overlap: the pair stays, unreported
+    Reported,  // and the tight boxes overlap too: the pair is found
+  };
+  PairVerdict pairVerdict(std::uint64_t key) const {
+    const std::uint32_t a = pairKeyFirst(key), b = pairKeySecond(key);
+    const ProxyRecord& pa = proxies_[a];
+    const ProxyRecord& pb = proxies_[b];
+    if (!pa.alive || !pb.alive) return PairVerdict::Gone;
+    if (pa.motion == MotionType::Static && pb.motion == MotionType::Static) return PairVerdict::Gone;
+    if (!fatBox(a).overlaps(fatBox(b))) return PairVerdict::FatApart;
+    return pa.bounds.overlaps(pb.bounds) ? PairVerdict::Reported : PairVerdict::Kept;
   }
 
   // The new fat-box overlaps of moved proxy i, against both trees (a static one only against the
@@ -267,6 +283,10 @@ class TreeBroadPhase final : public BroadPhase {
   };
   std::vector<WorkerCandidates> workerCandidates_;
   static constexpr std::uint32_t kQueriesPerRange = 128;
+  // The merge's scratch: the union of pairs_ and candidates_, each key's verdict, the kept keys.
+  std::vector<std::uint64_t> union_;
+  std::vector<PairVerdict> verdicts_;
+  static constexpr std::uint32_t kKeysPerRange = 2048;
   std::vector<std::uint64_t> merged_;
 };
 

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
+#include "base/task_runner.h"
 #include "bodies/body_bounds.h"
 #include "bodies/body_def.h"
 #include "support/test_random.h"
@@ -69,7 +71,9 @@ TEST(BodyBounds, ProxyHoldsTheShapeAlongTheStepsMotion) {
   proxy.userValue = index;
   bodies.records[index].proxy = broadPhase->add(proxy);
   const float dt = 1.0f / 60.0f, speculative = 0.02f;
-  detail::updateProxies(bodies, *broadPhase, dt, speculative);
+  detail::TaskRunner tasks;
+  detail::ProxyUpdate update;
+  update.run(bodies, *broadPhase, dt, speculative, tasks);
   const Aabb box = broadPhase->bounds(bodies.records[index].proxy);
   // The crate where it is and where the step's velocity takes it, plus the speculative distance.
   for (const Vec3& c : corners(bodies, index)) {
@@ -78,6 +82,52 @@ TEST(BodyBounds, ProxyHoldsTheShapeAlongTheStepsMotion) {
     EXPECT_TRUE(box.contains(Aabb{c - reach, c + reach}));
     const Vec3 moved = c + dt * def.linearVelocity;
     EXPECT_TRUE(box.contains(Aabb{moved - reach, moved + reach}));
+  }
+}
+
+// The boxes are computed in parallel ranges: at 1 and at 3 workers every proxy gets the same box,
+// bit for bit, and each holds its body's box computed anew (many bodies, so that many ranges run;
+// some moved less than the reuse distance since their box, some more, some asleep).
+TEST(BodyBounds, ProxiesAreTheSameAtEveryWorkerCount) {
+  constexpr std::uint32_t kBodies = 5000;
+  const float dt = 1.0f / 60.0f, speculative = 0.02f;
+  std::vector<Aabb> boxes[2];
+  for (int run = 0; run < 2; ++run) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    BodyStorage bodies;
+    auto broadPhase = createBroadPhase();
+    for (std::uint32_t i = 0; i < kBodies; ++i) {
+      BodyDef def = crate();
+      def.position = Vec3(40.0f * unit(rng), 40.0f * unit(rng), 40.0f * unit(rng));
+      def.linearVelocity = Vec3(5.0f * unit(rng), 5.0f * unit(rng), 5.0f * unit(rng));
+      def.angularVelocity = Vec3(3.0f * unit(rng), 0.0f, 3.0f * unit(rng));
+      const std::uint32_t index = addBody(bodies, def);
+      ProxyDef proxy;
+      proxy.bounds = detail::proxyBounds(bodies, index, 0.0f, speculative);
+      proxy.motion = MotionType::Movable;
+      proxy.userValue = index;
+      bodies.records[index].proxy = broadPhase->add(proxy);
+      // A third moved under the reuse distance since that box, a third well past it.
+      if (i % 3 == 1) bodies.states[index].centerOfMass += Vec3(0.0005f, 0.0f, 0.0f);
+      if (i % 3 == 2) bodies.states[index].centerOfMass += Vec3(0.0f, 0.3f, 0.0f);
+      if (i % 11 == 0) bodies.records[index].awake = false;
+    }
+    detail::TaskRunner tasks;
+    tasks.configure(run == 0 ? 1 : 3, nullptr, nullptr, nullptr);
+    detail::ProxyUpdate update;
+    update.run(bodies, *broadPhase, dt, speculative, tasks);
+    for (std::uint32_t i = 0; i < kBodies; ++i) {
+      boxes[run].push_back(broadPhase->bounds(bodies.records[i].proxy));
+      const Aabb exact =
+          worldBounds(bodies.records[i].shape, detail::bodyTransform(bodies.records[i], bodies.states[i]));
+      if (bodies.records[i].awake) {
+        EXPECT_TRUE(boxes[run].back().contains(exact)) << "body " << i;
+      }
+    }
+  }
+  for (std::uint32_t i = 0; i < kBodies; ++i) {
+    EXPECT_EQ(std::memcmp(&boxes[0][i], &boxes[1][i], sizeof(Aabb)), 0) << "body " << i;
   }
 }
 
