@@ -432,14 +432,30 @@ class PairPass {
 };
 
 void ContactUpdate::snapshotBodies(const BodyStorage& bodies, const BroadPhase& broadPhase, float dt,
-                                   float cacheDistance) {
+                                   float cacheDistance, TaskRunner& tasks) {
   const std::size_t n = bodies.records.size();
   poses_.resize(n);
   scaledRotations_.resize(n);
   spinReaches_.resize(n);
   velocities_.resize(n);
   likelyPlaced_.assign(n, 0);
-  for (std::uint32_t i = 0; i < n; ++i) {
+  // Each body's entries are its own: ranges of bodies in parallel.
+  constexpr std::uint32_t kBodiesPerRange = 1024;
+  tasks.parallelFor(static_cast<std::uint32_t>(n), kBodiesPerRange,
+                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                      snapshotRange(bodies, dt, cacheDistance, begin, end);
+                    });
+  // Each proxy's body (its user value), copied into a compact array that the pair loop and its
+  // prefetching read twice a pair, instead of the broad phase's larger records.
+  const auto& proxies = broadPhase.records();
+  proxyBodies_.resize(proxies.size());
+  for (std::size_t k = 0; k < proxies.size(); ++k)
+    proxyBodies_[k] = static_cast<std::uint32_t>(proxies[k].userValue);
+}
+
+void ContactUpdate::snapshotRange(const BodyStorage& bodies, float dt, float cacheDistance,
+                                  std::uint32_t begin, std::uint32_t end) {
+  for (std::uint32_t i = begin; i < end; ++i) {
     if (!bodies.records[i].alive) continue;
     poses_[i] = bodyTransform(bodies.records[i], bodies.states[i]);
     scaledRotations_[i] = glm::mat3_cast(poses_[i].rotation) * poses_[i].scale;
@@ -450,12 +466,6 @@ void ContactUpdate::snapshotBodies(const BodyStorage& bodies, const BroadPhase& 
     const float motion = dt * (glm::length(velocities_[i]) + spinReaches_[i]);
     likelyPlaced_[i] = motion > cacheDistance;
   }
-  // Each proxy's body (its user value), copied into a compact array that the pair loop and its
-  // prefetching read twice a pair, instead of the broad phase's larger records.
-  const auto& proxies = broadPhase.records();
-  proxyBodies_.resize(proxies.size());
-  for (std::size_t k = 0; k < proxies.size(); ++k)
-    proxyBodies_[k] = static_cast<std::uint32_t>(proxies[k].userValue);
 }
 
 void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
@@ -513,7 +523,7 @@ ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPha
                                        std::vector<Contact>& previous, const ContactUpdateSettings& settings,
                                        float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
                                        StepEvents& events, std::string& callbackError, TaskRunner& tasks) {
-  snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance);
+  snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance, tasks);
   std::swap(contacts, previous);
   contacts.clear();
   // Running ahead pays when many pairs need their collider test; when most reuse last step's

@@ -94,7 +94,10 @@ class ContactUpdate {
 
  private:
   friend class PairPass;
-  void snapshotBodies(const BodyStorage& bodies, const BroadPhase& broadPhase, float dt, float cacheDistance);
+  void snapshotBodies(const BodyStorage& bodies, const BroadPhase& broadPhase, float dt, float cacheDistance,
+                      TaskRunner& tasks);
+  void snapshotRange(const BodyStorage& bodies, float dt, float cacheDistance, std::uint32_t begin,
+                     std::uint32_t end);
   // The tests of the pairs whose walk will reach collide(), in parallel ranges.
   void stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
                   const std::vector<Contact>& previous, const ContactUpdateSettings& settings, float dt,

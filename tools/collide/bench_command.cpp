@@ -1,5 +1,6 @@
 // `collide bench SCENE`: collide alone on any scene (built-in or file), the world rebuilt for every
-// run and stepped at the scene's dt; prints each run's ms per step and the median. The comparison
+// run and stepped at the scene's dt, after --warmup untimed steps; prints each run's ms per step and
+// the median, and the median of each stage's wall time (StageTimes) over the runs. The comparison
 // with Bullet on the reference scenes is bench/vs_bullet (collide_vs_bullet), which needs Bullet.
 #include "commands.h"
 
@@ -36,18 +37,35 @@ int benchCommand(const BenchArguments& arguments) {
   std::printf("scene %s: %zu bodies, %d steps of %.6g s, %d run(s), %d worker(s)\n", loaded.source.c_str(),
               loaded.bodies.size(), steps, static_cast<double>(loaded.dt), arguments.runs,
               loaded.world.workerCount);
+  if (arguments.warmup > 0) std::printf("each run takes %d untimed steps first\n", arguments.warmup);
   std::vector<double> cpu, wall;
+  std::vector<std::vector<double>> stageMs(std::size(StageTimes::kStages));
   for (int run = 0; run < arguments.runs; ++run) {
     scene::SceneWorld sw = scene::buildWorld(loaded);
+    for (int i = 0; i < arguments.warmup; ++i) sw.world.step(loaded.dt);
+    const StageTimes before = sw.world.totalStats().time;
     const double cpuStart = cpuSeconds();
     const auto start = Clock::now();
     for (int i = 0; i < steps; ++i) sw.world.step(loaded.dt);
     const double wallMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     const double cpuMs = 1e3 * (cpuSeconds() - cpuStart);
-    cpu.push_back(steps > 0 ? cpuMs / steps : 0.0);
-    wall.push_back(steps > 0 ? wallMs / steps : 0.0);
+    const double perStep = steps > 0 ? 1.0 / steps : 0.0;
+    cpu.push_back(cpuMs * perStep);
+    wall.push_back(wallMs * perStep);
+    const StageTimes after = sw.world.totalStats().time;
+    for (std::size_t k = 0; k < stageMs.size(); ++k) {
+      const auto seconds = StageTimes::kStages[k].seconds;
+      stageMs[k].push_back(1e3 * (after.*seconds - before.*seconds) * perStep);
+    }
     std::printf("run %d: %.3f ms/step (cpu), %.3f ms/step (wall)\n", run + 1, cpu.back(), wall.back());
   }
   std::printf("median: %.3f ms/step (cpu), %.3f ms/step (wall)\n", median(cpu), median(wall));
+  // Each stage's median over the runs, and its share of the median step's wall time.
+  std::printf("%-20s %10s %8s\n", "stage (median)", "ms/step", "share");
+  for (std::size_t k = 0; k < stageMs.size(); ++k) {
+    const double ms = median(stageMs[k]);
+    const double share = median(wall) > 0.0 ? 100.0 * ms / median(wall) : 0.0;
+    std::printf("%-20s %10.3f %7.1f%%\n", StageTimes::kStages[k].label, ms, share);
+  }
   return 0;
 }

@@ -74,6 +74,11 @@ int runCollide(int argc, const char* const* argv) try {
       ->capture_default_str();
   benchApp->add_option("--steps", bench.steps, "steps per run (default: the scene's settings.steps)")
       ->check(wholeNumber(1, collide::scene::kMaxSteps));
+  benchApp
+      ->add_option("--warmup", bench.warmup,
+                   "steps each run takes before the timed ones (a settled pile, not its first fall)")
+      ->check(wholeNumber(0, collide::scene::kMaxSteps))
+      ->capture_default_str();
   benchApp->add_flag("--allow-outside-paths", bench.allowOutsidePaths,
                      "let the scene read OBJ files outside its folder (absolute, \"..\", links leading out)");
   benchApp

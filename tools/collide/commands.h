@@ -33,6 +33,7 @@ struct BenchArguments {
   std::string scene = "pyramid";  // a file or a built-in name
   int runs = 3;
   std::optional<int> steps;
+  int warmup = 0;  // steps taken before the timed ones, in every run
   bool allowOutsidePaths = false;
   std::optional<int> threads;
 };
