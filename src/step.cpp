@@ -92,10 +92,10 @@ void World::Impl::step(float dt) {
   if (def.penetrationResponse == PenetrationResponse::Revert)
     revert.apply(bodies, *broadPhase, pairs, contacts, filters, tuning.linearSlop);
   time.continuous = clock.lap();
-  detail::guardFiniteStates(bodies, events.faults);
+  detail::guardFiniteStates(bodies, events.faults, tasks);
   if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, joints);
 
-  detail::refreshEscapedProxies(bodies, *broadPhase, tuning.speculativeDistance);
+  proxyUpdate.refreshEscaped(bodies, *broadPhase, tuning.speculativeDistance, tasks);
   touchingCount = detail::emitContactEvents(bodies, contacts, events, def.persistEvents);
   if (bodies.sensorCount > 0)
     detail::reportSensorCrossings(bodies, *broadPhase, pairs, contacts, filters, events);

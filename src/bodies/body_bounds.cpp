@@ -154,18 +154,30 @@ void ProxyUpdate::run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, flo
   }
 }
 
-void refreshEscapedProxies(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance) {
-  for (std::uint32_t i = 0; i < bodies.records.size(); ++i) {
-    const BodyRecord& r = bodies.records[i];
-    if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
-    // The step's box was grown by at least the speculative distance all round: a body whose points
-    // moved less than that since the step began is still inside it.
-    const BodyState& s = bodies.states[i];
-    if (pointMotionBound(r, s.centerOfMass0, s.rotation0, s.centerOfMass, s.rotation) < speculativeDistance)
-      continue;
-    const Aabb now = currentBounds(bodies, i);
-    if (!broadPhase.bounds(r.proxy).contains(now))
-      broadPhase.update(r.proxy, proxyBounds(bodies, i, 0.0f, speculativeDistance));
+void ProxyUpdate::refreshEscaped(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance,
+                                 TaskRunner& tasks) {
+  constexpr std::uint32_t kBodiesPerRange = 1024;
+  const auto count = static_cast<std::uint32_t>(bodies.records.size());
+  boxes_.resize(count);
+  updated_.resize(count);
+  tasks.parallelFor(count, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      updated_[i] = 0;
+      const BodyRecord& r = bodies.records[i];
+      if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
+      // The step's box was grown by at least the speculative distance all round: a body whose
+      // points moved less than that since the step began is still inside it.
+      const BodyState& s = bodies.states[i];
+      if (pointMotionBound(r, s.centerOfMass0, s.rotation0, s.centerOfMass, s.rotation) < speculativeDistance)
+        continue;
+      const Aabb now = currentBounds(bodies, i);
+      if (broadPhase.bounds(r.proxy).contains(now)) continue;
+      boxes_[i] = proxyBounds(bodies, i, 0.0f, speculativeDistance);
+      updated_[i] = 1;
+    }
+  });
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (updated_[i] != 0) broadPhase.update(bodies.records[i].proxy, boxes_[i]);
   }
 }
 

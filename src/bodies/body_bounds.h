@@ -42,14 +42,16 @@ class ProxyUpdate {
   void run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance,
            TaskRunner& tasks);
 
+  // After the solve: a body that an impulse (a hit, a constraint) carried out of the box the step
+  // predicted for it gets a box where it is now, since the queries between steps (castRay) read
+  // these boxes. The next step updates every awake body's box anyway, so no pair depends on this.
+  // Parallel and then in body order, as run.
+  void refreshEscaped(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance,
+                      TaskRunner& tasks);
+
  private:
   std::vector<Aabb> boxes_;            // per body, the proxy's box for the step where updated_
   std::vector<std::uint8_t> updated_;  // per body: 1 if its proxy is updated this step
 };
-
-// After the solve: a body that an impulse (a hit, a constraint) carried out of the box the step
-// predicted for it gets a box where it is now, since the queries between steps (castRay) read
-// these boxes. The next step updates every awake body's box anyway, so no pair depends on this.
-void refreshEscapedProxies(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance);
 
 }  // namespace collide::detail

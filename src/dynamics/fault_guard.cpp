@@ -4,6 +4,7 @@
 #include "dynamics/fault_guard.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace collide::detail {
@@ -30,8 +31,22 @@ std::uint8_t nonFiniteFields(const BodyState& s) {
   return fields;
 }
 
-void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults) {
+void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, TaskRunner& tasks) {
   const std::size_t n = bodies.states.size();
+  // Faults are rare: the look at every body runs in parallel and only says whether one was found
+  // (a flag any range may set, whichever sets it); the walk below then freezes and reports.
+  constexpr std::uint32_t kBodiesPerRange = 2048;
+  std::atomic<bool> found{false};
+  tasks.parallelFor(static_cast<std::uint32_t>(n), kBodiesPerRange,
+                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                      for (std::uint32_t i = begin; i < end; ++i) {
+                        if (bodies.records[i].alive && nonFiniteFields(bodies.states[i]) != 0) {
+                          found.store(true, std::memory_order_relaxed);
+                          return;
+                        }
+                      }
+                    });
+  if (!found.load(std::memory_order_relaxed)) return;
   for (std::size_t i = 0; i < n; ++i) {
     BodyRecord& r = bodies.records[i];
     // Every body, not only the awake moving ones: frozen, sleeping and static bodies have zero

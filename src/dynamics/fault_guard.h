@@ -5,6 +5,7 @@
 // substep's solve, and once more at the end of the step (impacts, friction, CCD, revert).
 #pragma once
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "dynamics/joint_solver.h"
@@ -23,8 +24,10 @@ std::uint8_t nonFiniteFields(const BodyState& state);
 
 // Every body with a non-finite part (awake, asleep, already frozen, even static: a NaN impulse
 // reaches a zero inverse mass's velocity too) is frozen (freezeBody) and reported in `faults`, once
-// per step: a body already there gets the new fields added to its event.
-void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults);
+// per step: a body already there gets the new fields added to its event. The bodies are looked at
+// in parallel ranges; only when one of them found a fault is the freezing and reporting done, in
+// body order on the calling thread.
+void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, TaskRunner& tasks);
 
 // The bodies in `faults` took part in a solve that produced a non-finite value; so may their
 // contacts' manifolds (a degenerate pair is a source of NaN) and accumulated impulses, and their

@@ -124,6 +124,38 @@ TEST(Workers, APileEndsInTheSameStateOnEveryWorkerCount) {
   }
 }
 
+// The fault guard looks at the bodies in parallel ranges: with bodies enough for several ranges and
+// faults in more than one of them, every worker count freezes the same bodies and reports them in
+// body order.
+TEST(Workers, FaultsInSeveralRangesAreReportedInBodyOrderOnEveryWorkerCount) {
+  constexpr float kHuge = 3.0e38f;  // finite; two of them add up to infinity
+  std::vector<BodyId> expected;
+  for (const int workers : {1, 3}) {
+    WorldDef def;
+    def.workerCount = workers;
+    World world(def);
+    std::vector<BodyId> bodies;
+    for (int i = 0; i < 6000; ++i) {
+      const Vec3 at(3.0f * float(i % 80), 3.0f * float(i / 80), 0.0f);
+      bodies.push_back(world.createBody(test::sphereBody(at, 0.5f, 1.0f)));
+    }
+    std::vector<BodyId> faulty;
+    for (int i = 5999; i >= 0; i -= 997) {  // the last first: the report is in body order all the same
+      const Vec3 center = world.centerOfMass(bodies[static_cast<std::size_t>(i)]);
+      world.applyForce(bodies[static_cast<std::size_t>(i)], Vec3(kHuge, 0.0f, 0.0f), center);
+      world.applyForce(bodies[static_cast<std::size_t>(i)], Vec3(kHuge, 0.0f, 0.0f), center);
+      faulty.insert(faulty.begin(), bodies[static_cast<std::size_t>(i)]);
+    }
+    world.step(kDt);
+    std::vector<BodyId> reported;
+    for (const FaultEvent& fault : world.faultEvents()) reported.push_back(fault.body);
+    EXPECT_EQ(reported, faulty) << workers << " workers";
+    for (const BodyId id : faulty) EXPECT_EQ(world.linearVelocity(id), Vec3(0.0f)) << workers << " workers";
+    if (workers == 1) expected = reported;
+    EXPECT_EQ(reported, expected);
+  }
+}
+
 TEST(Workers, AnEnginesJobSystemGivesTheSameState) {
   const std::vector<unsigned char> one = runPile(WorldDef{}, 240);
   test::TestJobSystem jobs(3);
