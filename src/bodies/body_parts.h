@@ -10,6 +10,8 @@
 
 #include "bodies/body_storage.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace collide::detail {
@@ -70,6 +72,18 @@ inline Sweep partSweep(const Sweep& body, const Transform& local) {
   sweep.rotation1 = body.rotation1 * turn;
   sweep.localCenter = glm::conjugate(turn) * (body.localCenter - body.scale * local.position);
   return sweep;
+}
+
+// Whether every placement along the sweep is finite in float: Sweep::at computes
+// center0 + t (center1 - center0) - q localCenter, and this bounds each of its terms. A part placed
+// near float's limit from its body's centre, or a body near that limit, has no such sweep: the
+// continuous pass and the sensor sweeps leave the pair (its contact still acts).
+inline bool sweepStaysFinite(const Sweep& s) {
+  const auto largest = [](const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
+  const Vec3& l = s.localCenter;
+  const float reach =
+      largest(s.center0) + largest(s.center1) + (std::abs(l.x) + std::abs(l.y) + std::abs(l.z));
+  return std::isfinite(reach);
 }
 
 // Calls visit(partA, partB) for each pair of a part of ra and a part of rb that the parts' filters

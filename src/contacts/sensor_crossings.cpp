@@ -45,7 +45,7 @@ void reportSensorCrossings(const BodyStorage& bodies, const BroadPhase& broadPha
       const Sweep partSweepB = partSweep(sweepB, partLocalPose(rb, partB));
       // A part near float's limit from its body's centre: no sweep float can hold (as in the
       // continuous pass).
-      if (!isFinite(partSweepA.localCenter) || !isFinite(partSweepB.localCenter)) return;
+      if (!sweepStaysFinite(partSweepA) || !sweepStaysFinite(partSweepB)) return;
       if (!timeOfImpact(shapeA, partSweepA, shapeB, partSweepB, touch).hit()) return;
       Manifold atEnd;
       if (collide::collide(shapeA, partSweepA.at(1.0f), shapeB, partSweepB.at(1.0f), atEnd) &&

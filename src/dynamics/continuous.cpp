@@ -112,7 +112,7 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
           const Sweep sweepB = partSweep(otherSweep, partLocalPose(other, b));
           // A part placed near float's limit from its body's centre has an offset that overflows
           // when turned: no sweep to test; its contact still acts.
-          if (!isFinite(sweepA.localCenter) || !isFinite(sweepB.localCenter)) return;
+          if (!sweepStaysFinite(sweepA) || !sweepStaysFinite(sweepB)) return;
           first = std::min(first, impactTime(partShape(record, a), sweepA, partShape(other, b), sweepB,
                                              settings, linearSlop));
         });
