@@ -131,15 +131,25 @@ Aabb proxyBounds(BodyStorage& bodies, std::uint32_t index, float dt, float specu
   return grownForStep(bodies, index, dt, speculativeDistance, currentBounds(bodies, index));
 }
 
+template <typename FillRange>
+void ProxyUpdate::updateInBodyOrder(BodyStorage& bodies, BroadPhase& broadPhase, TaskRunner& tasks,
+                                    std::uint32_t bodiesPerRange, FillRange&& fillRange) {
+  const auto count = static_cast<std::uint32_t>(bodies.records.size());
+  boxes_.resize(count);
+  updated_.resize(count);
+  tasks.parallelFor(count, bodiesPerRange,
+                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { fillRange(begin, end); });
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (updated_[i] != 0) broadPhase.update(bodies.records[i].proxy, boxes_[i]);
+  }
+}
+
 void ProxyUpdate::run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, float speculativeDistance,
                       TaskRunner& tasks) {
   // A range's boxes cost from a few ns (a box grown from the last) to a few hundred (a hull's
   // vertices transformed): ranges of this many bodies keep the task overhead small beside them.
   constexpr std::uint32_t kBodiesPerRange = 512;
-  const auto count = static_cast<std::uint32_t>(bodies.records.size());
-  boxes_.resize(count);
-  updated_.resize(count);
-  tasks.parallelFor(count, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+  updateInBodyOrder(bodies, broadPhase, tasks, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end) {
     BoxVerdicts verdicts(bodies, begin, end);
     for (std::uint32_t i = begin; i < end; ++i) {
       const BoxVerdict v = verdicts.take(i);
@@ -149,18 +159,12 @@ void ProxyUpdate::run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, flo
       boxes_[i] = grownForStep(bodies, i, dt, speculativeDistance, box);
     }
   });
-  for (std::uint32_t i = 0; i < count; ++i) {
-    if (updated_[i] != 0) broadPhase.update(bodies.records[i].proxy, boxes_[i]);
-  }
 }
 
 void ProxyUpdate::refreshEscaped(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance,
                                  TaskRunner& tasks) {
   constexpr std::uint32_t kBodiesPerRange = 1024;
-  const auto count = static_cast<std::uint32_t>(bodies.records.size());
-  boxes_.resize(count);
-  updated_.resize(count);
-  tasks.parallelFor(count, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+  updateInBodyOrder(bodies, broadPhase, tasks, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t i = begin; i < end; ++i) {
       updated_[i] = 0;
       const BodyRecord& r = bodies.records[i];
@@ -176,9 +180,6 @@ void ProxyUpdate::refreshEscaped(BodyStorage& bodies, BroadPhase& broadPhase, fl
       updated_[i] = 1;
     }
   });
-  for (std::uint32_t i = 0; i < count; ++i) {
-    if (updated_[i] != 0) broadPhase.update(bodies.records[i].proxy, boxes_[i]);
-  }
 }
 
 }  // namespace collide::detail

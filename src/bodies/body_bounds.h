@@ -50,6 +50,12 @@ class ProxyUpdate {
                       TaskRunner& tasks);
 
  private:
+  // Resizes the scratch, has fillRange(begin, end) set updated_ and boxes_ for parallel ranges of
+  // bodies, then tells the broad phase of every updated proxy in body order.
+  template <typename FillRange>
+  void updateInBodyOrder(BodyStorage& bodies, BroadPhase& broadPhase, TaskRunner& tasks,
+                         std::uint32_t bodiesPerRange, FillRange&& fillRange);
+
   std::vector<Aabb> boxes_;            // per body, the proxy's box for the step where updated_
   std::vector<std::uint8_t> updated_;  // per body: 1 if its proxy is updated this step
 };

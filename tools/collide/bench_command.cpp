@@ -59,12 +59,13 @@ int benchCommand(const BenchArguments& arguments) {
     }
     std::printf("run %d: %.3f ms/step (cpu), %.3f ms/step (wall)\n", run + 1, cpu.back(), wall.back());
   }
-  std::printf("median: %.3f ms/step (cpu), %.3f ms/step (wall)\n", median(cpu), median(wall));
+  const double medianWall = median(wall);
+  std::printf("median: %.3f ms/step (cpu), %.3f ms/step (wall)\n", median(cpu), medianWall);
   // Each stage's median over the runs, and its share of the median step's wall time.
   std::printf("%-20s %10s %8s\n", "stage (median)", "ms/step", "share");
   for (std::size_t k = 0; k < stageMs.size(); ++k) {
     const double ms = median(stageMs[k]);
-    const double share = median(wall) > 0.0 ? 100.0 * ms / median(wall) : 0.0;
+    const double share = medianWall > 0.0 ? 100.0 * ms / medianWall : 0.0;
     std::printf("%-20s %10.3f %7.1f%%\n", StageTimes::kStages[k].label, ms, share);
   }
   return 0;
