@@ -8,6 +8,7 @@
 #include "bodies/body_def.h"
 #include "bodies/body_parts.h"
 #include "dynamics/fault_guard.h"
+#include "memory/heap_bytes.h"
 #include "queries/world_queries.h"
 #include "response/revert.h"
 
@@ -492,6 +493,21 @@ void World::visitContacts(BodyId body, const std::function<void(const ContactDat
 
 const StepStats& World::lastStats() const { return impl_->lastStats; }
 const StepStats& World::totalStats() const { return impl_->totalStats; }
+
+WorldMemory World::memoryUse() const {
+  using detail::heapBytes;
+  const Impl& w = *impl_;
+  WorldMemory memory;
+  memory.bodies = w.bodies.memoryBytes() + w.proxyUpdate.memoryBytes();
+  memory.broadPhase = w.broadPhase->memoryBytes() + heapBytes(w.pairs);
+  memory.contacts = heapBytes(w.contacts) + heapBytes(w.previousContacts) + w.contactUpdate.memoryBytes() +
+                    w.events.memoryBytes();
+  memory.solver = w.stepSolver.memoryBytes() + w.impacts.memoryBytes() + w.revert.memoryBytes();
+  memory.joints = heapBytes(w.joints) + heapBytes(w.jointGroups) + heapBytes(w.freeJoints) +
+                  heapBytes(w.jointedApart) + w.stepSolver.jointMemoryBytes();
+  memory.islands = w.islands.memoryBytes();
+  return memory;
+}
 std::span<const ContactEvent> World::contactEvents() const { return impl_->events.contacts; }
 std::span<const SensorEvent> World::sensorEvents() const { return impl_->events.sensors; }
 std::span<const FaultEvent> World::faultEvents() const { return impl_->events.faults; }

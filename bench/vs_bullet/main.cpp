@@ -196,6 +196,13 @@ struct Summary {
     for (const Report& r : runs) kb = std::max(kb, r.rssPeakKb - r.rssStartKb);
     return kb / 1024.0;
   }
+  // MB: the largest peak of the whole process over the runs (the child's VmHWM: the libraries, the
+  // scene loaded before the fork and the engine), what `/usr/bin/time -f %M` would report of it.
+  double processMb() const {
+    long kb = 0;
+    for (const Report& r : runs) kb = std::max(kb, r.rssPeakKb);
+    return kb / 1024.0;
+  }
   const Figures& figures() const { return runs.front().figures; }
 };
 
@@ -243,7 +250,8 @@ std::string engineJson(const Summary& s) {
   std::ostringstream o;
   o << "{\"cpu_ms_per_step\": " << jsonNumber(s.cpuMs())
     << ", \"wall_ms_per_step\": " << jsonNumber(s.wallMs()) << ", \"build_ms\": " << jsonNumber(s.buildMs())
-    << ", \"memory_mb\": " << jsonNumber(s.memoryMb()) << ", \"runs_cpu_ms_per_step\": [";
+    << ", \"memory_mb\": " << jsonNumber(s.memoryMb()) << ", \"process_mb\": " << jsonNumber(s.processMb())
+    << ", \"runs_cpu_ms_per_step\": [";
   for (std::size_t i = 0; i < s.runs.size(); ++i) o << (i ? ", " : "") << jsonNumber(s.runs[i].cpuMsPerStep);
   o << "], \"runs_wall_ms_per_step\": [";
   for (std::size_t i = 0; i < s.runs.size(); ++i) o << (i ? ", " : "") << jsonNumber(s.runs[i].wallMsPerStep);
@@ -355,6 +363,15 @@ int main(int argc, char** argv) try {
                 c.wallMs() / b.wallMs(), c.memoryMb(), b.memoryMb());
   }
   std::printf("\n(goal: the bound on collide/Bullet the project aims for; \"! <\" marks one not met.)\n\n");
+  // Memory: the engine's growth above (VmHWM - VmRSS at the fork), and here the whole process.
+  std::printf("| scene | collide process MB | Bullet process MB | collide/Bullet |\n|---|---:|---:|---:|\n");
+  for (std::size_t i = 0; i < infos.size(); ++i) {
+    const Summary& c = results[i][Engine::Collide];
+    const Summary& b = results[i][Engine::Bullet];
+    std::printf("| %s %s | %.1f | %.1f | %.3f |\n", infos[i].id.c_str(), infos[i].name.c_str(), c.processMb(),
+                b.processMb(), c.processMb() / b.processMb());
+  }
+  std::printf("\n");
   std::printf(
       "| scene | engine | top body dx, dy, dz (mm) | mean speed | max speed | lowest point y | below terrain "
       "(any / >1 cm, deepest mm) |\n");

@@ -192,6 +192,10 @@ class BroadPhase {
     return !isSegmentBlocked(from, to, mask);
   }
 
+  // The heap it holds, in bytes: the proxies, the algorithm's structure and its pair scratch, as
+  // reserved (World::memoryUse).
+  std::size_t memoryBytes() const;
+
   // Structural self-check for tests; throws collide::Error naming the broken invariant.
   virtual void validate() const {}
 
@@ -223,6 +227,8 @@ class BroadPhase {
   // Appends pair keys (a << 32 | b, a < b) of all overlapping pairs, each once, and returns whether
   // they are already sorted. Adds its box tests to outBoxTests.
   virtual bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) = 0;
+  // The heap the algorithm's own members hold (memoryBytes adds the records).
+  virtual std::size_t algorithmMemoryBytes() const = 0;
 
   struct RayQuery;  // defined in src/broadphase/broad_phase_internal.h
   virtual void rayCastImpl(RayQuery& query) const = 0;

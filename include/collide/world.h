@@ -19,6 +19,7 @@
 #include <collide/shapes.h>
 #include <collide/tasks.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -65,6 +66,39 @@ struct StageTimes {
   StageTimes& operator+=(const StageTimes& step) {
     for (const Stage& stage : kStages) this->*stage.seconds += step.*stage.seconds;
     return *this;
+  }
+};
+
+// The heap memory a world holds, in bytes, by the stage that holds it: what its arrays have
+// reserved (their capacity, which steps reuse rather than free), not what they use this step. The
+// shapes are the caller's, shared by value, and not counted; nor is the allocator's own overhead.
+struct WorldMemory {
+  std::size_t bodies = 0;      // records and states, parts, names, free slots, the proxies' step boxes
+  std::size_t broadPhase = 0;  // the proxies, the algorithm's structure, the step's pairs
+  std::size_t contacts = 0;    // this and last step's contacts, the narrow phase's scratch, events
+  std::size_t solver = 0;      // solver bodies, contact batches and colours, projection, impacts, revert
+  std::size_t joints = 0;      // the joints, their trees' systems, the pairs they keep apart
+  std::size_t islands = 0;     // islands and sleep timers
+
+  // The categories, with the names reports print (`label`) and write (`key`).
+  struct Category {
+    const char* label;
+    const char* key;
+    std::size_t WorldMemory::*bytes;
+  };
+  static constexpr Category kCategories[] = {
+      {"bodies", "bodies", &WorldMemory::bodies},
+      {"broad phase", "broad_phase", &WorldMemory::broadPhase},
+      {"contacts", "contacts", &WorldMemory::contacts},
+      {"solver", "solver", &WorldMemory::solver},
+      {"joints", "joints", &WorldMemory::joints},
+      {"islands", "islands", &WorldMemory::islands},
+  };
+
+  std::size_t total() const {
+    std::size_t sum = 0;
+    for (const Category& category : kCategories) sum += this->*category.bytes;
+    return sum;
   }
 };
 
@@ -335,6 +369,8 @@ class World {
   // The funnel of the last step, and its totals over all steps.
   const StepStats& lastStats() const;
   const StepStats& totalStats() const;
+  // The heap memory the world holds now, by stage (WorldMemory).
+  WorldMemory memoryUse() const;
   // Events of the last step, in a deterministic order.
   std::span<const ContactEvent> contactEvents() const;
   std::span<const SensorEvent> sensorEvents() const;

@@ -234,6 +234,8 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   summary.momentum = sw.world.linearMomentum();
   summary.kineticEnergy = sw.world.kineticEnergy();
   summary.stateHash = stateHash(sw);
+  summary.worldMemory = sw.world.memoryUse();
+  summary.sceneMemory = sceneMemoryBytes(scene, sw);
   summary.sleeping = scene.world.sleeping;
   for (BodyId id : sw.bodies) {
     if (!sw.world.isValid(id) || sw.world.type(id) != BodyType::Dynamic) continue;

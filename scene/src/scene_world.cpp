@@ -2,7 +2,9 @@
 // messages get the scene field in front ("constraints[2]: distance constraint: ...").
 #include <collide/scene/scene.h>
 
+#include <cstddef>
 #include <map>
+#include <string>
 
 namespace collide::scene {
 
@@ -112,6 +114,35 @@ SceneWorld buildWorld(const Scene& scene) {
     }
   }
   return out;
+}
+
+namespace {
+
+template <typename T>
+std::size_t vectorBytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+// A string's heap block: none while it fits in the string itself.
+std::size_t stringBytes(const std::string& s) {
+  return s.capacity() > std::string().capacity() ? s.capacity() + 1 : 0;
+}
+
+}  // namespace
+
+std::size_t sceneMemoryBytes(const Scene& scene, const SceneWorld& world) {
+  // A std::map node: the value and three links and a colour, rounded to pointers.
+  constexpr std::size_t kMapNodeOverhead = 4 * sizeof(void*);
+  std::size_t bytes = vectorBytes(scene.bodies) + vectorBytes(scene.constraints) +
+                      vectorBytes(scene.objFiles) + vectorBytes(world.bodies) +
+                      vectorBytes(world.constraints);
+  for (const Body& body : scene.bodies)
+    bytes += stringBytes(body.material) + stringBytes(body.def.name) + vectorBytes(body.def.parts);
+  for (const Constraint& constraint : scene.constraints)
+    bytes += stringBytes(constraint.name) + stringBytes(constraint.a) + stringBytes(constraint.b);
+  for (const auto& [name, material] : scene.materials)
+    bytes += sizeof(std::pair<const std::string, Material>) + kMapNodeOverhead + stringBytes(name);
+  for (const std::filesystem::path& path : scene.objFiles) bytes += stringBytes(path.native());
+  return bytes;
 }
 
 }  // namespace collide::scene

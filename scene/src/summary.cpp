@@ -29,6 +29,15 @@ nlohmann::json statsJson(const StepStats& s) {
           {"contact_pairs", s.contactPairs},          {"stage_seconds", stageJson(s.time)}};
 }
 
+nlohmann::json memoryJson(const WorldMemory& m, std::size_t scene) {
+  nlohmann::json json;
+  for (const WorldMemory::Category& category : WorldMemory::kCategories)
+    json[category.key] = m.*category.bytes;
+  json["world"] = m.total();
+  json["scene"] = scene;
+  return json;
+}
+
 }  // namespace
 
 std::string formatSummary(const RunSummary& s) {
@@ -88,6 +97,16 @@ std::string formatSummary(const RunSummary& s) {
       add("%-24s %14.4f %15.1f%%\n", stage.label, seconds * 1e3 / s.steps, 100.0 * seconds / t.total());
     }
   }
+  // What the world and the scene hold at the end, by stage.
+  const double worldBytes = double(s.worldMemory.total());
+  add("\n%-24s %14s %16s\n", "heap at the end", "MB", "share of world");
+  for (const WorldMemory::Category& category : WorldMemory::kCategories) {
+    const double bytes = double(s.worldMemory.*category.bytes);
+    add("%-24s %14.3f %15.1f%%\n", category.label, bytes / 1e6,
+        worldBytes > 0.0 ? 100.0 * bytes / worldBytes : 0.0);
+  }
+  add("%-24s %14.3f\n", "world", worldBytes / 1e6);
+  add("%-24s %14.3f\n", "scene", double(s.sceneMemory) / 1e6);
   add("\nmomentum        (%.6g, %.6g, %.6g) kg m/s\n", s.momentum.x, s.momentum.y, s.momentum.z);
   add("kinetic energy  %.6g J\n", s.kineticEnergy);
   add("state hash      %s\n", hex(s.stateHash).c_str());
@@ -116,6 +135,7 @@ std::string summaryJson(const RunSummary& s) {
       {"total", statsJson(s.total)},
       {"momentum", jsonVec3(s.momentum)},
       {"kinetic_energy", jsonNumber(s.kineticEnergy)},
+      {"memory_bytes", memoryJson(s.worldMemory, s.sceneMemory)},
       {"state_hash", hex(s.stateHash)}};
   return j.dump(2) + "\n";
 }

@@ -1,6 +1,7 @@
 // World boxes and broad-phase proxies of the bodies: the step's first stage (body_bounds.h).
 #include "bodies/body_bounds.h"
 
+#include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
 #include "shapes/shape_functions.h"
 
@@ -181,5 +182,7 @@ void ProxyUpdate::refreshEscaped(BodyStorage& bodies, BroadPhase& broadPhase, fl
     }
   });
 }
+
+std::size_t ProxyUpdate::memoryBytes() const { return heapBytes(boxes_) + heapBytes(updated_); }
 
 }  // namespace collide::detail

@@ -49,6 +49,8 @@ class ProxyUpdate {
   void refreshEscaped(BodyStorage& bodies, BroadPhase& broadPhase, float speculativeDistance,
                       TaskRunner& tasks);
 
+  std::size_t memoryBytes() const;  // the scratch (World::memoryUse)
+
  private:
   // Resizes the scratch, has fillRange(begin, end) set updated_ and boxes_ for parallel ranges of
   // bodies, then tells the broad phase of every updated proxy in body order.

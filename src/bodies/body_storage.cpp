@@ -1,6 +1,8 @@
 // The body storage's slots: allocation with generations, freeing, forces cleared (body_storage.h).
 #include "bodies/body_storage.h"
 
+#include "memory/heap_bytes.h"
+
 namespace collide::detail {
 
 std::uint32_t BodyStorage::allocate() {
@@ -37,6 +39,12 @@ void BodyStorage::clearForces() {
     r.force = Vec3(0.0f);
     r.torque = Vec3(0.0f);
   }
+}
+
+std::size_t BodyStorage::memoryBytes() const {
+  std::size_t bytes = heapBytes(records) + heapBytes(states) + heapBytes(freeSlots_);
+  for (const BodyRecord& record : records) bytes += heapBytes(record.parts) + heapBytes(record.name);
+  return bytes;
 }
 
 }  // namespace collide::detail

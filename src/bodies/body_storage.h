@@ -119,6 +119,8 @@ class BodyStorage {
   }
   // Forces and torques act for one step: cleared once it is solved.
   void clearForces();
+  // The heap the bodies hold (World::memoryUse): the arrays, each record's parts and name.
+  std::size_t memoryBytes() const;
 
   // The live bodies with a bounciness or a rolling resistance above 0, and the sensors (a part of
   // the body counts)

@@ -1,6 +1,7 @@
 // The broad-phase interface: proxy storage with generational ids, validation of every input, the
 // canonical pair list, the query wrappers, and the factory of the four algorithms.
 #include "broadphase/broad_phase_internal.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -54,6 +55,11 @@ BroadPhaseType parseBroadPhaseType(std::string_view name) {
 }
 
 BroadPhase::~BroadPhase() = default;
+
+std::size_t BroadPhase::memoryBytes() const {
+  return detail::heapBytes(proxies_) + detail::heapBytes(freeSlots_) + detail::heapBytes(keys_) +
+         algorithmMemoryBytes();
+}
 
 std::uint32_t BroadPhase::resolve(ProxyId id, const char* operation) const {
   if (id.isNull()) throw Error(std::string("broad phase: ") + operation + ": null proxy id");

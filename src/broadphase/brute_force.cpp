@@ -15,6 +15,8 @@ class BruteForceBroadPhase final : public LinearScanBroadPhase {
   void onRemove(std::uint32_t) override {}
   void onUpdate(std::uint32_t, const Aabb&) override {}
 
+  std::size_t algorithmMemoryBytes() const override { return 0; }  // nothing beyond the records
+
   bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     const auto count = static_cast<std::uint32_t>(proxies_.size());
     for (std::uint32_t a = 0; a < count; ++a) {

@@ -41,6 +41,7 @@ class DynamicTree {
   const Node& node(std::int32_t index) const { return nodes_[index]; }
   int height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
   std::size_t leafCount() const { return leafCount_; }
+  std::size_t memoryBytes() const { return nodes_.capacity() * sizeof(Node); }
 
   // Visits every leaf whose box passes `test`, pruning subtrees whose box fails it. `test` must be
   // monotone (a box that contains a passing box passes), so no leaf is wrongly pruned.

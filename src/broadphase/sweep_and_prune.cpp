@@ -10,6 +10,7 @@
 // Static and movable boxes are kept in two sorted lists: movable-movable pairs come from a sweep of
 // one list, movable-static pairs from a two-list sweep, and static-static pairs are never looked at.
 #include "broadphase/broad_phase_internal.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 
@@ -124,6 +125,10 @@ class SweepAndPruneBroadPhase final : public LinearScanBroadPhase {
       fullSort(movables_);
     }
     if (statics_.appended > statics_.entries.size() / 8 + 16 || !insertionSort(statics_)) fullSort(statics_);
+  }
+
+  std::size_t algorithmMemoryBytes() const override {
+    return detail::heapBytes(movables_.entries) + detail::heapBytes(statics_.entries);
   }
 
   bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {

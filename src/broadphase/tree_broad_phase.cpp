@@ -10,6 +10,7 @@
 #include "base/task_runner.h"
 #include "broadphase/broad_phase_internal.h"
 #include "broadphase/dynamic_tree.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <iterator>
@@ -22,6 +23,16 @@ namespace {
 class TreeBroadPhase final : public BroadPhase {
  public:
   explicit TreeBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
+
+  std::size_t algorithmMemoryBytes() const override {
+    std::size_t bytes = staticTree_.memoryBytes() + movableTree_.memoryBytes() + detail::heapBytes(leaf_) +
+                        detail::heapBytes(moved_) + detail::heapBytes(moveBuffer_) +
+                        detail::heapBytes(pairs_) + detail::heapBytes(candidates_) +
+                        detail::heapBytes(queries_) + detail::heapBytes(workerCandidates_) +
+                        detail::heapBytes(union_) + detail::heapBytes(verdicts_) + detail::heapBytes(merged_);
+    for (const WorkerCandidates& worker : workerCandidates_) bytes += detail::heapBytes(worker.keys);
+    return bytes;
+  }
 
   void validate() const override {
     staticTree_.validate();

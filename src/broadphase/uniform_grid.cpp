@@ -11,6 +11,7 @@
 // of cells. The cell size defaults to twice the average movable box extent, measured at the first
 // findPairs (until then proxies wait unbinned and queries scan them linearly).
 #include "broadphase/broad_phase_internal.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +44,14 @@ class GridBroadPhase final : public BroadPhase {
   }
 
   // The occupied cells (a cell is dropped when its last proxy leaves it); nothing before binning.
+  std::size_t algorithmMemoryBytes() const override {
+    std::size_t bytes = detail::heapBytes(cellIndex_) + detail::heapBytes(cells_) +
+                        detail::heapBytes(oversize_) + detail::heapBytes(state_) + detail::heapBytes(lo_) +
+                        detail::heapBytes(hi_) + detail::heapBytes(oversizeSlot_);
+    for (const Cell& cell : cells_) bytes += detail::heapBytes(cell.members);
+    return bytes;
+  }
+
   void visitNodes(const NodeVisitor& visit) const override {
     for (const Cell& cell : cells_) {
       const Vec3 cellMin = Vec3(cell.coord) * cellSize_;

@@ -2,6 +2,7 @@
 #include "contacts/contact_events.h"
 
 #include "bodies/body_parts.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 
@@ -129,6 +130,11 @@ void tellContactListener(const StepEvents& events, const BodyStorage& bodies,
       listener.onPersist(makeContactData(bodies, contacts[contact]));
     }
   }
+}
+
+std::size_t StepEvents::memoryBytes() const {
+  return heapBytes(contacts) + heapBytes(contactOfEvent) + heapBytes(sensors) + heapBytes(faults) +
+         heapBytes(jointBreaks) + heapBytes(pendingContacts) + heapBytes(pendingSensors);
 }
 
 }  // namespace collide::detail

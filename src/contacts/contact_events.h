@@ -36,6 +36,8 @@ struct StepEvents {
   void endVanished(const BodyStorage& bodies, const Contact& contact);
   // A touching contact of a body being destroyed: its end event with the next step's.
   void endWithDestroyedBody(const BodyStorage& bodies, const Contact& contact);
+
+  std::size_t memoryBytes() const;  // World::memoryUse
 };
 
 ContactEvent makeContactEvent(const BodyStorage& bodies, const Contact& contact, ContactEvent::Type type);

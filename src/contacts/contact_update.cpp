@@ -6,6 +6,7 @@
 
 #include "base/format.h"
 #include "bodies/body_parts.h"
+#include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
 #include "shapes/shape_functions.h"
 
@@ -541,6 +542,14 @@ ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPha
   lastTests_ = counts.narrowPhaseTests - counts.reusedManifolds;
   lastPairs_ = counts.narrowPhaseTests;
   return counts;
+}
+
+std::size_t ContactUpdate::memoryBytes() const {
+  std::size_t bytes = heapBytes(poses_) + heapBytes(scaledRotations_) + heapBytes(spinReaches_) +
+                      heapBytes(velocities_) + heapBytes(likelyPlaced_) + heapBytes(proxyBodies_) +
+                      heapBytes(stagedIndex_) + heapBytes(staged_);
+  for (const WorkerTests& worker : staged_) bytes += heapBytes(worker.tests);
+  return bytes;
 }
 
 }  // namespace collide::detail

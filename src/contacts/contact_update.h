@@ -92,6 +92,8 @@ class ContactUpdate {
   static constexpr std::uint32_t kAxisApart = 0xFFFFFFFDu;
   static constexpr std::uint32_t kPairsPerRange = 64;
 
+  std::size_t memoryBytes() const;  // the snapshots and the staged tests (World::memoryUse)
+
  private:
   friend class PairPass;
   void snapshotBodies(const BodyStorage& bodies, const BroadPhase& broadPhase, float dt, float cacheDistance,

@@ -244,6 +244,8 @@ class LaneContactSolver final : public ContactLanes {
   }
 
   // Each batch writes its own contacts: ranges of batches in parallel.
+  std::size_t memoryBytes() const override { return batches_.capacity() * sizeof(Batch); }
+
   void store(std::vector<Contact>& contacts, TaskRunner& tasks) const override {
     tasks.parallelFor(
         static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,

@@ -2,6 +2,7 @@
 // (contact_projection.h).
 #include "dynamics/contact_projection.h"
 
+#include "memory/heap_bytes.h"
 #include "response/penetration.h"
 
 #include <algorithm>
@@ -64,5 +65,7 @@ void ContactProjection::project(std::vector<SolverBody>& bodies, float linearSlo
     if (c.bodyB != kNoSolverBody) bodies[c.bodyB].deltaPosition += d.b;
   }
 }
+
+std::size_t ContactProjection::memoryBytes() const { return heapBytes(constraints_) + heapBytes(points_); }
 
 }  // namespace collide::detail

@@ -29,6 +29,8 @@ class ContactProjection {
   // One pass over the contacts, each projected with the bodies' displacements so far (Gauss-Seidel).
   void project(std::vector<SolverBody>& bodies, float linearSlop) const;
 
+  std::size_t memoryBytes() const;  // World::memoryUse
+
  private:
   struct Point {
     Vec3 anchorA{0.0f};

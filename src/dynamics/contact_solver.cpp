@@ -3,6 +3,7 @@
 
 #include "dynamics/constraint_graph.h"
 #include "dynamics/contact_lanes.h"
+#include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
 
 #include <collide/error.h>
@@ -130,6 +131,11 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
       tuning.frictionAnchorReach, tuning.pushOutSpeed, tuning.restitutionThreshold,
       supportMasses_.empty() ? nullptr : &supportMasses_};
   lanes_->build(input, tasks);
+}
+
+std::size_t ContactSolver::memoryBytes() const {
+  return lanes_->memoryBytes() + supportMasses_.memoryBytes() + heapBytes(solvedContacts_) +
+         heapBytes(writtenBodies_) + heapBytes(colorBits_) + heapBytes(order_) + heapBytes(colorOf_);
 }
 
 }  // namespace collide::detail

@@ -93,6 +93,7 @@ class ContactLanes {
   virtual void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) = 0;
   virtual void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) = 0;
   virtual void store(std::vector<Contact>& contacts, TaskRunner& tasks) const = 0;
+  virtual std::size_t memoryBytes() const = 0;
 };
 
 // The widest lanes this machine runs: 8 where the AVX2 kernel is built and the processor has AVX2,
@@ -133,6 +134,8 @@ class ContactSolver {
   }
   // The impulses back into the contacts (warm starting next step, events, response models).
   void store(std::vector<Contact>& contacts, TaskRunner& tasks) const { lanes_->store(contacts, tasks); }
+
+  std::size_t memoryBytes() const;  // the batches, the colouring and support scratch (World::memoryUse)
 
  private:
   std::unique_ptr<ContactLanes> lanes_;

@@ -6,6 +6,7 @@
 #include "bodies/body_parts.h"
 #include "contacts/contact_update.h"
 #include "dynamics/fault_guard.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <limits>
@@ -128,5 +129,7 @@ void Islands::updateSleep(BodyStorage& bodies, std::span<const Contact> contacts
     s.angularVelocity = Vec3(0.0f);
   }
 }
+
+std::size_t Islands::memoryBytes() const { return heapBytes(parent_) + heapBytes(sleepTime_); }
 
 }  // namespace collide::detail

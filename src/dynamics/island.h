@@ -36,8 +36,10 @@ void wakeTouchedIslands(BodyStorage& bodies, const BroadPhase& broadPhase, std::
 // islands that fall asleep. Keeps its union-find arrays between steps.
 class Islands {
  public:
-  void updateSleep(BodyStorage& bodies, std::span<const Contact> contacts,
-                   std::span<const Joint> joints, const SleepTuning& tuning, float dt);
+  void updateSleep(BodyStorage& bodies, std::span<const Contact> contacts, std::span<const Joint> joints,
+                   const SleepTuning& tuning, float dt);
+
+  std::size_t memoryBytes() const;  // World::memoryUse
 
  private:
   std::uint32_t findRoot(std::uint32_t i);

@@ -1,5 +1,6 @@
 // The direct solve of joint trees (joint_tree.h).
 #include "dynamics/joint_tree.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -655,6 +656,13 @@ void JointTree::solveTree(std::size_t first, std::size_t last) {
       x[i] = sum;
     }
   }
+}
+
+std::size_t JointTree::memoryBytes() const {
+  return heapBytes(entries_) + heapBytes(nodes_) + heapBytes(treeStart_) + heapBytes(matrices_) +
+         heapBytes(rhs_) + heapBytes(solution_) + heapBytes(parentOf_) + heapBytes(groundJoint_) +
+         heapBytes(grounded_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
+         heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
 }
 
 }  // namespace collide::detail

@@ -60,6 +60,8 @@ class JointTree {
   // Joints solved in trees this step (for tests and statistics).
   std::size_t jointCount() const { return entries_.size(); }
 
+  std::size_t memoryBytes() const;  // World::memoryUse
+
  private:
   struct Node {
     std::int32_t body = -1;    // solver body of a body node, -1 for a joint node

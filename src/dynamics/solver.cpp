@@ -3,6 +3,7 @@
 
 #include "dynamics/fault_guard.h"
 #include "dynamics/integrate.h"
+#include "memory/heap_bytes.h"
 #include "simd/simd.h"
 
 #include <algorithm>
@@ -154,6 +155,11 @@ void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts, std
   guard(tasks);
   contacts_.store(contacts, tasks);
   writeBack(storage, faults, tasks);
+}
+
+std::size_t StepSolver::memoryBytes() const {
+  return heapBytes(bodies_) + heapBytes(infos_) + heapBytes(solverOf_) + heapBytes(faultFields_) +
+         contacts_.memoryBytes() + projection_.memoryBytes();
 }
 
 }  // namespace collide::detail

@@ -48,6 +48,10 @@ class StepSolver {
   // The contacts the last solve took, in solve order (the response models and revert walk them).
   const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
 
+  // World::memoryUse: the solver bodies, contact batches and projection; the joint trees apart.
+  std::size_t memoryBytes() const;
+  std::size_t jointMemoryBytes() const { return jointTree_.memoryBytes(); }
+
  private:
   void gatherBodies(BodyStorage& storage, const Vec3& gravity);
   void writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults, TaskRunner& tasks);

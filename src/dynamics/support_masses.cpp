@@ -1,6 +1,7 @@
 // Support masses: levels from the ground, carried mass from the top down, the scales of the
 // contacts where a heavier body rests on a lighter one (support_masses.h).
 #include "dynamics/support_masses.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -195,6 +196,12 @@ void SupportMasses::scaleRestingContacts(std::span<const Contact> contacts,
     if (s.lower != kNoSolverBody)
       (s.lowerIsA ? scaleA_ : scaleB_)[s.contact] = scaleIn(c, centre, lowerBody, s.lower);
   }
+}
+
+std::size_t SupportMasses::memoryBytes() const {
+  return heapBytes(scaleA_) + heapBytes(scaleB_) + heapBytes(supports_) + heapBytes(level_) +
+         heapBytes(supportMass_) + heapBytes(stackOf_) + heapBytes(heavyOnLight_) + heapBytes(supporters_) +
+         heapBytes(edgeStart_) + heapBytes(edges_) + heapBytes(queue_) + heapBytes(byLevel_);
 }
 
 }  // namespace collide::detail

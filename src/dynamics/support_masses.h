@@ -41,6 +41,8 @@ class SupportMasses {
                const std::vector<SolverBody>& bodies, const BodyStorage& storage, const Vec3& gravity,
                float restingSpeed);
 
+  std::size_t memoryBytes() const;  // World::memoryUse
+
   void clear() {
     scaleA_.clear();
     scaleB_.clear();

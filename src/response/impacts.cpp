@@ -1,6 +1,7 @@
 // Impacts by impulses, the stage before the solve (impacts.h).
 #include "response/impacts.h"
 
+#include "memory/heap_bytes.h"
 #include "response/impact.h"
 #include "response/stored_bodies.h"
 
@@ -190,6 +191,11 @@ void ImpactStage::run(BodyStorage& bodies, std::vector<Contact>& contacts, Impac
     if (bodies.records[c.bodyA].type == BodyType::Dynamic) enqueueContactsOf(c.bodyA);
     if (bodies.records[c.bodyB].type == BodyType::Dynamic) enqueueContactsOf(c.bodyB);
   }
+}
+
+std::size_t ImpactStage::memoryBytes() const {
+  return heapBytes(entries_) + heapBytes(queue_) + heapBytes(firstOfBody_) + heapBytes(entryOfBody_) +
+         heapBytes(impactTime_) + heapBytes(linearShift_) + heapBytes(angularShift_);
 }
 
 }  // namespace collide::detail

@@ -36,6 +36,8 @@ class ImpactStage {
   // its impact (see resolve), once the step's integration has moved it.
   void applyTimeShifts(BodyStorage& bodies);
 
+  std::size_t memoryBytes() const;  // World::memoryUse
+
  private:
   struct Entry {
     std::uint32_t contact = 0;

@@ -4,6 +4,7 @@
 #include <collide/narrowphase.h>
 
 #include "bodies/body_parts.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 
@@ -99,6 +100,10 @@ void takeCurrentPosesAsValid(BodyStorage& bodies) {
     bodies.records[i].validCenterOfMass = bodies.states[i].centerOfMass;
     bodies.records[i].validRotation = bodies.states[i].rotation;
   }
+}
+
+std::size_t RevertResponse::memoryBytes() const {
+  return heapBytes(candidates_) + heapBytes(reverted_) + heapBytes(penetrating_);
 }
 
 }  // namespace collide::detail

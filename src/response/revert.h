@@ -29,6 +29,8 @@ class RevertResponse {
   void apply(BodyStorage& bodies, const BroadPhase& broadPhase, std::span<const ProxyPair> pairs,
              std::span<const Contact> contacts, const PairFilters& filters, float linearSlop);
 
+  std::size_t memoryBytes() const;  // World::memoryUse
+
  private:
   // One pass over the pairs: marks the bodies that penetrate, and puts back those that can still go
   // back. Returns whether a body went back.

@@ -256,6 +256,16 @@ TEST(Runner, SummaryJsonHasTheTablesNumbers) {
   EXPECT_NEAR(stages["total"].get<double>(), sum, 1e-12);
   EXPECT_NEAR(stages["total"].get<double>(), s.total.time.total(), 1e-12);
   EXPECT_LE(s.total.time.total(), s.wallSeconds);
+  // The heap by stage: in the table, and in the JSON as the world reports it.
+  EXPECT_THAT(table, ::testing::HasSubstr("heap at the end"));
+  const auto& memory = j["memory_bytes"];
+  std::size_t world = 0;
+  for (const char* category : {"bodies", "broad_phase", "contacts", "solver", "joints", "islands"})
+    world += memory[category].get<std::size_t>();
+  EXPECT_EQ(memory["world"].get<std::size_t>(), world);
+  EXPECT_EQ(world, s.worldMemory.total());
+  EXPECT_GE(memory["bodies"].get<std::size_t>(), 21 * sizeof(BodyDef));  // far more per body in fact
+  EXPECT_GE(memory["scene"].get<std::size_t>(), 21 * sizeof(Body));      // the scene's bodies
 }
 
 TEST(Runner, BreakableWallLosesBricksToTheBall) {

@@ -40,6 +40,8 @@ int benchCommand(const BenchArguments& arguments) {
   if (arguments.warmup > 0) std::printf("each run takes %d untimed steps first\n", arguments.warmup);
   std::vector<double> cpu, wall;
   std::vector<std::vector<double>> stageMs(std::size(StageTimes::kStages));
+  WorldMemory memory;
+  std::size_t sceneMemory = 0;
   for (int run = 0; run < arguments.runs; ++run) {
     scene::SceneWorld sw = scene::buildWorld(loaded);
     for (int i = 0; i < arguments.warmup; ++i) sw.world.step(loaded.dt);
@@ -58,6 +60,8 @@ int benchCommand(const BenchArguments& arguments) {
       stageMs[k].push_back(1e3 * (after.*seconds - before.*seconds) * perStep);
     }
     std::printf("run %d: %.3f ms/step (cpu), %.3f ms/step (wall)\n", run + 1, cpu.back(), wall.back());
+    memory = sw.world.memoryUse();  // every run's world is built and stepped alike
+    sceneMemory = scene::sceneMemoryBytes(loaded, sw);
   }
   const double medianWall = median(wall);
   std::printf("median: %.3f ms/step (cpu), %.3f ms/step (wall)\n", median(cpu), medianWall);
@@ -68,5 +72,17 @@ int benchCommand(const BenchArguments& arguments) {
     const double share = medianWall > 0.0 ? 100.0 * ms / medianWall : 0.0;
     std::printf("%-20s %10.3f %7.1f%%\n", StageTimes::kStages[k].label, ms, share);
   }
+  // What the world holds after its steps (WorldMemory), and per body of the scene.
+  const double bodies = loaded.bodies.empty() ? 1.0 : double(loaded.bodies.size());
+  std::printf("%-20s %10s %8s %10s\n", "heap after the run", "MB", "share", "B/body");
+  const double worldBytes = double(memory.total());
+  for (const WorldMemory::Category& category : WorldMemory::kCategories) {
+    const double bytes = double(memory.*category.bytes);
+    std::printf("%-20s %10.3f %7.1f%% %10.0f\n", category.label, bytes / 1e6,
+                worldBytes > 0.0 ? 100.0 * bytes / worldBytes : 0.0, bytes / bodies);
+  }
+  std::printf("%-20s %10.3f %8s %10.0f\n", "world", worldBytes / 1e6, "", worldBytes / bodies);
+  std::printf("%-20s %10.3f %8s %10.0f\n", "scene", double(sceneMemory) / 1e6, "",
+              double(sceneMemory) / bodies);
   return 0;
 }

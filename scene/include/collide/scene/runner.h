@@ -53,6 +53,9 @@ struct RunSummary {
   Vec3 momentum{0.0f};
   float kineticEnergy = 0.0f;
   std::uint64_t stateHash = 0;
+  // The heap the world holds at the end of the run (its arrays only grow), and the scene's.
+  WorldMemory worldMemory{};
+  std::size_t sceneMemory = 0;
 };
 
 // Builds the scene's World and runs it. Throws collide::Error for a scene the World refuses, a

@@ -116,4 +116,9 @@ struct SceneWorld {
 // constraint: a and b: at least one body must be dynamic, ...").
 SceneWorld buildWorld(const Scene& scene);
 
+// The heap a loaded scene holds while its world runs, in bytes: its bodies' and constraints'
+// definitions with their names, materials and file names, and the SceneWorld's id arrays. The
+// shapes are shared with the world and not counted (as in WorldMemory).
+std::size_t sceneMemoryBytes(const Scene& scene, const SceneWorld& world);
+
 }  // namespace collide::scene

@@ -1,0 +1,106 @@
+// World::memoryUse: each stage's arrays, counted where they are held. Lower bounds from what the
+// world must store (a record per body, a contact per touching pair, a joint record per joint), and
+// the world's promise that a running scene stops allocating once it has grown to its work.
+#include "support/world_helpers.h"
+
+#include "bodies/body_storage.h"
+#include "contacts/contact_cache.h"
+#include "dynamics/joint_solver.h"
+
+#include <collide/world.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace collide {
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+// Sixteen columns of four unit boxes, 0.1 m apart, on a ground box; sleeping off (so that it keeps
+// its contacts awake).
+World boxStack() {
+  WorldDef def;
+  def.sleeping = false;
+  World world(def);
+  world.createBody(test::groundBox());
+  for (int x = 0; x < 4; ++x)
+    for (int y = 0; y < 4; ++y)
+      for (int z = 0; z < 4; ++z)
+        world.createBody(test::boxBody(Vec3(1.1f * x, 0.5f + 1.0f * y, 1.1f * z), Vec3(0.5f), 1.0f));
+  return world;
+}
+
+TEST(WorldMemory, TheCategoriesAddUpToTheTotal) {
+  World world = boxStack();
+  for (int i = 0; i < 10; ++i) world.step(kDt);
+  const WorldMemory memory = world.memoryUse();
+  std::size_t sum = 0;
+  for (const WorldMemory::Category& category : WorldMemory::kCategories) sum += memory.*category.bytes;
+  EXPECT_EQ(memory.total(), sum);
+  EXPECT_EQ(sum, memory.bodies + memory.broadPhase + memory.contacts + memory.solver + memory.joints +
+                     memory.islands);
+}
+
+TEST(WorldMemory, BodiesHoldARecordAndAStateEachAndTheirLongNames) {
+  World world;
+  const WorldMemory empty = world.memoryUse();
+  constexpr int kBodies = 500;
+  for (int i = 0; i < kBodies; ++i)
+    world.createBody(test::sphereBody(Vec3(3.0f * i, 0.0f, 0.0f), 0.5f, 1.0f));
+  const WorldMemory filled = world.memoryUse();
+  EXPECT_GE(filled.bodies, kBodies * (sizeof(detail::BodyRecord) + sizeof(detail::BodyState)));
+  EXPECT_GE(filled.broadPhase, kBodies * sizeof(BroadPhase::ProxyRecord));
+  EXPECT_GT(filled.broadPhase, empty.broadPhase);
+
+  // A name longer than the string's own buffer is a heap block of its length and the terminator.
+  BodyDef named = test::sphereBody(Vec3(0.0f, 10.0f, 0.0f), 0.5f, 1.0f);
+  named.name = std::string(300, 'n');
+  const std::size_t before = world.memoryUse().bodies;
+  world.createBody(named);
+  EXPECT_GE(world.memoryUse().bodies, before + 301);
+}
+
+TEST(WorldMemory, ContactsHoldEveryTouchingPairTwice) {
+  World world = boxStack();
+  for (int i = 0; i < 30; ++i) world.step(kDt);
+  const std::size_t touching = world.touchingContactCount();
+  ASSERT_EQ(touching, 64u);  // sixteen columns of four, each box on the one below (or the ground)
+  // This step's contacts and last step's, which the next step matches them against.
+  EXPECT_GE(world.memoryUse().contacts, 2 * touching * sizeof(detail::Contact));
+  EXPECT_GT(world.memoryUse().solver, 0u);
+}
+
+TEST(WorldMemory, JointsHoldTheirRecords) {
+  World world;
+  const BodyId anchor = test::staticAnchor(world, Vec3(0.0f, 20.0f, 0.0f));
+  BodyId previous = anchor;
+  constexpr int kLinks = 40;
+  for (int i = 0; i < kLinks; ++i) {
+    const BodyId link = world.createBody(test::sphereBody(Vec3(0.0f, 19.5f - i, 0.0f), 0.25f, 1.0f));
+    BallJointDef joint;
+    joint.a = previous;
+    joint.b = link;
+    joint.anchor = Vec3(0.0f, 20.0f - i, 0.0f);
+    world.createBallJoint(joint);
+    previous = link;
+  }
+  world.step(kDt);
+  EXPECT_GE(world.memoryUse().joints, kLinks * sizeof(detail::Joint));
+}
+
+// Once a scene has grown its arrays to its work, the steps reuse them: a resting stack holds the
+// same memory, category by category, after 120 more steps.
+TEST(WorldMemory, ASettledSceneStopsGrowing) {
+  World world = boxStack();
+  for (int i = 0; i < 240; ++i) world.step(kDt);
+  const WorldMemory settled = world.memoryUse();
+  for (int i = 0; i < 120; ++i) world.step(kDt);
+  const WorldMemory later = world.memoryUse();
+  for (const WorldMemory::Category& category : WorldMemory::kCategories)
+    EXPECT_EQ(later.*category.bytes, settled.*category.bytes) << category.label;
+}
+
+}  // namespace
+}  // namespace collide
