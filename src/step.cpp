@@ -60,9 +60,9 @@ void World::Impl::step(float dt) {
   if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
   time.broadPhase = clock.lap();
   const detail::PairFilters filters{&jointedApart, &pairFilter};
-  const detail::ContactUpdateCounts tested =
-      contactUpdate.run(bodies, *broadPhase, pairs, contacts, previousContacts, contactSettings(def), dt,
-                        preSolve, filters, events, callbackError, tasks);
+  const detail::ContactUpdateCounts tested = contactUpdate.run(
+      bodies, *broadPhase, pairs, contacts, previousContacts, apartPairs, previousApartPairs,
+      contactSettings(def), dt, preSolve, filters, events, callbackError, tasks);
   lastStats.filteredPairs = tested.filteredPairs;
   lastStats.narrowPhaseTests = tested.narrowPhaseTests;
   lastStats.reusedManifolds = tested.reusedManifolds;
@@ -93,7 +93,7 @@ void World::Impl::step(float dt) {
     revert.apply(bodies, *broadPhase, pairs, contacts, filters, tuning.linearSlop);
   time.continuous = clock.lap();
   detail::guardFiniteStates(bodies, events.faults, tasks);
-  if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, joints);
+  if (!events.faults.empty()) detail::dropFaultedContacts(events.faults, contacts, apartPairs, joints);
 
   proxyUpdate.refreshEscaped(bodies, *broadPhase, tuning.speculativeDistance, tasks);
   touchingCount = detail::emitContactEvents(bodies, contacts, events, def.persistEvents);

@@ -17,6 +17,7 @@
 
 namespace collide {
 
+using detail::ApartPair;
 using detail::BodyRecord;
 using detail::BodyState;
 using detail::Contact;
@@ -189,6 +190,13 @@ void World::Impl::endBodyContacts(std::uint32_t index) {
     events.endWithDestroyedBody(bodies, c);
   }
   std::erase_if(contacts, [&](const Contact& c) { return c.bodyA == index || c.bodyB == index; });
+  // Its pairs apart are forgotten too (a disabled body comes back with its pairs tested anew), and
+  // what was near it wakes.
+  for (const ApartPair& p : apartPairs) {
+    if (p.bodyA == index || p.bodyB == index)
+      detail::wakeIsland(bodies, p.bodyA == index ? p.bodyB : p.bodyA);
+  }
+  std::erase_if(apartPairs, [&](const ApartPair& p) { return p.bodyA == index || p.bodyB == index; });
 }
 
 void World::Impl::addProxy(std::uint32_t index) {
@@ -275,8 +283,11 @@ void World::setType(BodyId id, BodyType type) {
   r.sleepTime = 0.0f;
   r.awake = r.enabled;
   detail::wakeIsland(w.bodies, i);
-  for (const Contact& c : w.contacts) {  // what rested on it must feel the change
+  for (const Contact& c : w.contacts) {  // what rested on it, or was near it, must feel the change
     if (c.bodyA == i || c.bodyB == i) detail::wakeIsland(w.bodies, c.bodyA == i ? c.bodyB : c.bodyA);
+  }
+  for (const ApartPair& p : w.apartPairs) {
+    if (p.bodyA == i || p.bodyB == i) detail::wakeIsland(w.bodies, p.bodyA == i ? p.bodyB : p.bodyA);
   }
 }
 
@@ -500,8 +511,8 @@ WorldMemory World::memoryUse() const {
   WorldMemory memory;
   memory.bodies = w.bodies.memoryBytes() + w.proxyUpdate.memoryBytes();
   memory.broadPhase = w.broadPhase->memoryBytes() + heapBytes(w.pairs);
-  memory.contacts = heapBytes(w.contacts) + heapBytes(w.previousContacts) + w.contactUpdate.memoryBytes() +
-                    w.events.memoryBytes();
+  memory.contacts = heapBytes(w.contacts) + heapBytes(w.previousContacts) + heapBytes(w.apartPairs) +
+                    heapBytes(w.previousApartPairs) + w.contactUpdate.memoryBytes() + w.events.memoryBytes();
   memory.solver = w.stepSolver.memoryBytes() + w.impacts.memoryBytes() + w.revert.memoryBytes();
   memory.joints = heapBytes(w.joints) + heapBytes(w.jointGroups) + heapBytes(w.freeJoints) +
                   heapBytes(w.jointedApart) + w.stepSolver.jointMemoryBytes();

@@ -40,6 +40,8 @@ struct World::Impl {
   detail::ContactUpdate contactUpdate;
   std::vector<detail::Contact> contacts;  // in pair order
   std::vector<detail::Contact> previousContacts;
+  std::vector<detail::ApartPair> apartPairs;  // the pairs the narrow phase found apart, in pair order
+  std::vector<detail::ApartPair> previousApartPairs;
   detail::StepSolver stepSolver;
   std::vector<detail::Joint> joints;
   std::vector<std::uint32_t> jointGroups;  // the step's, for the continuous pass

@@ -13,6 +13,7 @@
 
 namespace collide {
 
+using detail::ApartPair;
 using detail::BodyRecord;
 using detail::BodyState;
 using detail::Contact;
@@ -196,6 +197,13 @@ void World::removePart(BodyId id, std::uint32_t part) {
     w.events.endWithDestroyedBody(w.bodies, c);
   }
   std::erase_if(w.contacts, ofRemoved);
+  // A pair apart is of a body of one shape, its part 0.
+  if (part == 0) {
+    for (const ApartPair& p : w.apartPairs) {
+      if (p.bodyA == i || p.bodyB == i) detail::wakeIsland(w.bodies, p.bodyA == i ? p.bodyB : p.bodyA);
+    }
+    std::erase_if(w.apartPairs, [&](const ApartPair& p) { return p.bodyA == i || p.bodyB == i; });
+  }
   for (Contact& c : w.contacts) {
     if (c.bodyA == i && c.partA > part) --c.partA;
     if (c.bodyB == i && c.partB > part) --c.partB;

@@ -35,6 +35,27 @@ float separationAlong(const Shape& a, const Transform& ta, const Shape& b, const
   return glm::dot(pb - pa, axis);
 }
 
+// Whether last step's record of a pair (a Contact or an ApartPair) was between these very bodies,
+// not bodies that took a freed slot since.
+template <typename Record>
+bool sameBodies(const Record& old, const BodyStorage& bodies, std::uint32_t ia, std::uint32_t ib) {
+  return old.bodyA == ia && old.bodyB == ib && old.generationA == bodies.records[ia].generation &&
+         old.generationB == bodies.records[ib].generation;
+}
+
+// Last step's record of a pair found apart, as the walk reads a previous contact: one with no
+// points, its cache (every other field of it was the default). `view` starts as Contact{}.
+const Contact* viewOf(const ApartPair& apart, Contact& view) {
+  view.key = apart.key;
+  view.bodyA = apart.bodyA;
+  view.bodyB = apart.bodyB;
+  view.generationA = apart.generationA;
+  view.generationB = apart.generationB;
+  view.enabled = false;
+  view.cache = apart.cache;
+  return &view;
+}
+
 bool settingsInRange(const ContactSettings& s) {
   return isFinite(s.friction) && s.friction >= 0.0f && isFinite(s.bounciness) && s.bounciness >= 0.0f &&
          s.bounciness <= 1.0f && isFinite(s.surfaceVelocity);
@@ -47,6 +68,7 @@ class PairPass {
  public:
   PairPass(const ContactUpdate& scratch, const BodyStorage& bodies, std::span<const ProxyPair> pairs,
            std::vector<Contact>& contacts, const std::vector<Contact>& previous,
+           std::vector<ApartPair>& apart, const std::vector<ApartPair>& previousApart,
            const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
            const PairFilters& filters, StepEvents& events, std::string& callbackError)
       : s_(scratch),
@@ -54,6 +76,8 @@ class PairPass {
         pairs_(pairs),
         contacts_(contacts),
         previous_(previous),
+        apart_(apart),
+        previousApart_(previousApart),
         settings_(settings),
         dt_(dt),
         preSolve_(preSolve),
@@ -171,12 +195,18 @@ class PairPass {
     const std::size_t first = next_;
     while (next_ < previous_.size() && previous_[next_].key == key) ++next_;
     if (first == next_) return {};
-    const Contact& old = previous_[first];
-    const bool same = old.bodyA == ia && old.bodyB == ib &&
-                      old.generationA == bodies_.records[ia].generation &&
-                      old.generationB == bodies_.records[ib].generation;
-    return same ? std::span<const Contact>(previous_).subspan(first, next_ - first)
-                : std::span<const Contact>{};
+    return sameBodies(previous_[first], bodies_, ia, ib)
+               ? std::span<const Contact>(previous_).subspan(first, next_ - first)
+               : std::span<const Contact>{};
+  }
+
+  // Last step's record of this pair found apart, if it was between these very bodies (a pair has
+  // a contact or an apart record, not both).
+  const ApartPair* takePreviousApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
+    while (nextApart_ < previousApart_.size() && previousApart_[nextApart_].key < key) ++nextApart_;
+    if (nextApart_ == previousApart_.size() || previousApart_[nextApart_].key != key) return nullptr;
+    const ApartPair& old = previousApart_[nextApart_++];
+    return sameBodies(old, bodies_, ia, ib) ? &old : nullptr;
   }
 
   void endAll(std::span<const Contact> previous) {
@@ -188,6 +218,7 @@ class PairPass {
     const std::uint32_t ia = bodyOf(pair.a);
     const std::uint32_t ib = bodyOf(pair.b);
     const std::span<const Contact> previousRange = takePrevious(key, ia, ib);
+    const ApartPair* previousApart = takePreviousApart(key, ia, ib);
     const BodyRecord& ra = bodies_.records[ia];
     const BodyRecord& rb = bodies_.records[ib];
     // Only a dynamic body responds: kinematic-kinematic and kinematic-static pairs are never tested
@@ -211,23 +242,23 @@ class PairPass {
         kept.wasTouching = kept.touching;
         kept.impactSpeed = kept.impactImpulse = 0.0f;
       }
+      if (previousApart) apart_.push_back(*previousApart);
       return;
     }
     if (hasParts(ra) || hasParts(rb)) {
       updatePartPairs(key, ia, ib, previousRange);
       return;
     }
-    const Contact* previous = previousRange.empty() ? nullptr : &previousRange.front();
+    const Contact* previous = !previousRange.empty() ? &previousRange.front()
+                              : previousApart        ? viewOf(*previousApart, apartView_)
+                                                     : nullptr;
     Contact& c = contacts_.emplace_back();
     ++counts_.narrowPhaseTests;
     const bool reused = computeManifold(ia, ib, previous, c, pairIndex);
     if (c.manifold.count == 0) {
       if (previous) events_.endVanished(bodies_, *previous);
-      if (!c.cache.valid) {
-        contacts_.pop_back();
-        return;
-      }
-      keepApart(key, ia, ib, c);
+      if (c.cache.valid) keepApart(key, ia, ib, c.cache);
+      contacts_.pop_back();
       return;
     }
     fillContact(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), ra.sensor || rb.sensor, previous,
@@ -348,18 +379,10 @@ class PairPass {
     return false;
   }
 
-  // A pair found apart is kept as an empty contact, so that next step can take the same "apart"
-  // while the pair does not move. It has no points: the solver, the events and the islands pass it
-  // by. Only its manifold and cache were written since it was made, and the cache is what it is
-  // kept for.
-  void keepApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, Contact& c) const {
-    c.manifold = Manifold{};
-    c.key = key;
-    c.bodyA = ia;
-    c.bodyB = ib;
-    c.generationA = bodies_.records[ia].generation;
-    c.generationB = bodies_.records[ib].generation;
-    c.enabled = false;
+  // A pair found apart keeps its cache (ApartPair), so that next step can take the same "apart"
+  // while the pair does not move.
+  void keepApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const ManifoldCache& cache) {
+    apart_.push_back({key, ia, ib, bodies_.records[ia].generation, bodies_.records[ib].generation, cache});
   }
 
   // A touching or speculative contact: the two parts' materials combined, and last step's points and
@@ -422,13 +445,17 @@ class PairPass {
   std::span<const ProxyPair> pairs_;
   std::vector<Contact>& contacts_;
   const std::vector<Contact>& previous_;
+  std::vector<ApartPair>& apart_;
+  const std::vector<ApartPair>& previousApart_;
   const ContactUpdateSettings& settings_;
   float dt_;
   const PreSolveCallback& preSolve_;
   const PairFilters& filters_;
   StepEvents& events_;
   std::string& callbackError_;
-  std::size_t next_ = 0;  // last step's contacts before this are matched or ended
+  std::size_t next_ = 0;       // last step's contacts before this are matched or ended
+  std::size_t nextApart_ = 0;  // and last step's pairs apart before this
+  Contact apartView_;          // the previous contact of a pair that was apart (viewOf)
   ContactUpdateCounts counts_;
 };
 
@@ -470,8 +497,9 @@ void ContactUpdate::snapshotRange(const BodyStorage& bodies, float dt, float cac
 }
 
 void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
-                               const std::vector<Contact>& previous, const ContactUpdateSettings& settings,
-                               float dt, TaskRunner& tasks) {
+                               const std::vector<Contact>& previous,
+                               const std::vector<ApartPair>& previousApart,
+                               const ContactUpdateSettings& settings, float dt, TaskRunner& tasks) {
   stagedIndex_.resize(pairs.size());
   staged_.resize(static_cast<std::size_t>(tasks.workerCount()));
   for (WorkerTests& list : staged_) list.tests.clear();
@@ -482,9 +510,14 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
         Manifold scratch;
         // Last step's contacts, merged in key order as the walk does, from where
         // this range's first pair would find them.
-        auto cursor = std::lower_bound(
-            previous.begin(), previous.end(), pairKey(pairs[begin].a.index, pairs[begin].b.index),
-            [](const Contact& contact, std::uint64_t k) { return contact.key < k; });
+        const std::uint64_t firstKey = pairKey(pairs[begin].a.index, pairs[begin].b.index);
+        auto cursor =
+            std::lower_bound(previous.begin(), previous.end(), firstKey,
+                             [](const Contact& contact, std::uint64_t k) { return contact.key < k; });
+        auto apartCursor =
+            std::lower_bound(previousApart.begin(), previousApart.end(), firstKey,
+                             [](const ApartPair& apart, std::uint64_t k) { return apart.key < k; });
+        Contact apartView;
         for (std::uint32_t p = begin; p < end; ++p) {
           stagedIndex_[p] = kNotStaged;
           const std::uint32_t ia = proxyBodies_[pairs[p].a.index];
@@ -493,12 +526,13 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
           // Last step's contact of the pair, as the walk's merge finds it.
           const std::uint64_t key = pairKey(pairs[p].a.index, pairs[p].b.index);
           while (cursor != previous.end() && cursor->key < key) ++cursor;
-          const auto it = cursor;
+          while (apartCursor != previousApart.end() && apartCursor->key < key) ++apartCursor;
           const Contact* old = nullptr;
-          if (it != previous.end() && it->key == key && it->bodyA == ia && it->bodyB == ib &&
-              it->generationA == bodies.records[ia].generation &&
-              it->generationB == bodies.records[ib].generation)
-            old = &*it;
+          if (cursor != previous.end() && cursor->key == key && sameBodies(*cursor, bodies, ia, ib))
+            old = &*cursor;
+          else if (apartCursor != previousApart.end() && apartCursor->key == key &&
+                   sameBodies(*apartCursor, bodies, ia, ib))
+            old = viewOf(*apartCursor, apartView);
           const BodyRecord& ra = bodies.records[ia];
           const BodyRecord& rb = bodies.records[ib];
           const float margin = PairPass::pairMargin(*this, ra, rb, ia, ib, dt, settings.tuning);
@@ -521,23 +555,27 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
 
 ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                        std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
-                                       std::vector<Contact>& previous, const ContactUpdateSettings& settings,
-                                       float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
+                                       std::vector<Contact>& previous, std::vector<ApartPair>& apart,
+                                       std::vector<ApartPair>& previousApart,
+                                       const ContactUpdateSettings& settings, float dt,
+                                       const PreSolveCallback& preSolve, const PairFilters& filters,
                                        StepEvents& events, std::string& callbackError, TaskRunner& tasks) {
   snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance, tasks);
   std::swap(contacts, previous);
   contacts.clear();
+  std::swap(apart, previousApart);
+  apart.clear();
   // Running ahead pays when many pairs need their collider test; when most reuse last step's
   // manifold (a resting pile) the walk's bookkeeping is the work and staging only adds to it. Last
   // step's share decides (either way the contacts are the same).
   const bool manyTests = lastTests_ * kStageWhenTestedOneIn >= lastPairs_;
   if (tasks.workerCount() > 1 && manyTests) {
-    stageTests(bodies, pairs, previous, settings, dt, tasks);
+    stageTests(bodies, pairs, previous, previousApart, settings, dt, tasks);
   } else {
     stagedIndex_.clear();
   }
-  const ContactUpdateCounts counts = PairPass(*this, bodies, pairs, contacts, previous, settings, dt,
-                                              preSolve, filters, events, callbackError)
+  const ContactUpdateCounts counts = PairPass(*this, bodies, pairs, contacts, previous, apart, previousApart,
+                                              settings, dt, preSolve, filters, events, callbackError)
                                          .run();
   lastTests_ = counts.narrowPhaseTests - counts.reusedManifolds;
   lastPairs_ = counts.narrowPhaseTests;

@@ -65,18 +65,19 @@ struct ContactUpdateCounts {
 // between steps so that a step allocates nothing once they have grown).
 class ContactUpdate {
  public:
-  // `contacts` holds last step's contacts on entry and this step's on return, in pair order;
-  // `previous` is scratch. End events of contacts whose pair vanished go to `events`. Settings the
-  // pre-solve callback gets wrong are refused, and the first such refusal is described in
-  // `callbackError`.
-  // With more than one worker, the pairs' full collider tests run first, in parallel ranges (each
-  // pair's test reads only the step's snapshot), and the walk in pair order takes their results:
-  // the contacts, the events and the callbacks are those of one worker, in the same order.
+  // `contacts` holds last step's contacts on entry and this step's on return, in pair order, and
+  // `apart` likewise the pairs found apart (ApartPair); `previous` and `previousApart` are scratch. End
+  // events of contacts whose pair vanished go to `events`. Settings the pre-solve callback gets wrong are
+  // refused, and the first such refusal is described in `callbackError`. With more than one worker, the
+  // pairs' full collider tests run first, in parallel ranges (each pair's test reads only the step's
+  // snapshot), and the walk in pair order takes their results: the contacts, the events and the callbacks are
+  // those of one worker, in the same order.
   ContactUpdateCounts run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                           std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
-                          std::vector<Contact>& previous, const ContactUpdateSettings& settings, float dt,
-                          const PreSolveCallback& preSolve, const PairFilters& filters, StepEvents& events,
-                          std::string& callbackError, TaskRunner& tasks);
+                          std::vector<Contact>& previous, std::vector<ApartPair>& apart,
+                          std::vector<ApartPair>& previousApart, const ContactUpdateSettings& settings,
+                          float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
+                          StepEvents& events, std::string& callbackError, TaskRunner& tasks);
 
   // A pair's collider test, run ahead: the manifold, and the distance when it came out empty
   // between polyhedra (for the separating-axis cache).
@@ -102,8 +103,8 @@ class ContactUpdate {
                      std::uint32_t end);
   // The tests of the pairs whose walk will reach collide(), in parallel ranges.
   void stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
-                  const std::vector<Contact>& previous, const ContactUpdateSettings& settings, float dt,
-                  TaskRunner& tasks);
+                  const std::vector<Contact>& previous, const std::vector<ApartPair>& previousApart,
+                  const ContactUpdateSettings& settings, float dt, TaskRunner& tasks);
   // Whether the stage found the pair apart this way (PairPass::ManifoldRoute).
   template <typename Route>
   bool stagedRoute(std::size_t pair, Route route) const {

@@ -68,7 +68,7 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, Tas
 }
 
 void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
-                         std::vector<Joint>& joints) {
+                         std::vector<ApartPair>& apartPairs, std::vector<Joint>& joints) {
   const auto faulted = [&](std::uint32_t body) {
     return std::any_of(faults.begin(), faults.end(),
                        [&](const FaultEvent& f) { return f.body.index == body; });
@@ -82,6 +82,9 @@ void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact
     c.twistImpulse = 0.0f;
     c.stuck = false;
     c.touching = false;
+  }
+  for (ApartPair& p : apartPairs) {
+    if (faulted(p.bodyA) || faulted(p.bodyB)) p.cache.valid = false;
   }
   for (Joint& joint : joints) {
     if (!joint.alive || (!faulted(joint.bodyA) && !faulted(joint.bodyB))) continue;

@@ -34,9 +34,10 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, Tas
 // joints' impulses (NaN, or what NaN made of them). Their contacts are dropped for this step (not
 // touching: no begin event, an end event if they touched before) and the joints' impulses zeroed,
 // so that no event reports those numbers and the next step's warm start does not hand them to the
-// bodies' neighbours. The next narrow phase finds the contacts again, at the frozen pose.
+// bodies' neighbours. The next narrow phase finds the contacts again, at the frozen pose, and
+// tests their pairs found apart anew (their caches are dropped).
 void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
-                         std::vector<Joint>& joints);
+                         std::vector<ApartPair>& apartPairs, std::vector<Joint>& joints);
 
 // Back to the pose at the start of the step, stopped, forces cleared. A dynamic body also loses its
 // inverse mass and inertia and sleeps: the solver then treats it as an immovable obstacle, and

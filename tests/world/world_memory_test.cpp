@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 namespace collide {
@@ -70,6 +71,23 @@ TEST(WorldMemory, ContactsHoldEveryTouchingPairTwice) {
   // This step's contacts and last step's, which the next step matches them against.
   EXPECT_GE(world.memoryUse().contacts, 2 * touching * sizeof(detail::Contact));
   EXPECT_GT(world.memoryUse().solver, 0u);
+}
+
+// Pairs the narrow phase finds apart keep their cache alone, not a whole contact: a grid of spheres
+// 3 cm apart (their boxes, grown by the 2 cm speculative distance, overlap; the spheres are beyond
+// it) holds less for its pairs than one Contact each in this step's and last step's arrays would.
+TEST(WorldMemory, PairsApartHoldLessThanAContact) {
+  World world(test::zeroGravityWorld());
+  for (int x = 0; x < 10; ++x)
+    for (int z = 0; z < 10; ++z)
+      world.createBody(test::sphereBody(Vec3(1.03f * x, 0.0f, 1.03f * z), 0.5f, 1.0f));
+  world.step(kDt);
+  world.step(kDt);
+  const std::uint64_t tested = world.lastStats().narrowPhaseTests;
+  // The grid's 180 side-by-side neighbours and 162 diagonal ones (their boxes overlap at a corner).
+  ASSERT_EQ(tested, 342u);
+  EXPECT_EQ(world.touchingContactCount(), 0u);
+  EXPECT_LT(world.memoryUse().contacts, 2 * tested * sizeof(detail::Contact));
 }
 
 TEST(WorldMemory, JointsHoldTheirRecords) {
