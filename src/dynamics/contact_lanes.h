@@ -4,6 +4,7 @@
 #pragma once
 
 #include "dynamics/contact_solver.h"
+#include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
 #include "simd/simd.h"
 
@@ -39,11 +40,13 @@ struct ContactBatch {
   std::array<bool, kWidth> writeA;           // a dynamic body takes the result (not kinematic)
   std::array<bool, kWidth> writeB;
   int pointCount;  // the most points of the manifolds
+  // Its pointCount points, in the solver's point array: a batch of spheres holds one point slot,
+  // not kMaxPoints (the slots of the batches of one build stay where they are until the next).
+  BatchPoint<F>* points;
   F inverseMassA, inverseMassB;
   Vec3T<F> normal, tangent1, tangent2;
   F friction, restitution;
   F biasRate, massScale, impulseScale;
-  std::array<BatchPoint<F>, Manifold::kMaxPoints> points;
   // Friction patch.
   Vec3T<F> patchA, patchB;  // from each centre of mass to the centroid, world, at the step start
   Vec3T<F> tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;  // I^-1 of those
@@ -79,6 +82,25 @@ class LaneContactSolver final : public ContactLanes {
       batchStart_[color + 1] = batchStart_[color] + (count + perBatch - 1) / perBatch;
     }
     batches_.resize(batchStart_[kGraphColors + 1]);
+    // Each batch's point slots: as many as its first contact's points, which has the most.
+    batchPoints_.resize(batches_.size() + 1);
+    batchPoints_[0] = 0;
+    for (int color = 0, countBucket = 0; color <= kGraphColors; ++color) {
+      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
+      for (std::uint32_t b = batchStart_[color]; b < batchStart_[color + 1]; ++b) {
+        const std::uint32_t first = in.colorStart[color] + (b - batchStart_[color]) * perBatch;
+        int count;
+        if (color == kOverflowColor) {
+          count = in.contacts[in.order[first]].manifold.count;
+        } else {
+          countBucket = std::max(countBucket, color * Manifold::kMaxPoints);
+          while (in.countStart[countBucket + 1] <= first) ++countBucket;
+          count = Manifold::kMaxPoints - (countBucket - color * Manifold::kMaxPoints);
+        }
+        batchPoints_[b + 1] = batchPoints_[b] + static_cast<std::uint32_t>(count);
+      }
+    }
+    points_.resize(batchPoints_.back());
     // Batch b's first contact in the order.
     const auto firstContact = [&](std::uint32_t b) {
       int color = 0;
@@ -131,6 +153,9 @@ class LaneContactSolver final : public ContactLanes {
       const std::uint32_t last = std::min(first + perBatch, in.colorStart[color + 1]);
       Batch* batch = batches_.data() + b;
       std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
+      batch->pointCount = static_cast<int>(batchPoints_[b + 1] - batchPoints_[b]);
+      batch->points = points_.data() + batchPoints_[b];
+      std::memset(static_cast<void*>(batch->points), 0, sizeof(BatchPoint<F>) * batch->pointCount);
       batch->bodyA.fill(kNoSolverBody);
       batch->bodyB.fill(kNoSolverBody);
       batch->contact.fill(-1);
@@ -244,7 +269,9 @@ class LaneContactSolver final : public ContactLanes {
   }
 
   // Each batch writes its own contacts: ranges of batches in parallel.
-  std::size_t memoryBytes() const override { return batches_.capacity() * sizeof(Batch); }
+  std::size_t memoryBytes() const override {
+    return heapBytes(batches_) + heapBytes(points_) + heapBytes(batchPoints_);
+  }
 
   void store(std::vector<Contact>& contacts, TaskRunner& tasks) const override {
     tasks.parallelFor(
@@ -607,7 +634,6 @@ class LaneContactSolver final : public ContactLanes {
     laneOf(c.impulseScale, lane) = s.impulseScale;
 
     const int count = contact.manifold.count;
-    c.pointCount = std::max(c.pointCount, count);
     laneOf(inputs.count, lane) = static_cast<float>(count);
     Vec3 centroid(0.0f);
     for (int k = 0; k < count; ++k) {
@@ -728,6 +754,8 @@ class LaneContactSolver final : public ContactLanes {
   // few. A colour of no more batches than this runs on the calling thread.
   static constexpr std::uint32_t kBatchesPerRange = 4;
   std::vector<Batch> batches_;
+  std::vector<BatchPoint<F>> points_;                         // the batches' point slots
+  std::vector<std::uint32_t> batchPoints_;                    // batch b's slots: [batchPoints_[b], [b + 1])
   std::array<std::uint32_t, kGraphColors + 2> batchStart_{};  // colour c's batches: [batchStart_[c], [c + 1])
   float pushOutSpeed_ = 3.0f;
   float restitutionThreshold_ = 1.0f;

@@ -114,6 +114,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   for (std::size_t k = 1; k < bucketStart.size(); ++k) bucketStart[k] += bucketStart[k - 1];
   std::array<std::uint32_t, kGraphColors + 2> start{};
   for (int color = 0; color <= kGraphColors + 1; ++color) start[color] = bucketStart[color * kCounts];
+  const std::array<std::uint32_t, (kGraphColors + 1)* kCounts + 1> countStart = bucketStart;
   order_.resize(solvedContacts_.size());
   for (std::size_t i = 0; i < solvedContacts_.size(); ++i)
     order_[bucketStart[bucketOf(i)]++] = solvedContacts_[i];
@@ -124,7 +125,7 @@ void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& s
   const float maxHertz = kMaxHertzPerSubstepRate / h;
   const ContactTuning& tuning = settings.tuning;
   const ContactBatchInput input{
-      contacts, solvedContacts_, start, storage, bodies, infos, solverOf,
+      contacts, solvedContacts_, start, countStart, storage, bodies, infos, solverOf,
       makeSoftness(std::min(tuning.hertz, maxHertz), tuning.dampingRatio, h),
       // A one-way pair has half the effective mass to move: Box2D v3 doubles its stiffness, within the cap.
       makeSoftness(std::min(2.0f * tuning.hertz, maxHertz), tuning.dampingRatio, h), settings.friction,

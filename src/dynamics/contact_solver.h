@@ -69,6 +69,9 @@ struct ContactBatchInput {
   std::vector<Contact>& contacts;
   const std::vector<std::uint32_t>& order;
   const std::array<std::uint32_t, kGraphColors + 2>& colorStart;
+  // Within colour c (but the overflow), order[countStart[c * kMaxPoints + 4 - n], ... + 1) are the
+  // contacts of n points: a batch's first contact has the most points of its lanes.
+  const std::array<std::uint32_t, (kGraphColors + 1) * Manifold::kMaxPoints + 1>& countStart;
   const BodyStorage& storage;
   const std::vector<SolverBody>& bodies;
   const std::vector<SolverBodyInfo>& infos;
