@@ -54,12 +54,13 @@ void matchContactPoints(const Contact& previous, Contact& current, float matchDi
     });
     if (match[i] >= 0) taken[match[i]] = true;
   }
+  current.prolongedPoints = 0;
   for (int i = 0; i < current.manifold.count; ++i) {
     ContactPointState& state = current.points[i];
     state = ContactPointState{};
     if (match[i] >= 0) {
       state.normalImpulse = previous.points[match[i]].normalImpulse;
-      state.prolonged = true;
+      current.prolongedPoints |= static_cast<std::uint8_t>(1u << i);
     }
   }
 }
@@ -73,7 +74,6 @@ void storeManifold(const Manifold& manifold, const Transform& a, const Transform
   const Quat inverseA = glm::conjugate(a.rotation);
   cache.relativePosition = inverseA * (b.position - a.position);
   cache.relativeRotation = inverseA * b.rotation;
-  cache.relativePositionInB = glm::conjugate(cache.relativeRotation) * cache.relativePosition;
   cache.valid = true;
 }
 
@@ -92,7 +92,9 @@ bool reuseManifold(const ManifoldCache& cache, const Manifold& cached, const Tra
   const float movedB = glm::length(position - cache.relativePosition) + angle * radiusB;
   if (movedB > distance) {
     const Vec3 positionA = glm::conjugate(rotation) * position;
-    const float movedA = glm::length(positionA - cache.relativePositionInB) + angle * radiusA;
+    // A's origin in B's frame then, derived here: this bound is needed far less often than stored.
+    const Vec3 cachedPositionA = glm::conjugate(cache.relativeRotation) * cache.relativePosition;
+    const float movedA = glm::length(positionA - cachedPositionA) + angle * radiusA;
     if (movedA > distance) return false;
   }
   // Placed with the two rotations as matrices, not a quaternion rotation per point.
@@ -115,8 +117,8 @@ void inheritContact(const Contact& previous, Contact& current, float matchDistan
     for (int i = 0; i < current.manifold.count; ++i) {
       current.points[i] = ContactPointState{};
       current.points[i].normalImpulse = previous.points[i].normalImpulse;
-      current.points[i].prolonged = true;
     }
+    current.prolongedPoints = static_cast<std::uint8_t>((1u << current.manifold.count) - 1u);
   } else {
     matchContactPoints(previous, current, matchDistance);
   }

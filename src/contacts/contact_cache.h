@@ -27,7 +27,6 @@ struct ContactPointState {
   float totalNormalImpulse = 0.0f;  // everything applied this step (events)
   float maxNormalImpulse = 0.0f;    // did the point act this step (restitution)
   float relativeVelocity = 0.0f;    // normal relative velocity before the solve (restitution, events)
-  bool prolonged = false;           // matched a point of last step's manifold
 };
 
 // A manifold as it was computed, in the bodies' own frames, with B's pose in A's frame then (Jolt's
@@ -39,13 +38,12 @@ struct ManifoldCache {
   std::array<Vec3, Manifold::kMaxPoints> pointsOnA{};  // in A's frame
   std::array<Vec3, Manifold::kMaxPoints> pointsOnB{};  // in B's frame
   Vec3 relativePosition{0.0f};                         // B's origin in A's frame
-  Vec3 relativePositionInB{0.0f};                      // conj(relativeRotation) relativePosition
   Quat relativeRotation{1.0f, 0.0f, 0.0f, 0.0f};       // conj(qA) qB
-  bool valid = false;
   // A pair found apart: a direction (A's frame, unit) along which they were apart by more than the
   // margin, which the world tests first next time (Gregorius, GDC 2013: temporal coherence of the
   // separating axis).
   Vec3 separatingAxis{0.0f};
+  bool valid = false;
   bool hasAxis = false;
 };
 
@@ -84,9 +82,15 @@ struct Contact {
   bool asleep = false;             // no awake dynamic body: kept as it was, not solved (sleeping)
   bool touching = false;           // after this step's narrow phase
   bool wasTouching = false;        // after last step's
-  int consecutiveSteps = 0;        // steps in a row with points (lecture: friction from the second step)
-  float impactSpeed = 0.0f;        // the approach speed the impact stage resolved this step (events)
-  float impactImpulse = 0.0f;      // the normal impulse it gave (events, and the contact touched)
+  // The friction patch's static anchor is set / the patch reached the friction bound last step
+  // (re-anchor); see frictionImpulse below. Kept with the other flags: a contact is long.
+  bool stuck = false;
+  bool sliding = false;
+  // Bit i: point i matched a point of last step's manifold (prolonged, not new).
+  std::uint8_t prolongedPoints = 0;
+  int consecutiveSteps = 0;    // steps in a row with points (lecture: friction from the second step)
+  float impactSpeed = 0.0f;    // the approach speed the impact stage resolved this step (events)
+  float impactImpulse = 0.0f;  // the normal impulse it gave (events, and the contact touched)
   // The friction patch (dynamics/contact_solver.h), kept across steps: its impulse as a world vector
   // (the tangent basis is rebuilt every step), the twist about the normal, and the static anchor in
   // each body's frame (from the centre of mass) with whether it holds.
@@ -94,10 +98,10 @@ struct Contact {
   float twistImpulse = 0.0f;
   Vec3 stickLocalA{0.0f};
   Vec3 stickLocalB{0.0f};
-  bool stuck = false;    // the anchor is set
-  bool sliding = false;  // the patch reached the friction bound last step: re-anchor
   // Last: the solver reads everything above and nothing of this (dynamics/contact_lanes.h).
   ManifoldCache cache;
+
+  bool prolonged(int point) const { return (prolongedPoints >> point) & 1u; }
 };
 
 // A pair the narrow phase found apart, kept for its cache alone: while the pair does not move,

@@ -271,7 +271,10 @@ class PairPass {
     if (!c.sensor && preSolve_) applyPreSolve(ia, ib, c);
     const float deepest = c.manifold.maxDepth();
     c.touching = c.enabled && (c.sensor ? deepest >= 0.0f : deepest >= -settings_.tuning.linearSlop);
-    if (!c.enabled) c.points = {};
+    if (!c.enabled) {
+      c.points = {};
+      c.prolongedPoints = 0;
+    }
   }
 
   // A pair with a body made of parts: a contact per pair of parts that the parts' filters allow,
@@ -413,6 +416,7 @@ class PairPass {
       inheritContact(*previous, c, settings_.tuning.linearSlop, reused);
     } else {
       c.points = {};
+      c.prolongedPoints = 0;
     }
     c.enabled = true;
   }

@@ -78,6 +78,7 @@ void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact
     c.manifold = Manifold{};
     c.cache.valid = false;  // computed anew by the next narrow phase, at the frozen pose
     c.points = {};
+    c.prolongedPoints = 0;
     c.frictionImpulse = Vec3(0.0f);
     c.twistImpulse = 0.0f;
     c.stuck = false;

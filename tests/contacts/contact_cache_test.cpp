@@ -30,9 +30,9 @@ TEST(ContactCache, PointsMatchByFeatureIdAndInheritImpulses) {
   Contact current = contactWith({pointAt(1.1f, 9),     // same feature, moved a little
                                  pointAt(0.0f, 42)});  // a new feature at an old position
   matchContactPoints(previous, current);
-  EXPECT_TRUE(current.points[0].prolonged);
+  EXPECT_TRUE(current.prolonged(0));
   EXPECT_EQ(current.points[0].normalImpulse, 2.0f);
-  EXPECT_FALSE(current.points[1].prolonged);
+  EXPECT_FALSE(current.prolonged(1));
   EXPECT_EQ(current.points[1].normalImpulse, 0.0f);
 }
 
@@ -51,9 +51,9 @@ TEST(ContactCache, RenamedPointWithinMatchDistanceInheritsItsImpulse) {
   Contact current = contactWith({pointAt(0.003f, 70),   // renamed, 3 mm away
                                  pointAt(1.02f, 90)});  // renamed, 2 cm away
   matchContactPoints(previous, current, 0.005f);
-  EXPECT_TRUE(current.points[0].prolonged);
+  EXPECT_TRUE(current.prolonged(0));
   EXPECT_EQ(current.points[0].normalImpulse, 1.0f);
-  EXPECT_FALSE(current.points[1].prolonged);  // beyond the match distance: a new contact
+  EXPECT_FALSE(current.prolonged(1));  // beyond the match distance: a new contact
   EXPECT_EQ(current.points[1].normalImpulse, 0.0f);
 }
 
@@ -62,8 +62,8 @@ TEST(ContactCache, FeatureIdMatchesComeBeforePositionMatches) {
   Contact current = contactWith({pointAt(0.0f, 8),      // renamed, at the old point's very place
                                  pointAt(0.004f, 7)});  // the old point's id, a little further
   matchContactPoints(previous, current, 0.005f);
-  EXPECT_FALSE(current.points[0].prolonged);  // the old point went to its id
-  EXPECT_TRUE(current.points[1].prolonged);
+  EXPECT_FALSE(current.prolonged(0));  // the old point went to its id
+  EXPECT_TRUE(current.prolonged(1));
   EXPECT_EQ(current.points[1].normalImpulse, 1.0f);
 }
 
@@ -84,7 +84,7 @@ TEST(ContactCache, InheritedContactKeepsItsFrictionPatch) {
   previous.stuck = true;
   Contact current = contactWith({pointAt(0.5f, 8)});  // neither the id nor the place matches
   inheritContact(previous, current, 0.005f);
-  EXPECT_FALSE(current.points[0].prolonged);
+  EXPECT_FALSE(current.prolonged(0));
   EXPECT_EQ(current.frictionImpulse, previous.frictionImpulse);
   EXPECT_EQ(current.twistImpulse, 0.125f);
   EXPECT_EQ(current.stickLocalA, previous.stickLocalA);
@@ -103,8 +103,8 @@ TEST(ContactCache, ReusedManifoldKeepsEachPointsOwnImpulse) {
   inheritContact(previous, current, 0.005f, true);
   EXPECT_EQ(current.points[0].normalImpulse, 1.0f);
   EXPECT_EQ(current.points[1].normalImpulse, 2.0f);
-  EXPECT_TRUE(current.points[0].prolonged);
-  EXPECT_TRUE(current.points[1].prolonged);
+  EXPECT_TRUE(current.prolonged(0));
+  EXPECT_TRUE(current.prolonged(1));
   EXPECT_EQ(current.points[1].totalNormalImpulse, 0.0f);  // per step, not carried
   inheritContact(previous, searched, 0.005f, false);
   EXPECT_EQ(searched.points[0].normalImpulse, 2.0f);  // the nearest old point with the same id
