@@ -284,8 +284,9 @@ TEST(BroadPhaseEquivalence, BoxCastsEqualEveryAlgorithmAndTheWrittenOutTest) {
       if (length > 0.0f) {
         // Just before the reported distance the box is clear of the target (unless it starts touching).
         const Vec3 before = translation * (std::max(0.0f, distance - 1e-3f) / length);
-        if (distance > 1e-3f)
+        if (distance > 1e-3f) {
           EXPECT_FALSE((Aabb{box.min + before, box.max + before}.overlaps(target))) << "cast " << q;
+        }
         const Vec3 at = translation * (distance / length);
         EXPECT_TRUE((Aabb{box.min + at, box.max + at}.expanded(1e-3f).overlaps(target))) << "cast " << q;
       }

@@ -17,7 +17,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 TEST(ConstraintGraph, NoColourHasTwoConstraintsOnOneDynamicBody) {
   std::mt19937 rng(7);

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "support/ccd_reference.h"
 #include "narrowphase/convex_support.h"
-#include "support/support_reference.h"
+#include "support/ccd_reference.h"
 #include "support/narrowphase_helpers.h"
+#include "support/support_reference.h"
 
 #if defined(COLLIDE_HAVE_CCD)
 #include <ccd/ccd.h>
@@ -105,12 +105,12 @@ Tally runPairType(ShapeType typeA, ShapeType typeB, unsigned seed) {
   for (int i = 0; i < kPairsPerType; ++i) {
     const Shape shapeA = randomPrimitive(typeA, rng);
     const Shape shapeB = randomPrimitive(typeB, rng);
-    const Transform transformA = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, randomRotation(rng));
+    const Transform transformA = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, uniformRotation(rng));
     // Centre distances from 0 to 1.6 times the sum of the bounding radii: both overlapping and
     // separated pairs are common for every pair type (spheres overlap below 1.0).
     const float reach = boundingRadius(shapeA) + boundingRadius(shapeB);
     const Transform transformB =
-        at(transformA.position + randomUnit(rng) * (1.6f * reach * unit(rng)), randomRotation(rng));
+        at(transformA.position + randomUnit(rng) * (1.6f * reach * unit(rng)), uniformRotation(rng));
     const DistanceResult ours = collide::distance(shapeA, transformA, shapeB, transformB);
     const detail::ConvexSupport a = detail::makeConvexSupport(shapeA, transformA);
     const detail::ConvexSupport b = detail::makeConvexSupport(shapeB, transformB);

@@ -128,8 +128,8 @@ TEST(PairTable, CollideOfBAndAMirrorsCollideOfAAndB) {
       for (int i = 0; i < 200; ++i) {
         const Shape a = randomPrimitive(ta, rng);
         const Shape b = randomPrimitive(tb, rng);
-        const Transform pa = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
-        const Transform pb = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+        const Transform pa = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
+        const Transform pb = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
         Manifold ab, ba;
         const bool hitAB = collide::collide(a, pa, b, pb, ab);
         const bool hitBA = collide::collide(b, pb, a, pa, ba);
@@ -150,7 +150,7 @@ TEST(PairTable, CollideOfBAndAMirrorsCollideOfAAndB) {
   const Plane ground{{0.0f, 1.0f, 0.0f}, 0.0f};
   for (const ShapeType tb : kPrimitives) {
     const Shape b = randomPrimitive(tb, rng);
-    const Transform pb = at(Vec3(0.0f, 0.3f, 0.0f), randomRotation(rng));
+    const Transform pb = at(Vec3(0.0f, 0.3f, 0.0f), uniformRotation(rng));
     Manifold ab, ba;
     ASSERT_TRUE(collide::collide(ground, Transform::identity(), b, pb, ab));
     ASSERT_TRUE(collide::collide(b, pb, ground, Transform::identity(), ba));
@@ -172,8 +172,8 @@ TEST(PairTable, OverlapIsConservativeForEveryCollidingPair) {
       for (int i = 0; i < 200; ++i) {
         const Shape a = randomPrimitive(ta, rng);
         const Shape b = randomPrimitive(tb, rng);
-        const Transform pa = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
-        const Transform pb = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+        const Transform pa = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
+        const Transform pb = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
         Manifold m;
         const bool hit = collide::collide(a, pa, b, pb, m);
         const bool maybe = overlap(a, pa, b, pb);

@@ -36,7 +36,7 @@ TEST(Gjk, SphereAndCapsuleDistancesMatchClosedForms) {
     const Sphere sa{0.3f + 0.5f * std::abs(unit(rng))};
     const Capsule cb{0.2f + 0.4f * std::abs(unit(rng)), 0.3f + 0.5f * std::abs(unit(rng))};
     const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)));
-    const Transform tb = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+    const Transform tb = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
     const Vec3 e0 = tb.applyToPoint(Vec3(0, -cb.halfHeight, 0)),
                e1 = tb.applyToPoint(Vec3(0, cb.halfHeight, 0));
     const float t = detail::closestParameterOnSegment(ta.position, e0, e1);
@@ -44,7 +44,7 @@ TEST(Gjk, SphereAndCapsuleDistancesMatchClosedForms) {
     EXPECT_NEAR(generic(sa, ta, cb, tb).distance, expected, 1e-5f);
     // Capsule–capsule: the segments' closest points.
     const Capsule ca{sa.radius, 0.4f};
-    const Transform tc = at(ta.position, randomRotation(rng));
+    const Transform tc = at(ta.position, uniformRotation(rng));
     const Vec3 c0 = tc.applyToPoint(Vec3(0, -0.4f, 0)), c1 = tc.applyToPoint(Vec3(0, 0.4f, 0));
     const detail::SegmentPair pair = detail::closestPointsSegmentSegment(c0, c1, e0, e1);
     const float expectedCapsules = std::sqrt(pair.distanceSquared) - ca.radius - cb.radius;
@@ -58,7 +58,7 @@ TEST(Gjk, SphereBoxDistanceMatchesTheBoxsClosestPoint) {
   std::uniform_real_distribution<float> unit(-2.5f, 2.5f);
   for (int i = 0; i < 500; ++i) {
     const Box box{Vec3(0.3f, 0.6f, 0.9f)};
-    const Transform tb = at(Vec3(0.1f, -0.2f, 0.3f), randomRotation(rng));
+    const Transform tb = at(Vec3(0.1f, -0.2f, 0.3f), uniformRotation(rng));
     const Vec3 center(unit(rng), unit(rng), unit(rng));
     const float radius = 0.25f;
     const float expected = pointBoxDistance(center, box, tb) - radius;
@@ -80,8 +80,8 @@ TEST(Gjk, CapsuleBoxDistanceMatchesBruteForceAlongTheSegment) {
   for (int i = 0; i < 300; ++i) {
     const Box box{Vec3(0.5f, 0.3f, 0.7f)};
     const Capsule capsule{0.2f, 0.6f};
-    const Transform tb = at(Vec3(0.0f), randomRotation(rng));
-    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+    const Transform tb = at(Vec3(0.0f), uniformRotation(rng));
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
     const Vec3 e0 = ta.applyToPoint(Vec3(0, -0.6f, 0)), e1 = ta.applyToPoint(Vec3(0, 0.6f, 0));
     double lo = 0.0, hi = 1.0;
     auto f = [&](double t) { return pointBoxDistance(e0 + float(t) * (e1 - e0), box, tb); };
@@ -195,13 +195,13 @@ TEST(Gjk, HullDistancesMatchBruteForceOverTheirFaces) {
   for (int pair = 0; pair < 150; ++pair) {
     const Shape a(hull()), b(hull());
     const Transform ta =
-        at(Vec3(normal(rng), normal(rng), normal(rng)), randomRotation(rng), 0.5f + unit(rng));
+        at(Vec3(normal(rng), normal(rng), normal(rng)), uniformRotation(rng), 0.5f + unit(rng));
     const Vec3 away = randomUnit(rng) * (1.4f * ta.scale + 0.9f + 0.5f * unit(rng));
     detail::GjkCache cache;
     for (int frame = 0; frame < 3; ++frame) {
       // B moves and turns a little from frame to frame: the warm start has something to do.
       const Transform tb =
-          at(ta.position + away * (1.0f - 0.05f * frame), randomRotation(rng), 0.7f + 0.3f * unit(rng));
+          at(ta.position + away * (1.0f - 0.05f * frame), uniformRotation(rng), 0.7f + 0.3f * unit(rng));
       const float reference =
           bruteForceDistance(worldTriangles(a.convexHull(), ta), worldTriangles(b.convexHull(), tb));
       if (reference <= 1e-3f) continue;
@@ -237,7 +237,7 @@ TEST(Epa, DeepSphereInBoxAndBoxInSlabMatchClosedForms) {
   // minus the box's lowest vertex.
   std::mt19937 rng(21);
   for (int i = 0; i < 100; ++i) {
-    const Quat rotation = randomRotation(rng);
+    const Quat rotation = uniformRotation(rng);
     const Box cube{Vec3(0.5f, 0.4f, 0.3f)};
     const Transform placed = at(Vec3(0.0f, 0.2f, 0.0f), rotation);
     float lowest = 1e30f;

@@ -146,7 +146,7 @@ TEST(MeshPairs, TriangleSatAgreesWithGjkEpaOnRandomPolyhedra) {
       shape = Shape(ConvexHull::fromPoints(points));
     }
     const Transform tb =
-        at(Vec3(unit(rng) - 0.5f, 1.6f * (unit(rng) - 0.5f), unit(rng) - 0.5f), randomRotation(rng));
+        at(Vec3(unit(rng) - 0.5f, 1.6f * (unit(rng) - 0.5f), unit(rng) - 0.5f), uniformRotation(rng));
     DistanceResult reference;
     const bool near =
         detail::convexSignedDistance(detail::makePointsSupport(triangle.data(), 3, Transform::identity()),

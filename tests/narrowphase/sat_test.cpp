@@ -231,10 +231,10 @@ TEST(SatPolyhedra, CubeHullsAndKdopsAgreeWithBoxes) {
     const float slabMin[3] = {-hB.x, -hB.y, -hB.z}, slabMax[3] = {hB.x, hB.y, hB.z};
     const Shape boxA = Box{hA}, boxB = Box{hB}, hullA = cubeHull(hA), hullB = cubeHull(hB),
                 kdopB = Kdop::fromSlabs(6, slabMin, slabMax);
-    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)), randomRotation(rng));
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)), uniformRotation(rng));
     const Transform tb =
         at(ta.position + randomUnit(rng) * (1.5f * unit(rng) * (glm::length(hA) + glm::length(hB))),
-           randomRotation(rng));
+           uniformRotation(rng));
     Manifold reference;
     const bool hit = collide::collide(boxA, ta, boxB, tb, reference);
     contacts += hit;
@@ -306,8 +306,8 @@ TEST(SatPolyhedra, RandomBoxPairsAgreeWithEpaAndAreSymmetric) {
   for (int i = 0; i < kRandomPairs; ++i) {
     const Shape shapeA = randomPrimitive(ShapeType::Box, rng), shapeB = randomPrimitive(ShapeType::Box, rng);
     const float reach = glm::length(shapeA.box().halfExtents) + glm::length(shapeB.box().halfExtents);
-    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, randomRotation(rng));
-    const Transform tb = at(ta.position + randomUnit(rng) * (1.3f * reach * unit(rng)), randomRotation(rng));
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, uniformRotation(rng));
+    const Transform tb = at(ta.position + randomUnit(rng) * (1.3f * reach * unit(rng)), uniformRotation(rng));
     const DistanceResult reference = collide::distance(shapeA, ta, shapeB, tb);
     Manifold m, mirrored;
     const bool hit = collide::collide(shapeA, ta, shapeB, tb, m);
@@ -375,9 +375,9 @@ TEST(SatPolyhedra, RandomHullPairsAgreeWithLibccd) {
     const Shape shapeA = randomHull(), shapeB = randomHull();
     const float sizeA = glm::length(shapeA.convexHull().bounds().halfExtents());
     const float sizeB = glm::length(shapeB.convexHull().bounds().halfExtents());
-    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, randomRotation(rng));
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, uniformRotation(rng));
     const Transform tb =
-        at(ta.position + randomUnit(rng) * (1.3f * (sizeA + sizeB) * unit(rng)), randomRotation(rng));
+        at(ta.position + randomUnit(rng) * (1.3f * (sizeA + sizeB) * unit(rng)), uniformRotation(rng));
     const detail::ConvexSupport a = detail::makeConvexSupport(shapeA, ta),
                                 b = detail::makeConvexSupport(shapeB, tb);
     Manifold m;
@@ -512,9 +512,9 @@ TEST(BoxBox, RandomPairsAgreeWithTheGenericRoutine) {
     const Shape a = randomPrimitive(ShapeType::Box, rng), b = randomPrimitive(ShapeType::Box, rng);
     const float scaleA = 0.5f + 1.5f * unit(rng), scaleB = 0.5f + 1.5f * unit(rng);
     const float reach = glm::length(a.box().halfExtents) * scaleA + glm::length(b.box().halfExtents) * scaleB;
-    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, randomRotation(rng), scaleA);
+    const Transform ta = at(Vec3(unit(rng), unit(rng), unit(rng)) - 0.5f, uniformRotation(rng), scaleA);
     const Transform tb =
-        at(ta.position + randomUnit(rng) * (1.3f * reach * unit(rng)), randomRotation(rng), scaleB);
+        at(ta.position + randomUnit(rng) * (1.3f * reach * unit(rng)), uniformRotation(rng), scaleB);
     const float margin = (i % 3 == 0) ? 0.1f * reach * unit(rng) : 0.0f;
     char where[64];
     std::snprintf(where, sizeof where, "random pair %d", i);

@@ -136,7 +136,7 @@ TEST(TimeOfImpact, BoxesInALineByConservativeAdvancement) {
   // Rotated boxes: checked by brute force.
   std::mt19937 rng(7);
   for (int i = 0; i < 50; ++i) {
-    const Quat qa = randomRotation(rng), qb = randomRotation(rng);
+    const Quat qa = uniformRotation(rng), qb = uniformRotation(rng);
     const Sweep sa = moving(Vec3(-4, 0.3f, 0), Vec3(4, -0.2f, 0.1f), qa);
     const Sweep sb = Sweep::fixed(at(Vec3(0.5f, 0, 0), qb));
     const ToiResult hit = timeOfImpact(box, sa, box, sb);
@@ -179,7 +179,7 @@ TEST(TimeOfImpact, FastSpinningThinPlankNeverSkipsTheBall) {
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   int hits = 0;
   for (int i = 0; i < 100; ++i) {
-    const Quat start = randomRotation(rng);
+    const Quat start = uniformRotation(rng);
     const Vec3 axis = start * Vec3(0, 0, 1);
     const float turn = glm::radians(170.0f * (0.5f + 0.5f * u(rng)));
     const Quat end = glm::normalize(glm::angleAxis(turn, axis) * start);
@@ -207,7 +207,7 @@ TEST(TimeOfImpact, ExactSphereSweepsMatchBruteForce) {
   for (const Shape& other : others) {
     int hits = 0;
     for (int i = 0; i < 300; ++i) {
-      const Transform placed = at(Vec3(0.0f), randomRotation(rng), 1.0f + 0.5f * u(rng));
+      const Transform placed = at(Vec3(0.0f), uniformRotation(rng), 1.0f + 0.5f * u(rng));
       const Vec3 from = 1.5f * randomUnit(rng);
       const Vec3 to = -from + 0.6f * Vec3(u(rng), u(rng), u(rng));
       const Sweep sweep = moving(from, to);

@@ -14,8 +14,9 @@
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/convex_support.h"
 #include "narrowphase/pair_functions.h"
-#include "support/narrowphase_helpers.h"
 #include "support/flat_grid.h"
+#include "support/narrowphase_helpers.h"
+#include "support/simple_geometry.h"
 
 namespace collide {
 namespace {
@@ -23,8 +24,8 @@ namespace {
 using test::angleDegrees;
 using test::at;
 using test::axisAngle;
-using test::randomRotation;
 using test::randomUnit;
+using test::uniformRotation;
 
 // The height of a placed shape's lowest point (its support along -y).
 float lowestY(const Shape& shape, const Transform& pose) {
@@ -170,14 +171,7 @@ TEST(TriangleGeneric, InternalEdgeGivesTheFaceNormalWhereLooseTrianglesBump) {
   EXPECT_LT(loose.maxDepth(), 0.07f);
 }
 
-// Two triangles meeting at the edge x = 0 (z from -1 to 1): one on y = 0 for x < 0, the other
-// rising (slope > 0: a valley, concave seen from above) or falling (slope < 0: a ridge, convex).
-Shape fold(float slope) {
-  std::vector<Vec3> vertices{{-1.0f, 0.0f, -1.0f}, {-1.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f},
-                             {0.0f, 0.0f, -1.0f},  {1.0f, slope, 1.0f}, {1.0f, slope, -1.0f}};
-  std::vector<MeshTriangle> triangles{{{0, 1, 2}}, {{0, 2, 3}}, {{3, 2, 4}}, {{3, 4, 5}}};
-  return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)));
-}
+using test::fold;
 
 TEST(TriangleGeneric, ConcaveFoldGivesFaceNormalsConvexRidgeKeepsItsEdge) {
   // An ellipsoid (radii 0.3, 0.2, 0.3) resting on the flat half of a valley near the fold, sunk
@@ -222,7 +216,7 @@ TEST(TriangleGeneric, AgreesWithGjkEpaOnOneTriangle) {
     const Shape shape = test::randomPrimitive(i % 2 ? ShapeType::Cylinder : ShapeType::Ellipsoid, rng);
     const Vec3 target =
         triangle[0] + unit(rng) * (triangle[1] - triangle[0]) + unit(rng) * (triangle[2] - triangle[0]);
-    const Transform pose = at(target + randomUnit(rng) * (1.5f * unit(rng)), randomRotation(rng));
+    const Transform pose = at(target + randomUnit(rng) * (1.5f * unit(rng)), uniformRotation(rng));
     const float margin = (i % 3 == 0) ? 0.1f * unit(rng) : 0.0f;
     DistanceResult reference;
     const bool near =

@@ -13,16 +13,17 @@
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/convex_support.h"
 #include "narrowphase/pair_functions.h"
-#include "support/narrowphase_helpers.h"
 #include "support/flat_grid.h"
+#include "support/narrowphase_helpers.h"
+#include "support/simple_geometry.h"
 
 namespace collide {
 namespace {
 
 using test::at;
 using test::axisAngle;
-using test::randomRotation;
 using test::randomUnit;
+using test::uniformRotation;
 
 float degreesBetween(const Vec3& a, const Vec3& b) {
   return glm::degrees(std::acos(std::clamp(glm::dot(a, b) / (glm::length(a) * glm::length(b)), -1.0f, 1.0f)));
@@ -52,7 +53,7 @@ void compareWithGjk(const Shape& shape, int pairs, std::uint32_t seed, Tally& ta
     const float reach = radius + (shape.type() == ShapeType::Capsule ? shape.capsule().halfHeight : 0.0f);
     const Vec3 target =
         triangle[0] + unit(rng) * (triangle[1] - triangle[0]) + unit(rng) * (triangle[2] - triangle[0]);
-    const Transform pose = at(target + randomUnit(rng) * (1.6f * reach * unit(rng)), randomRotation(rng));
+    const Transform pose = at(target + randomUnit(rng) * (1.6f * reach * unit(rng)), uniformRotation(rng));
     const float margin = (i % 3 == 0) ? 0.1f * unit(rng) : 0.0f;
     ++tally.pairs;
 
@@ -188,15 +189,7 @@ TEST(TriangleRounded, SphereOverInternalEdgesAndVerticesPushesStraightUp) {
   }
 }
 
-// Two triangles meeting at the edge x = 0 (z from -1 to 1): one on y = 0 for x < 0, the other
-// rising (slope > 0: a valley, concave seen from above) or falling (slope < 0: a ridge, convex).
-Shape fold(float slope) {
-  std::vector<Vec3> vertices{{-1.0f, 0.0f, -1.0f}, {-1.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f},
-                             {0.0f, 0.0f, -1.0f},  {1.0f, slope, 1.0f}, {1.0f, slope, -1.0f}};
-  // Counter-clockwise seen from above: quads (0,1,2,3) and (3,2,4,5).
-  std::vector<MeshTriangle> triangles{{{0, 1, 2}}, {{0, 2, 3}}, {{3, 2, 4}}, {{3, 4, 5}}};
-  return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)));
-}
+using test::fold;
 
 TEST(TriangleRounded, ConcaveFoldGivesFaceNormalsConvexRidgeKeepsItsEdge) {
   const Shape sphere = Sphere{0.3f};

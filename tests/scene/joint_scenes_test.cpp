@@ -11,10 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "support/world_helpers.h"
+
 namespace collide::scene {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 BodyId named(const Scene& scene, const SceneWorld& sw, const std::string& name) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

@@ -10,12 +10,14 @@
 #include <cmath>
 #include <string>
 
+#include "support/scene_data.h"
+
 namespace collide::scene {
 namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kData = COLLIDE_SCENE_TEST_DATA;
+using collide::test::kSceneData;
 
 std::string parseError(const std::string& text) {
   try {
@@ -27,7 +29,7 @@ std::string parseError(const std::string& text) {
 }
 
 TEST(ObjFile, TextAndFileGiveTheSameMesh) {
-  const ObjMesh fromFile = readObjFile(kData + "/cube.obj");
+  const ObjMesh fromFile = readObjFile(kSceneData + "/cube.obj");
   const std::string text =
       "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
       "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
@@ -77,7 +79,7 @@ TEST(ObjFile, BadTextIsRefusedWithTheFileName) {
   EXPECT_THAT(parseError("\x01\x02\xff garbage\nf 1 2 3\n"), HasSubstr("test.obj"));
   EXPECT_THAT(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), HasSubstr("test.obj"));  // 0 is no index
   try {
-    readObjFile(kData + "/missing.obj");
+    readObjFile(kSceneData + "/missing.obj");
     ADD_FAILURE() << "a missing file must be refused";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("missing.obj: cannot be read"));
@@ -176,7 +178,7 @@ TEST(ObjFile, PolygonsAndMeshesWithinTheLimits) {
 // `collide fit` reads its mesh with readObjFile: the error is the file's, with its line.
 TEST(ObjFile, FileWithANonFiniteVertexIsRefused) {
   try {
-    readObjFile(kData + "/nan_vertex.obj");
+    readObjFile(kSceneData + "/nan_vertex.obj");
     ADD_FAILURE() << "a NaN vertex must be refused";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("nan_vertex.obj:4: vertex coordinate \"nan\" is not a finite number"));

@@ -1,6 +1,7 @@
 // The outputs of a run lose nothing the user owns: a path that is an input of the run or another
 // output is refused before the run, every write and the close are checked, and a target is replaced
 // only by a complete file.
+#include "support/scene_data.h"
 #include "support/temp_folder.h"
 
 #include <collide/scene/output_file.h>
@@ -24,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const std::string kData = COLLIDE_SCENE_TEST_DATA;
+using collide::test::kSceneData;
 
 using test::TempFolder;
 
@@ -51,8 +52,8 @@ std::string errorOf(const std::function<void()>& action) {
 
 // small_drop.json and the cube.obj it reads, copied into `folder`.
 Scene smallDropIn(const fs::path& folder) {
-  fs::copy_file(kData + "/small_drop.json", folder / "small_drop.json");
-  fs::copy_file(kData + "/cube.obj", folder / "cube.obj");
+  fs::copy_file(kSceneData + "/small_drop.json", folder / "small_drop.json");
+  fs::copy_file(kSceneData + "/cube.obj", folder / "cube.obj");
   return loadSceneFile(folder / "small_drop.json");
 }
 

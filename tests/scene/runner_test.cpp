@@ -12,10 +12,12 @@
 
 #include <unistd.h>
 
+#include "support/scene_data.h"
+
 namespace collide::scene {
 namespace {
 
-const std::string kData = COLLIDE_SCENE_TEST_DATA;
+using collide::test::kSceneData;
 
 std::filesystem::path scratch(const std::string& name) {
   return std::filesystem::temp_directory_path() /
@@ -69,7 +71,7 @@ TEST(Runner, RecordingAndEventsFollowTheFormat) {
   options.recordPath = record.string();
   options.recordEvery = 10;
   options.eventsPath = events.string();
-  const Scene scene = loadSceneFile(kData + "/small_drop.json");
+  const Scene scene = loadSceneFile(kSceneData + "/small_drop.json");
   const RunSummary s = runScene(scene, options);
 
   std::ifstream recordFile(record);
@@ -210,7 +212,7 @@ TEST(Runner, EventsFileHasJointBreaks) {
 // A run whose bodies the fault guard froze says so: a kinetic energy of 0 J at the end is not a
 // pile at rest. overflow_fault.json flings two boxes at each other at 3e38 m/s.
 TEST(Runner, FaultsAreInTheSummaryAndItsJson) {
-  const RunSummary s = runScene(loadSceneFile(kData + "/overflow_fault.json"));
+  const RunSummary s = runScene(loadSceneFile(kSceneData + "/overflow_fault.json"));
   ASSERT_EQ(s.faults.size(), 2u);
   EXPECT_EQ(s.faults[0].step, 1);
   EXPECT_TRUE(s.faults[0].fields & FaultEvent::kLinearVelocity);

@@ -1,6 +1,7 @@
 // The files a scene reads: OBJ paths stay inside the scene's folder unless the loader is told
 // otherwise, and only regular files within the size limits are read (a directory, a device, a FIFO
 // or a huge file is refused with a message naming it, instead of a hang or exhausted memory).
+#include "support/scene_data.h"
 #include "support/temp_folder.h"
 
 #include <collide/scene/limits.h>
@@ -23,12 +24,12 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const std::string kData = COLLIDE_SCENE_TEST_DATA;
+using collide::test::kSceneData;
 
 using test::TempFolder;
 
 void copyCube(const fs::path& to) {
-  fs::copy_file(kData + "/cube.obj", to, fs::copy_options::overwrite_existing);
+  fs::copy_file(kSceneData + "/cube.obj", to, fs::copy_options::overwrite_existing);
 }
 
 // A one-body scene whose static mesh reads `file` (a JSON string's contents).
@@ -146,7 +147,7 @@ TEST(SceneFiles, DevicesAndFifosAreNotRead) {
   // /dev/zero never ends: read as text it would take memory until allocation fails.
   EXPECT_THAT(objError("/dev/zero"), HasSubstr("OBJ file /dev/zero: is a device, not a regular file"));
   EXPECT_THAT(loadError("/dev/zero"), HasSubstr("scene file /dev/zero: is a device, not a regular file"));
-  EXPECT_THAT(sceneError(meshScene("/dev/zero"), kData, LoadOptions{.allowOutsidePaths = true}),
+  EXPECT_THAT(sceneError(meshScene("/dev/zero"), kSceneData, LoadOptions{.allowOutsidePaths = true}),
               HasSubstr("bodies[0].shape.file: OBJ file /dev/zero: is a device"));
   // Opening a FIFO for reading waits for a writer: it must be refused before it is opened.
   TempFolder folder;

@@ -7,17 +7,19 @@
 
 #include <string>
 
+#include "support/scene_data.h"
+
 namespace collide::scene {
 namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kData = COLLIDE_SCENE_TEST_DATA;
+using collide::test::kSceneData;
 
 // The message of the Error that parsing `text` throws ("" if it does not throw).
 std::string parseError(const std::string& text) {
   try {
-    parseScene(text, "test.json", kData);
+    parseScene(text, "test.json", kSceneData);
   } catch (const Error& e) {
     return e.what();
   }
@@ -30,7 +32,7 @@ std::string withBody(const std::string& body) {
 }
 
 TEST(SceneParser, EveryFieldReachesTheScene) {
-  const Scene s = loadSceneFile(kData + "/every_field.json");
+  const Scene s = loadSceneFile(kSceneData + "/every_field.json");
   EXPECT_EQ(s.world.gravity, Vec3(0.5f, -9.5f, 0.25f));
   EXPECT_FLOAT_EQ(s.dt, 0.01f);
   EXPECT_EQ(s.steps, 42);
@@ -135,7 +137,7 @@ TEST(SceneParser, EveryFieldReachesTheScene) {
 }
 
 TEST(SceneParser, BodiesReachTheWorld) {
-  const Scene s = loadSceneFile(kData + "/every_field.json");
+  const Scene s = loadSceneFile(kSceneData + "/every_field.json");
   SceneWorld sw = buildWorld(s);
   ASSERT_EQ(sw.bodies.size(), s.bodies.size());
   EXPECT_EQ(sw.world.def().penetrationResponse, PenetrationResponse::Revert);

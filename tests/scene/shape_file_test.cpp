@@ -7,16 +7,18 @@
 
 #include <string>
 
+#include "support/scene_data.h"
+
 namespace collide::scene {
 namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kData = COLLIDE_SCENE_TEST_DATA;
+using collide::test::kSceneData;
 
 std::string shapeError(const std::string& text) {
   try {
-    (void)parseShape(text, "shape.json", kData);
+    (void)parseShape(text, "shape.json", kSceneData);
   } catch (const Error& e) {
     return e.what();
   }
@@ -29,9 +31,10 @@ TEST(ShapeFile, ParsesEachKindAsASceneDoes) {
   EXPECT_EQ(box.box().halfExtents, Vec3(1.0f, 2.0f, 3.0f));
   EXPECT_EQ(parseShape(R"({"type": "sphere", "radius": 0.25})").sphere().radius, 0.25f);
   // A mesh's OBJ file is found in the base folder.
-  EXPECT_EQ(parseShape(R"({"type": "mesh", "file": "cube.obj"})", "shape", kData).type(), ShapeType::Mesh);
-  EXPECT_EQ(loadShapeFile(kData + "/query_ball.json").sphere().radius, 0.25f);
-  EXPECT_EQ(loadShapeFile(kData + "/query_mesh.json").type(), ShapeType::Mesh);
+  EXPECT_EQ(parseShape(R"({"type": "mesh", "file": "cube.obj"})", "shape", kSceneData).type(),
+            ShapeType::Mesh);
+  EXPECT_EQ(loadShapeFile(kSceneData + "/query_ball.json").sphere().radius, 0.25f);
+  EXPECT_EQ(loadShapeFile(kSceneData + "/query_mesh.json").type(), ShapeType::Mesh);
 }
 
 TEST(ShapeFile, RefusesBadShapesNamingTheField) {
@@ -40,7 +43,7 @@ TEST(ShapeFile, RefusesBadShapesNamingTheField) {
   EXPECT_THAT(shapeError(R"({"type": "blob"})"), HasSubstr("blob"));
   EXPECT_THAT(shapeError(R"({"type": "mesh", "file": "../cube.obj"})"), HasSubstr("leads outside"));
   EXPECT_THAT(shapeError("[1, 2"), HasSubstr("malformed JSON"));
-  EXPECT_THROW((void)loadShapeFile(kData + "/no-such-shape.json"), Error);
+  EXPECT_THROW((void)loadShapeFile(kSceneData + "/no-such-shape.json"), Error);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 namespace collide {
 namespace {
 
-constexpr float kEps = 1e-5f;
+using test::kEps;
 
 using test::expectVecNear;
 

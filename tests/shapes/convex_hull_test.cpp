@@ -7,6 +7,7 @@
 #include "support/test_random.h"
 
 #include "support/hull_invariants.h"
+#include "support/simple_geometry.h"
 
 #include <cmath>
 #include <limits>
@@ -21,12 +22,7 @@ using ::testing::ThrowsMessage;
 
 namespace {
 
-std::vector<Vec3> boxCorners(const Vec3& h) {
-  std::vector<Vec3> corners;
-  for (int i = 0; i < 8; ++i)
-    corners.emplace_back(i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z);
-  return corners;
-}
+using test::boxCorners;
 
 std::vector<Vec3> randomPointsOnSphere(int count, float radius, std::mt19937& rng) {
   std::normal_distribution<float> gaussian(0.0f, 1.0f);

@@ -2,6 +2,7 @@
 #include "shapes/hull_builder.h"
 
 #include "support/hull_invariants.h"
+#include "support/simple_geometry.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,15 +16,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::vector<Vec3> boxCorners(const Vec3& halfExtents, const Vec3& center = Vec3(0.0f)) {
-  std::vector<Vec3> corners;
-  for (int i = 0; i < 8; ++i) {
-    corners.push_back(center + Vec3(i & 1 ? halfExtents.x : -halfExtents.x,
-                                    i & 2 ? halfExtents.y : -halfExtents.y,
-                                    i & 4 ? halfExtents.z : -halfExtents.z));
-  }
-  return corners;
-}
+using test::boxCorners;
 
 std::vector<Vec3> randomPointsOnSphere(int count, float radius, unsigned seed) {
   std::mt19937 rng(seed);

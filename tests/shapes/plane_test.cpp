@@ -11,7 +11,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr float kEps = 1e-5f;
+using test::kEps;
 
 using test::expectVecNear;
 

@@ -22,7 +22,7 @@ inline Quat axisAngle(const Vec3& axis, float degrees) {
 }
 
 // A uniformly distributed rotation (Shoemake, "Uniform random rotations", Graphics Gems III).
-inline Quat randomRotation(std::mt19937& rng) {
+inline Quat uniformRotation(std::mt19937& rng) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const float u1 = u(rng), u2 = u(rng), u3 = u(rng);
   const float a = std::sqrt(1.0f - u1), b = std::sqrt(u1);

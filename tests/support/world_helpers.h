@@ -5,6 +5,10 @@
 
 namespace collide::test {
 
+// The step of most world tests: 60 Hz.
+inline constexpr float kDt = 1.0f / 60.0f;
+inline constexpr float kG = 9.81f;  // m/s^2, the default gravity's magnitude
+
 inline WorldDef zeroGravityWorld() {
   WorldDef def;
   def.gravity = Vec3(0.0f);

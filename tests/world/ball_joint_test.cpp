@@ -15,8 +15,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr float kDt = 1.0f / 60.0f;
-constexpr float kG = 9.81f;
+using test::kDt;
+using test::kG;
 
 // A uniform rod of length L and square section t x t hung from a pivot by its top end, turned by
 // `angle` about z.

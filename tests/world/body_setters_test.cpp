@@ -13,7 +13,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 TEST(BodySetters, GravityScaleScalesTheFall) {
   // Three spheres far apart, scales 0, 2 and -1: after n steps of symplectic Euler each one's speed

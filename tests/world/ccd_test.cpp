@@ -4,6 +4,7 @@
 #include <collide/world.h>
 #include <gtest/gtest.h>
 
+#include "support/test_random.h"
 #include "support/world_helpers.h"
 
 #include <cmath>
@@ -14,12 +15,9 @@ using namespace collide::test;
 
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
-Quat randomRotation(std::mt19937& rng) {
-  std::normal_distribution<float> n(0.0f, 1.0f);
-  return glm::normalize(Quat(n(rng), n(rng), n(rng), n(rng)));
-}
+using test::randomRotation;
 
 Vec3 randomUnit(std::mt19937& rng) {
   std::normal_distribution<float> n(0.0f, 1.0f);

@@ -14,7 +14,7 @@ using test::boxBody;
 using test::groundBox;
 using test::sphereBody;
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 // A 2 kg box at rest on the ground: one contact, four points, the normal along y, and over a step the
 // ground's normal impulse is the box's weight times the step, m g dt.

@@ -13,7 +13,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 BodyDef cylinderBody(const Vec3& position, float radius, float halfHeight,
                      const Quat& rotation = Quat(1, 0, 0, 0)) {

@@ -19,7 +19,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 struct Line {
   Vec3 from, to;

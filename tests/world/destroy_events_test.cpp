@@ -7,7 +7,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 TEST(DestroyEvents, TouchingContactsEndOnTheNextStep) {
   World world;

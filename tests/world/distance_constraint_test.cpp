@@ -16,7 +16,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 BodyDef particleDef(const Vec3& position, float radius, float mass) {
   BodyDef def = test::sphereBody(position, radius, mass);

@@ -1,6 +1,7 @@
 // The world guards itself (src/dynamics/fault_guard.h): non-finite input is refused at the API, and
 // a state that becomes non-finite inside a step is frozen and reported instead of reaching the
 // bodies it touches.
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -20,15 +21,14 @@ using ::testing::HasSubstr;
 
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kHuge = 3.0e38f;  // finite; two of them add up to infinity
-
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+using test::kHuge;
 
 bool finiteState(const World& world, BodyId id) {
   const Transform t = world.transform(id);
   const Quat& q = t.rotation;
-  return finite(t.position) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) &&
-         std::isfinite(q.w) && finite(world.linearVelocity(id)) && finite(world.angularVelocity(id));
+  return test::isFinite(t.position) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) &&
+         std::isfinite(q.w) && test::isFinite(world.linearVelocity(id)) &&
+         test::isFinite(world.angularVelocity(id));
 }
 
 // Two boxes side by side on the ground, touching, settled.

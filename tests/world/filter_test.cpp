@@ -13,7 +13,7 @@ namespace {
 
 using test::boxBody;
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 struct Filter {
   std::uint32_t layer = 1;

@@ -14,7 +14,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 constexpr float kDegree = kPi / 180.0f;
 
 Mat3 boxInertia(float mass, const Vec3& half) {

@@ -4,6 +4,7 @@
 // with collide::Error, or freeze the body and report it (docs/reliability.md, "The world guards
 // itself"). Each story checks that the step neither throws half-way, hangs, leaves the world unable
 // to step, nor leaves a NaN in a state or an event.
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -20,10 +21,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr float kDt = 1.0f / 60.0f;
-constexpr float kHuge = 3.0e38f;  // finite, near the largest float
-
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+using test::kDt;
+using test::kHuge;
 
 // Every live body's state and every event of the last step is finite; says which is not.
 ::testing::AssertionResult everythingFinite(const World& world, const std::vector<BodyId>& bodies) {
@@ -31,13 +30,15 @@ bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && 
     if (!world.isValid(id)) continue;
     const Transform t = world.transform(id);
     const Quat& q = t.rotation;
-    if (!finite(t.position) || !std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
-        !std::isfinite(q.z) || !finite(world.linearVelocity(id)) || !finite(world.angularVelocity(id))) {
+    if (!test::isFinite(t.position) || !std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
+        !std::isfinite(q.z) || !test::isFinite(world.linearVelocity(id)) ||
+        !test::isFinite(world.angularVelocity(id))) {
       return ::testing::AssertionFailure() << "body index " << id.index << " has a non-finite state";
     }
   }
   for (const ContactEvent& e : world.contactEvents()) {
-    if (!finite(e.point) || !finite(e.normal) || !std::isfinite(e.impulse) || !std::isfinite(e.speed)) {
+    if (!test::isFinite(e.point) || !test::isFinite(e.normal) || !std::isfinite(e.impulse) ||
+        !std::isfinite(e.speed)) {
       return ::testing::AssertionFailure() << "a contact event between bodies " << e.a.index << " and "
                                            << e.b.index << " has non-finite values";
     }

@@ -10,7 +10,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 using Vec3d = std::array<double, 3>;
 

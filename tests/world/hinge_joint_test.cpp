@@ -16,8 +16,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr float kDt = 1.0f / 60.0f;
-constexpr float kG = 9.81f;
+using test::kDt;
+using test::kG;
 constexpr float kDegree = kPi / 180.0f;
 
 // A uniform rod of length L hinged at its top end about z, turned by `angle` about z.

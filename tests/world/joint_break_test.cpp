@@ -16,8 +16,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr float kDt = 1.0f / 60.0f;
-constexpr float kG = 9.81f;
+using test::kDt;
+using test::kG;
 
 struct Hanging {
   World world;

@@ -15,7 +15,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 struct Chain {
   World world;

@@ -15,7 +15,7 @@ namespace {
 using test::boxBody;
 using test::groundBox;
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 WorldDef worldWithSupportMasses(bool on) {
   WorldDef def;

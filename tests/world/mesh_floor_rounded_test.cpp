@@ -15,7 +15,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = test::kMeshFloorDt;
+using test::kDt;
 
 TEST(WorldMeshFloorRounded, SphereRollingAcrossInternalEdgesStaysOnTheFloor) {
   // A sphere (radius 0.3) rolls at 3 m/s across the floor's quad edges, diagonals and vertices, at

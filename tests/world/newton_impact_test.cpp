@@ -14,7 +14,7 @@ namespace {
 using test::sphereBody;
 using test::zeroGravityWorld;
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 // 1D impact of two bodies along x with restitution e (lecture: Newton's impact law plus
 // conservation of momentum).

@@ -17,7 +17,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 PartDef boxPart(const Vec3& position, const Vec3& half, float density = 1000.0f) {
   PartDef part;

@@ -12,7 +12,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 // A solid ball of radius r rolling without slipping, resisted by a torque d N (N = m g): m a = -f and
 // I alpha = f r - d m g with a = alpha r and I = 2/5 m r^2 give a = -(5/7) d g / r.

@@ -13,7 +13,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 // A small pile: a 3 x 4 x 3 lattice of boxes, slightly turned, dropped on the ground.
 std::vector<BodyId> buildPile(World& world) {

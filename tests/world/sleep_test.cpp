@@ -11,7 +11,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 WorldDef sleepingWorld() {
   WorldDef def;

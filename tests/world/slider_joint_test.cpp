@@ -12,7 +12,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 constexpr float kMass = 2.0f;
 
 // A 2 kg box on a slider along x from a static post, under gravity (a load across the axis).

@@ -14,7 +14,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 // Box on box needs a face manifold (several points); a single GJK/EPA point cannot hold a box up.
 bool boxBoxHasFaceManifold() {
@@ -146,9 +146,10 @@ TEST(Stacking, PerturbedPyramidsStandForTenSeconds) {
     for (int r = 0; r < 30; ++r) {
       const int n = 30 - r;
       for (int i = 0; i < n; ++i) {
-        BodyDef def = test::boxBody(Vec3(static_cast<float>(i) - 0.5f * static_cast<float>(n - 1) + offset(rng),
-                                         0.5f + static_cast<float>(r) + std::abs(offset(rng)), offset(rng)),
-                                    Vec3(0.5f), 1.0f);
+        BodyDef def =
+            test::boxBody(Vec3(static_cast<float>(i) - 0.5f * static_cast<float>(n - 1) + offset(rng),
+                               0.5f + static_cast<float>(r) + std::abs(offset(rng)), offset(rng)),
+                          Vec3(0.5f), 1.0f);
         def.rotation = glm::normalize(Quat(1.0f, offset(rng), offset(rng), offset(rng)));
         const BodyId id = world.createBody(def);
         if (r == 29) {

@@ -15,7 +15,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 std::size_t threadCount() {
   std::size_t count = 0;

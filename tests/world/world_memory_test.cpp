@@ -17,7 +17,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 // Sixteen columns of four unit boxes, 0.1 m apart, on a ground box; sleeping off (so that it keeps
 // its contacts awake).

@@ -13,7 +13,7 @@
 namespace collide {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 
 void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
   try {
