@@ -14,8 +14,5 @@
 #include <collide/settings.h>
 #include <collide/shapes.h>
 #include <collide/tasks.h>
+#include <collide/version.h>
 #include <collide/world.h>
-
-namespace collide {
-inline constexpr const char* kVersion = "0.1.0";
-}  // namespace collide

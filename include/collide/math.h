@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace collide {
@@ -16,6 +17,20 @@ using Vec4 = glm::vec4;
 using Quat = glm::quat;
 using Mat3 = glm::mat3;
 using Mat4 = glm::mat4;
+
+// The library is compiled with GLM's default configuration and takes these types by reference and
+// in arrays: a game that configures GLM otherwise (its GLM_FORCE_ macros seen before this header)
+// would hand it data laid out differently, and nothing would say so. These checks run in the game's
+// own compilation. Conventions (units, axes, handedness, quaternions): docs/integration.md.
+static_assert(sizeof(Vec3) == 12 && alignof(Vec3) == 4 && sizeof(Vec4) == 16 && alignof(Vec4) == 4,
+              "collide: GLM's vectors are aligned or padded here (GLM_FORCE_DEFAULT_ALIGNED_GENTYPES or "
+              "GLM_FORCE_ALIGNED_GENTYPES?); collide's API needs GLM's default, tightly packed vectors");
+static_assert(sizeof(Mat3) == 36 && sizeof(Mat4) == 64 && alignof(Mat4) == 4,
+              "collide: GLM's matrices are aligned or padded here; collide's API needs GLM's default layout");
+static_assert(sizeof(Quat) == 16 && alignof(Quat) == 4 && offsetof(Quat, x) == 0 && offsetof(Quat, w) == 12,
+              "collide: glm::quat stores its components in another order or alignment here "
+              "(GLM_FORCE_QUAT_DATA_WXYZ?); collide's API needs GLM's default layout, x, y, z, w in memory "
+              "(the constructor still takes w first)");
 
 inline constexpr float kPi = 3.14159265358979323846f;
 
@@ -153,9 +168,13 @@ Side classify(const Plane& plane, const BoundingSphere& sphere);
 struct Frustum {
   std::array<Plane, 6> planes;  // left, right, bottom, top, near, far
 
-  // From an OpenGL-style view-projection matrix (clip space z in [-w, w]), as glm::perspective
-  // and glm::lookAt produce.
-  static Frustum fromViewProjection(const Mat4& viewProjection);
+  // The clip-space depth range of the projection: OpenGL's z in [-w, w] (glm::perspective by
+  // default), or Direct3D's, Vulkan's and Metal's z in [0, w] (glm::perspectiveZO, or
+  // glm::perspective under GLM_FORCE_DEPTH_ZERO_TO_ONE).
+  enum class ClipDepth : std::uint8_t { MinusOneToOne, ZeroToOne };
+
+  // From a view-projection matrix (column vectors, as glm::perspective and glm::lookAt make it).
+  static Frustum fromViewProjection(const Mat4& viewProjection, ClipDepth depth = ClipDepth::MinusOneToOne);
 
   // Conservative: false only when the volume is certainly outside.
   bool intersects(const Aabb& box) const;

@@ -120,8 +120,7 @@ void jointGroups(const BodyStorage& storage, const std::vector<Joint>& joints,
 }
 
 JointLoad jointLoad(const Joint& joint, float h) {
-  const float axial = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x +
-                      joint.lowerImpulse - joint.upperImpulse;
+  const float axial = axialImpulse(joint);
   float force = glm::length(joint.linearImpulse);
   float torque = glm::length(joint.angularImpulse);
   switch (joint.type) {

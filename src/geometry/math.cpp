@@ -67,13 +67,15 @@ Side classify(const Plane& plane, const BoundingSphere& sphere) {
   return Side::Straddling;
 }
 
-Frustum Frustum::fromViewProjection(const Mat4& m) {
+Frustum Frustum::fromViewProjection(const Mat4& m, ClipDepth depth) {
   // Gribb and Hartmann, "Fast extraction of viewing frustum planes from the world-view-projection
-  // matrix" (2001). A clip-space point is inside when -w <= x, y, z <= w; each inequality is a
-  // plane row4 ± row_i >= 0. glm is column-major: row i is (m[0][i], m[1][i], m[2][i], m[3][i]).
+  // matrix" (2001). A clip-space point is inside when -w <= x, y <= w and -w <= z <= w (or
+  // 0 <= z <= w); each inequality is a plane row4 ± row_i >= 0 (or row_3 >= 0). glm is
+  // column-major: row i is (m[0][i], m[1][i], m[2][i], m[3][i]).
   auto row = [&](int i) { return Vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
   const Vec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
-  const Vec4 inside[6] = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2};
+  const Vec4 nearSide = depth == ClipDepth::ZeroToOne ? r2 : r3 + r2;
+  const Vec4 inside[6] = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, nearSide, r3 - r2};
   Frustum f;
   for (int i = 0; i < 6; ++i) {
     // inside: a·x + w >= 0. Our planes keep the solid (inside) side at n·x <= d, so n = -a/|a|.

@@ -15,6 +15,7 @@ extern "C" {
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -38,16 +39,21 @@ std::string format(const Vec3& v) {
   return out.str();
 }
 
-// Qhull reports through a FILE*. A temporary file keeps it silent and lets us quote its error in
-// ours; the null device is the fallback if no temporary file can be made.
+// Qhull reports through a FILE*: a stream in memory (POSIX's open_memstream) keeps it silent and
+// lets us quote its error in ours without touching the file system for every hull. Where there is
+// none, a temporary file does, and the null device is the last resort.
 class QhullErrorStream {
  public:
   QhullErrorStream() {
-    file_ = std::tmpfile();
+#if defined(__unix__) || defined(__APPLE__)
+    file_ = open_memstream(&buffer_, &size_);
+#endif
+    if (!file_) file_ = std::tmpfile();
     if (!file_) file_ = std::fopen("/dev/null", "w");
   }
   ~QhullErrorStream() {
     if (file_) std::fclose(file_);
+    std::free(buffer_);  // open_memstream's buffer, valid after the close
   }
   QhullErrorStream(const QhullErrorStream&) = delete;
   QhullErrorStream& operator=(const QhullErrorStream&) = delete;
@@ -56,17 +62,25 @@ class QhullErrorStream {
   // The first line Qhull wrote, or "" (for the null device, or nothing written).
   std::string firstLine() const {
     if (!file_) return {};
-    std::fflush(file_);
-    std::rewind(file_);
-    char buffer[512] = {};
-    if (!std::fgets(buffer, sizeof buffer, file_)) return {};
-    std::string line(buffer);
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    std::fflush(file_);  // a memory stream's buffer and size are current after a flush
+    std::string line;
+    if (buffer_) {
+      line.assign(buffer_, size_);
+    } else {
+      std::rewind(file_);
+      char text[512] = {};
+      if (!std::fgets(text, sizeof text, file_)) return {};
+      line = text;
+    }
+    line = line.substr(0, line.find('\n'));
+    while (!line.empty() && line.back() == '\r') line.pop_back();
     return line;
   }
 
  private:
   FILE* file_ = nullptr;
+  char* buffer_ = nullptr;
+  std::size_t size_ = 0;
 };
 
 // Frees every Qhull allocation however we leave the builder.

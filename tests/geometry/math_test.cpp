@@ -141,6 +141,25 @@ TEST(Frustum, PointsInsideAndOutsideAnAxisAlignedView) {
   EXPECT_NEAR(f.planes[5].signedDistance(Vec3(0.0f, 0.0f, -100.0f)), 0.0f, 1e-2f);
 }
 
+TEST(Frustum, ZeroToOneDepthProjectionsGiveTheSameVolume) {
+  // Direct3D's and Vulkan's depth range: glm::perspectiveZO maps the near plane to z = 0. Read with
+  // the matching ClipDepth, the frustum is the one the [-1, 1] projection gives; read as [-1, 1], its
+  // near plane comes halfway to the eye.
+  const Mat4 view = glm::lookAt(Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f), Vec3(0.0f, 1.0f, 0.0f));
+  const Mat4 zeroToOne = glm::perspectiveZO(kPi / 2.0f, 1.0f, 1.0f, 100.0f) * view;
+  const Frustum f = Frustum::fromViewProjection(zeroToOne, Frustum::ClipDepth::ZeroToOne);
+  const Frustum reference = makeFrustum(Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f));
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(glm::length(f.planes[i].normal - reference.planes[i].normal), 0.0f, 1e-5f) << "plane " << i;
+    EXPECT_NEAR(f.planes[i].distance, reference.planes[i].distance, 1e-2f) << "plane " << i;
+  }
+  EXPECT_FALSE(f.contains(Vec3(0.0f, 0.0f, -0.9f)));  // before the near plane
+  EXPECT_TRUE(f.contains(Vec3(0.0f, 0.0f, -1.1f)));
+  const Frustum misread = Frustum::fromViewProjection(zeroToOne);
+  EXPECT_TRUE(misread.contains(Vec3(0.0f, 0.0f, -0.75f)));
+  EXPECT_NEAR(misread.planes[4].signedDistance(Vec3(0.0f, 0.0f, -100.0f / 199.0f)), 0.0f, 1e-4f);
+}
+
 TEST(Frustum, BoxesAndSpheresOfAMovedCamera) {
   // The same camera at (10, 5, 0) looking along +x: depth is x - 10.
   const Frustum f = makeFrustum(Vec3(10.0f, 5.0f, 0.0f), Vec3(20.0f, 5.0f, 0.0f));

@@ -23,19 +23,6 @@ HingeAxes hingeAxes(const JointFrame& f) {
           f.frameA * Vec3(0.0f, 0.0f, 1.0f), f.frameB * Vec3(1.0f, 0.0f, 0.0f)};
 }
 
-float axialImpulse(const Joint& joint) {
-  return joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x + joint.lowerImpulse -
-         joint.upperImpulse;
-}
-
-// The axial impulse the joint's own warm start applies: without the limits its tree applies.
-float ownAxialImpulse(const Joint& joint) {
-  float impulse = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x;
-  if (!(joint.treeLimits & kLowerLimitBit)) impulse += joint.lowerImpulse;
-  if (!(joint.treeLimits & kUpperLimitBit)) impulse -= joint.upperImpulse;
-  return impulse;
-}
-
 void solveAxisRows(const JointFrame& f, const HingeAxes& axes, const Softness& soft, Vec3& accumulated) {
   const Mat3 m = f.a.inverseInertia + f.b.inverseInertia;
   const Vec3 m1 = m * axes.across1;

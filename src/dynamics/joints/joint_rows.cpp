@@ -277,4 +277,17 @@ void solveUpperLimit(const JointFrame& f, const JointRow& row, float position, f
   applyRow(f.a, f.b, row, -applied);
 }
 
+float axialImpulse(const Joint& joint) {
+  return joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x + joint.lowerImpulse -
+         joint.upperImpulse;
+}
+
+// The axial impulse the joint's own warm start applies: without the limits its tree applies.
+float ownAxialImpulse(const Joint& joint) {
+  float impulse = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x;
+  if (!(joint.treeLimits & kLowerLimitBit)) impulse += joint.lowerImpulse;
+  if (!(joint.treeLimits & kUpperLimitBit)) impulse -= joint.upperImpulse;
+  return impulse;
+}
+
 }  // namespace collide::detail

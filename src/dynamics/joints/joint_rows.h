@@ -110,6 +110,11 @@ void solveLowerLimit(const JointFrame& f, const JointRow& row, float position, f
 void solveUpperLimit(const JointFrame& f, const JointRow& row, float position, float upper,
                      const Softness& soft, float h, float& accumulated);
 
+// The impulse along the free coordinate of a hinge or slider (spring, motor, friction and limits),
+// and the part of it the joint's own warm start applies: without the limits its tree applies.
+float axialImpulse(const Joint& joint);
+float ownAxialImpulse(const Joint& joint);
+
 // A joint's rigid equality rows, for the direct solve of joint trees (joint_tree.h): each row's
 // Jacobian, its position error C and the accumulated impulse it adds to (the same component the
 // type's own Gauss-Seidel rows keep and its warm start applies). At most six (the fixed joint).

@@ -25,19 +25,6 @@ SliderRows sliderRows(const JointFrame& f) {
   return rows;
 }
 
-float axialImpulse(const Joint& joint) {
-  return joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x + joint.lowerImpulse -
-         joint.upperImpulse;
-}
-
-// The axial impulse the joint's own warm start applies: without the limits its tree applies.
-float ownAxialImpulse(const Joint& joint) {
-  float impulse = joint.springImpulse + joint.motorImpulse + joint.frictionImpulse.x;
-  if (!(joint.treeLimits & kLowerLimitBit)) impulse += joint.lowerImpulse;
-  if (!(joint.treeLimits & kUpperLimitBit)) impulse -= joint.upperImpulse;
-  return impulse;
-}
-
 // The coupling of two rows through the bodies' masses: row i's impulse changes row j's speed by
 // K_ij per unit.
 float coupling(const JointFrame& f, const JointRow& i, const JointRow& j) {
