@@ -63,7 +63,7 @@ void stepCollide(benchmark::State& state, BroadPhaseType type) {
   auto bp = createBroadPhase(settings);
   std::vector<ProxyId> ids(n);
   for (int i = 0; i < n; ++i) ids[i] = bp->add({workload.box(i)});
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   bp->findPairs(pairs);
   std::uint64_t kept = 0, steps = 0, tests = 0;
   for (auto _ : state) {
@@ -88,7 +88,7 @@ void rayCollide(benchmark::State& state, BroadPhaseType type) {
   settings.type = type;
   auto bp = createBroadPhase(settings);
   for (int i = 0; i < n; ++i) bp->add({workload.box(i)});
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   bp->findPairs(pairs);
   const std::vector<Ray> rays = workload.rays();
   std::uint64_t hits = 0;

@@ -505,9 +505,11 @@ void World::visitContacts(BodyId body, const std::function<void(const ContactDat
 const StepStats& World::lastStats() const { return impl_->lastStats; }
 const StepStats& World::totalStats() const { return impl_->totalStats; }
 
-WorldMemory World::memoryUse() const {
+WorldMemory World::memoryUse() const { return impl_->memoryUse(); }
+
+WorldMemory World::Impl::memoryUse() const {
   using detail::heapBytes;
-  const Impl& w = *impl_;
+  const Impl& w = *this;
   WorldMemory memory;
   memory.bodies = w.bodies.memoryBytes() + w.proxyUpdate.memoryBytes();
   memory.broadPhase = w.broadPhase->memoryBytes() + heapBytes(w.pairs);

@@ -35,17 +35,17 @@ struct World::Impl {
   detail::TaskRunner tasks;  // the step's parallel loops (workers as def says)
   detail::BodyStorage bodies;
   std::unique_ptr<BroadPhase> broadPhase;
-  std::vector<ProxyPair> pairs;  // the broad phase's pairs of the last step
+  Array<ProxyPair> pairs;  // the broad phase's pairs of the last step
   detail::ProxyUpdate proxyUpdate;
   detail::ContactUpdate contactUpdate;
-  std::vector<detail::Contact> contacts;  // in pair order
-  std::vector<detail::Contact> previousContacts;
-  std::vector<detail::ApartPair> apartPairs;  // the pairs the narrow phase found apart, in pair order
-  std::vector<detail::ApartPair> previousApartPairs;
+  Array<detail::Contact> contacts;  // in pair order
+  Array<detail::Contact> previousContacts;
+  Array<detail::ApartPair> apartPairs;  // the pairs the narrow phase found apart, in pair order
+  Array<detail::ApartPair> previousApartPairs;
   detail::StepSolver stepSolver;
-  std::vector<detail::Joint> joints;
-  std::vector<std::uint32_t> jointGroups;  // the step's, for the continuous pass
-  std::vector<std::uint32_t> freeJoints;
+  Array<detail::Joint> joints;
+  Array<std::uint32_t> jointGroups;  // the step's, for the continuous pass
+  Array<std::uint32_t> freeJoints;
   std::size_t jointCount = 0;
   detail::StepEvents events;
   detail::Islands islands;
@@ -99,10 +99,10 @@ struct World::Impl {
   // Gives body `index` these parts (World::addPart, removePart): setBodyParts, then the tallies, the
   // constraint anchors, the proxy and waking follow. Throws Error and changes nothing for parts the
   // body cannot have.
-  void replaceParts(std::uint32_t index, std::vector<Compound::Child> children,
-                    std::vector<detail::PartRecord> parts);
+  void replaceParts(std::uint32_t index, Array<Compound::Child> children, Array<detail::PartRecord> parts);
 
   void step(float dt);
+  WorldMemory memoryUse() const;  // World::memoryUse
 };
 
 }  // namespace collide

@@ -126,8 +126,8 @@ void World::setPartFilter(BodyId id, std::uint32_t part, const CollisionFilter& 
   detail::wakeIsland(w.bodies, i);
 }
 
-void World::Impl::replaceParts(std::uint32_t index, std::vector<Compound::Child> children,
-                               std::vector<PartRecord> parts) {
+void World::Impl::replaceParts(std::uint32_t index, Array<Compound::Child> children,
+                               Array<PartRecord> parts) {
   BodyRecord& r = bodies.records[index];
   BodyState& s = bodies.states[index];
   const Vec3 oldLocalCenter = r.localCenterOfMass;
@@ -148,8 +148,8 @@ std::uint32_t World::addPart(BodyId id, const PartDef& part) {
   if (r.shape.type() == ShapeType::Plane)
     throw Error("world: addPart: a body of one plane cannot have parts; make the part a body of its own");
   detail::validatePartDef(part, r.type, "world: addPart");
-  std::vector<Compound::Child> children;
-  std::vector<PartRecord> parts;
+  Array<Compound::Child> children;
+  Array<PartRecord> parts;
   if (detail::hasParts(r)) {
     const auto current = r.shape.compound().children();
     children.assign(current.begin(), current.end());
@@ -178,8 +178,8 @@ void World::removePart(BodyId id, std::uint32_t part) {
   checkPart(r, part, "removePart");
   if (detail::partCount(r) == 1) throw Error("world: removePart: a body keeps at least one part");
   const auto current = r.shape.compound().children();
-  std::vector<Compound::Child> children(current.begin(), current.end());
-  std::vector<PartRecord> parts = r.parts;
+  Array<Compound::Child> children(current.begin(), current.end());
+  Array<PartRecord> parts = r.parts;
   children.erase(children.begin() + part);
   parts.erase(parts.begin() + part);
   try {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <collide/error.h>
+#include <collide/function_ref.h>
 #include <collide/math.h>
 
 #include <cstdint>
@@ -109,9 +110,11 @@ struct ProxyRayHit {
 // Called for each proxy whose box the ray hits within the current maximum distance, in no particular
 // order. Return the new maximum distance: the hit distance to clip (closest-hit search), infinity to
 // keep going unclipped (all hits), or a negative number to stop the cast (any hit). As b2RayCast.
-using RayCastCallback = std::function<float(ProxyId id, float distance)>;
+// The callbacks are references to the caller's callable for the length of the query (FunctionRef:
+// no copy, no allocation), so that queries inside the step allocate nothing.
+using RayCastCallback = FunctionRef<float(ProxyId id, float distance)>;
 // Called for each proxy found by an overlap query; return false to stop the query.
-using OverlapCallback = std::function<bool(ProxyId id)>;
+using OverlapCallback = FunctionRef<bool(ProxyId id)>;
 
 // One box of a broad phase's own structure, as visitNodes hands it out (for debug drawing).
 struct BroadPhaseNode {
@@ -121,7 +124,7 @@ struct BroadPhaseNode {
   // Tree: the tree the node is in (static and movable proxies are kept in two trees); Grid: Movable.
   MotionType tree = MotionType::Movable;
 };
-using NodeVisitor = std::function<void(const BroadPhaseNode& node)>;
+using NodeVisitor = FunctionRef<void(const BroadPhaseNode& node)>;
 
 class BroadPhase {
  public:
@@ -152,9 +155,9 @@ class BroadPhase {
   // ---- Pairs. ----
   // All pairs of proxies whose boxes overlap (touching counts), at least one of them movable, sorted
   // by (a.index, b.index). Every algorithm gives exactly this list. Returns the counters of the call.
-  const BroadPhaseStats& findPairs(std::vector<ProxyPair>& outPairs);
+  const BroadPhaseStats& findPairs(Array<ProxyPair>& outPairs);
   // The same list, the algorithm's independent parts on the world's workers (the world's own call).
-  const BroadPhaseStats& findPairs(std::vector<ProxyPair>& outPairs, detail::TaskRunner& tasks);
+  const BroadPhaseStats& findPairs(Array<ProxyPair>& outPairs, detail::TaskRunner& tasks);
   // The counters of the last findPairs.
   const BroadPhaseStats& lastStats() const { return stats_; }
 
@@ -214,7 +217,7 @@ class BroadPhase {
     MotionType motion = MotionType::Movable;
     bool alive = false;
   };
-  const std::vector<ProxyRecord>& records() const { return proxies_; }
+  const Array<ProxyRecord>& records() const { return proxies_; }
 
  protected:
   explicit BroadPhase(const BroadPhaseSettings& settings) : settings_(settings) {}
@@ -226,7 +229,7 @@ class BroadPhase {
   virtual void onUpdate(std::uint32_t index, const Aabb& oldBounds) = 0;
   // Appends pair keys (a << 32 | b, a < b) of all overlapping pairs, each once, and returns whether
   // they are already sorted. Adds its box tests to outBoxTests.
-  virtual bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) = 0;
+  virtual bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) = 0;
   // The heap the algorithm's own members hold (memoryBytes adds the records).
   virtual std::size_t algorithmMemoryBytes() const = 0;
 
@@ -241,15 +244,15 @@ class BroadPhase {
   ProxyId idOf(std::uint32_t index) const { return {index, proxies_[index].generation}; }
 
   BroadPhaseSettings settings_;
-  std::vector<ProxyRecord> proxies_;
-  std::vector<std::uint32_t> freeSlots_;
+  Array<ProxyRecord> proxies_;
+  Array<std::uint32_t> freeSlots_;
   std::size_t aliveCount_ = 0;
   BroadPhaseStats stats_;
   detail::TaskRunner* tasks_ = nullptr;  // during findPairs(outPairs, tasks) only
 
  private:
   std::uint32_t resolve(ProxyId id, const char* operation) const;
-  std::vector<std::uint64_t> keys_;
+  Array<std::uint64_t> keys_;
 };
 
 // Throws collide::Error on invalid settings (negative margin or cell size, zero cells per axis).

@@ -3,6 +3,8 @@
 // that use us.
 #pragma once
 
+#include <collide/hooks.h>
+
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 

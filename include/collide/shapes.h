@@ -124,15 +124,15 @@ class ConvexHull {
 
  private:
   friend class HullBuilder;
-  std::vector<Vec3> vertices_;
+  Array<Vec3> vertices_;
   // The vertices again as blocks of x, y and z coordinates, for support() (geometry/support_scan.h).
-  std::vector<float> blockedVertices_;
-  std::vector<HalfEdge> halfEdges_;
-  std::vector<Edge> edges_;
-  std::vector<Face> faces_;
+  Array<float> blockedVertices_;
+  Array<HalfEdge> halfEdges_;
+  Array<Edge> edges_;
+  Array<Face> faces_;
   // facesAround: the vertex count + 1 offsets into this same array, then each vertex's faces; the
   // faces of vertex v are at [vertexFaces_[v], vertexFaces_[v + 1]).
-  std::vector<std::uint32_t> vertexFaces_;
+  Array<std::uint32_t> vertexFaces_;
   float volume_ = 0.0f;
   Vec3 centroid_{0.0f};
   Mat3 unitInertia_{0.0f};
@@ -223,14 +223,14 @@ class TriangleMesh {
   std::uint32_t flatPatch(std::uint32_t triangle) const { return patches_[triangle]; }
 
  private:
-  std::vector<Vec3> vertices_;
-  std::vector<MeshTriangle> triangles_;
-  std::vector<BvhNode> nodes_;
-  std::vector<std::uint32_t> triangleOrder_;
-  std::vector<EdgeKind> edgeKinds_;
-  std::vector<float> bendCosines_;
-  std::vector<std::uint8_t> flatVertices_;
-  std::vector<std::uint32_t> patches_;
+  Array<Vec3> vertices_;
+  Array<MeshTriangle> triangles_;
+  Array<BvhNode> nodes_;
+  Array<std::uint32_t> triangleOrder_;
+  Array<EdgeKind> edgeKinds_;
+  Array<float> bendCosines_;
+  Array<std::uint8_t> flatVertices_;
+  Array<std::uint32_t> patches_;
   bool closed_ = false;
   float volume_ = 0.0f;
   Vec3 centroid_{0.0f};
@@ -250,7 +250,7 @@ class Compound {
   Aabb bounds() const { return bounds_; }
 
  private:
-  std::vector<Child> children_;
+  Array<Child> children_;
   Aabb bounds_;
 };
 

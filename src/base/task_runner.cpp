@@ -5,7 +5,9 @@
 // late, after its job is over, cannot claim a range of the next one. Workers spin for a while after a job
 // (the solver's loops come microseconds apart, one per colour and pass) and then sleep on the generation.
 #include "base/task_runner.h"
+#include "base/profile.h"
 
+#include <collide/hooks.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -140,8 +142,11 @@ class ThreadPool {
       const std::uint32_t count = count_.load(std::memory_order_relaxed);
       const std::uint32_t range = range_.load(std::memory_order_relaxed);
       const std::uint32_t begin = next * range;
-      task_.load(std::memory_order_relaxed)(begin, std::min(begin + range, count), worker,
-                                            context_.load(std::memory_order_relaxed));
+      {
+        COLLIDE_PROFILE_ZONE("collide: task range");
+        task_.load(std::memory_order_relaxed)(begin, std::min(begin + range, count), worker,
+                                              context_.load(std::memory_order_relaxed));
+      }
       done_.fetch_add(1, std::memory_order_acq_rel);
       claim = claimOfBlock.load(std::memory_order_acquire);
     }
@@ -154,7 +159,7 @@ class ThreadPool {
   const std::uint32_t workers_;
   const bool oversubscribed_;  // more workers than the machine has cores
   std::unique_ptr<Block[]> blocks_;
-  std::vector<std::thread> threads_;
+  Array<std::thread> threads_;
   // The job, written before its claim counter is published.
   std::atomic<TaskFunction*> task_{nullptr};
   std::atomic<void*> context_{nullptr};

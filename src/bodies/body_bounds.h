@@ -58,8 +58,8 @@ class ProxyUpdate {
   void updateInBodyOrder(BodyStorage& bodies, BroadPhase& broadPhase, TaskRunner& tasks,
                          std::uint32_t bodiesPerRange, FillRange&& fillRange);
 
-  std::vector<Aabb> boxes_;            // per body, the proxy's box for the step where updated_
-  std::vector<std::uint8_t> updated_;  // per body: 1 if its proxy is updated this step
+  Array<Aabb> boxes_;            // per body, the proxy's box for the step where updated_
+  Array<std::uint8_t> updated_;  // per body: 1 if its proxy is updated this step
 };
 
 }  // namespace collide::detail

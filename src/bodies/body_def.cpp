@@ -40,14 +40,13 @@ void validateParticle(const BodyDef& def, const std::string& who) {
 // The parts' mass properties in the body frame at the body's scale: each part of density > 0 at
 // its pose (centre placed, inertia rotated R I R^T), then every inertia moved to the common centre
 // (parallel-axis theorem). Parts are taken not to overlap, as compound children.
-MassProperties partsMassProperties(const Compound& compound, const std::vector<PartRecord>& parts,
-                                   float scale) {
+MassProperties partsMassProperties(const Compound& compound, const Array<PartRecord>& parts, float scale) {
   struct Placed {
     float mass;
     Vec3 center;
     Mat3 inertia;
   };
-  std::vector<Placed> placed;
+  Array<Placed> placed;
   MassProperties total;
   Vec3 weighted(0.0f);
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -285,9 +284,8 @@ void remeasure(BodyRecord& next, BodyState& nextState, const Vec3& origin, const
 
 }  // namespace
 
-void setBodyParts(BodyRecord& r, BodyState& s, std::vector<Compound::Child> children,
-                  std::vector<PartRecord> parts) {
-  Shape shape = Compound::fromChildren(std::move(children));
+void setBodyParts(BodyRecord& r, BodyState& s, Array<Compound::Child> children, Array<PartRecord> parts) {
+  Shape shape = Compound::fromChildren(std::vector<Compound::Child>(children.begin(), children.end()));
   BodyRecord next = r;  // the record changes only once everything below has succeeded
   next.shape = std::move(shape);
   next.parts = std::move(parts);
@@ -362,8 +360,8 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
       throw Error(who + ": " + e.what());  // "shape: ..." or "mass: ..."
     }
   } else {
-    std::vector<Compound::Child> children;
-    std::vector<PartRecord> parts;
+    Array<Compound::Child> children;
+    Array<PartRecord> parts;
     for (const PartDef& part : def.parts) {
       children.push_back(makePartChild(part));
       parts.push_back(makePartRecord(part));

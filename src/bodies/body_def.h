@@ -34,8 +34,8 @@ Compound::Child makePartChild(const PartDef& part);
 // the parts' densities, scaled to BodyRecord::givenMass if set), the radii and extent. The body's
 // origin stays where it is and its velocity field is kept. Throws Error (and changes nothing) when
 // they cannot be computed; at least one child.
-void setBodyParts(BodyRecord& record, BodyState& state, std::vector<Compound::Child> children,
-                  std::vector<PartRecord> parts);
+void setBodyParts(BodyRecord& record, BodyState& state, Array<Compound::Child> children,
+                  Array<PartRecord> parts);
 
 // Changes a body's type (World::setType): mass properties from its shape or parts for a dynamic body
 // (its density, or BodyDef::mass if given), none for the others; the origin and the velocity field

@@ -93,7 +93,7 @@ struct BodyRecord {
   // body of one shape, whose part 0 is the shape and the fields above. For a body made of parts, the
   // fields above summarise the parts: sensor when every part is one, layer and mask the union of the
   // parts', group 0, the material part 0's.
-  std::vector<PartRecord> parts;
+  Array<PartRecord> parts;
   std::optional<float> givenMass;  // BodyDef::mass: kept when parts are added or removed
   float density = 1000.0f;         // BodyDef::density: a body of one shape's part 0, if parts are added
 };
@@ -139,15 +139,15 @@ class BodyStorage {
     if (sensor) sensorCount += sign;
   }
 
-  std::vector<BodyRecord> records;
-  std::vector<BodyState> states;
+  Array<BodyRecord> records;
+  Array<BodyState> states;
   std::size_t aliveCount = 0;
   std::size_t bouncyCount = 0;
   std::size_t rollingCount = 0;
   std::size_t sensorCount = 0;
 
  private:
-  std::vector<std::uint32_t> freeSlots_;
+  Array<std::uint32_t> freeSlots_;
 };
 
 // A pose every query on the body's shape takes: a finite centre and a finite unit rotation (the

@@ -46,7 +46,7 @@ constexpr std::size_t kSearchPoints = 4096;
 constexpr int kSearchDirections = 256;
 
 AxisFit fitAlong(std::span<const Vec3> points, const DVec3& mean, const DVec3& axis) {
-  std::vector<Vec3> across;
+  Array<Vec3> across;
   across.reserve(points.size());
   for (const Vec3& p : points) {
     const DVec3 d = DVec3(p) - mean;
@@ -85,9 +85,8 @@ FittedCapsule fitCapsule(std::span<const Vec3> points) {
   bounding::requireFinitePoints("fit_capsule", points);
   const bounding::PrincipalAxes pca = bounding::principalAxes(points);
 
-  const std::vector<Vec3> extremes = points.size() > kSearchPoints
-                                         ? bounding::extremePoints(points, kSearchDirections)
-                                         : std::vector<Vec3>();
+  const Array<Vec3> extremes =
+      points.size() > kSearchPoints ? bounding::extremePoints(points, kSearchDirections) : Array<Vec3>();
   const std::span<const Vec3> searched = extremes.empty() ? points : std::span<const Vec3>(extremes);
   DVec3 axis = pca.axes[0];
   AxisFit best = fitAlong(searched, pca.mean, axis);

@@ -7,8 +7,8 @@
 
 namespace collide::bounding {
 
-std::vector<std::size_t> extremeIndices(std::span<const glm::dvec3> points, int directions) {
-  std::vector<std::size_t> chosen;
+Array<std::size_t> extremeIndices(std::span<const glm::dvec3> points, int directions) {
+  Array<std::size_t> chosen;
   if (points.empty()) return chosen;
   const double golden = kPi * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < directions; ++i) {
@@ -29,9 +29,9 @@ std::vector<std::size_t> extremeIndices(std::span<const glm::dvec3> points, int 
   return chosen;
 }
 
-std::vector<Vec3> extremePoints(std::span<const Vec3> points, int directions) {
-  const std::vector<glm::dvec3> wide(points.begin(), points.end());
-  std::vector<Vec3> out;
+Array<Vec3> extremePoints(std::span<const Vec3> points, int directions) {
+  const Array<glm::dvec3> wide(points.begin(), points.end());
+  Array<Vec3> out;
   for (const std::size_t k : extremeIndices(wide, directions)) out.push_back(points[k]);
   return out;
 }

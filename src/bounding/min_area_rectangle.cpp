@@ -16,12 +16,12 @@ double cross(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
 
 }  // namespace
 
-std::vector<glm::dvec2> convexHull2d(std::vector<glm::dvec2> points) {
+Array<glm::dvec2> convexHull2d(Array<glm::dvec2> points) {
   std::sort(points.begin(), points.end(),
             [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 3) return points;
-  std::vector<glm::dvec2> hull(2 * points.size());
+  Array<glm::dvec2> hull(2 * points.size());
   std::size_t k = 0;
   // Lower chain left to right, then upper chain right to left; a non-left turn pops (collinear
   // points are dropped, so every hull vertex is a strict corner).

@@ -1,6 +1,7 @@
 // The minimum-area rectangle around a planar point set (for oriented box fitting).
 #pragma once
 
+#include <collide/hooks.h>
 #include <glm/glm.hpp>
 
 #include <span>
@@ -10,7 +11,7 @@ namespace collide::bounding {
 
 // The convex hull of 2D points, counter-clockwise, without collinear vertices (Andrew's monotone
 // chain, 1979). Fewer than 3 vertices when the points are collinear or identical.
-std::vector<glm::dvec2> convexHull2d(std::vector<glm::dvec2> points);
+Array<glm::dvec2> convexHull2d(Array<glm::dvec2> points);
 
 struct Rectangle2d {
   glm::dvec2 axis{1.0, 0.0};  // unit direction of one side; the other side is its left perpendicular

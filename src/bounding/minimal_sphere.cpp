@@ -123,8 +123,7 @@ Ball ballThrough(std::span<const DVec3> support, double tolerance) {
 
 class WelzlSolver {
  public:
-  WelzlSolver(std::vector<DVec3> points, double tolerance)
-      : points_(std::move(points)), tolerance_(tolerance) {
+  WelzlSolver(Array<DVec3> points, double tolerance) : points_(std::move(points)), tolerance_(tolerance) {
     for (std::uint32_t i = 0; i < points_.size(); ++i) order_.push_back(i);
   }
 
@@ -154,7 +153,7 @@ class WelzlSolver {
     return glm::dot(p - ball.center, p - ball.center) <= r * r;
   }
 
-  std::vector<DVec3> points_;
+  Array<DVec3> points_;
   std::list<std::uint32_t> order_;
   std::array<DVec3, 4> support_{};
   double tolerance_;
@@ -162,7 +161,7 @@ class WelzlSolver {
 
 // Fisher-Yates with a fixed-seed 64-bit LCG (Knuth's MMIX constants): Welzl's expected linear time
 // needs a random order, and our answer must not depend on the standard library's shuffle.
-void deterministicShuffle(std::vector<DVec3>& points) {
+void deterministicShuffle(Array<DVec3>& points) {
   std::uint64_t state = 0x2545F4914F6CDD1Dull;
   for (std::size_t i = points.size(); i > 1; --i) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
@@ -175,7 +174,7 @@ void deterministicShuffle(std::vector<DVec3>& points) {
 
 BoundingSphere minimalBoundingSphere(std::span<const Vec3> points) {
   bounding::requireFinitePoints("minimal_bounding_sphere", points);
-  std::vector<DVec3> work(points.begin(), points.end());
+  Array<DVec3> work(points.begin(), points.end());
   double size = 0.0;
   for (const DVec3& p : work) size = std::max(size, glm::length(p - work.front()));
   deterministicShuffle(work);

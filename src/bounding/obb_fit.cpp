@@ -44,7 +44,7 @@ constexpr std::size_t kFinalists = 8;
 Candidate boxAlong(const DVec3& n, std::span<const DVec3> vertices) {
   DVec3 u, v;
   basisAcross(n, u, v);
-  std::vector<glm::dvec2> projected;
+  Array<glm::dvec2> projected;
   projected.reserve(vertices.size());
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (const DVec3& p : vertices) {
@@ -53,7 +53,7 @@ Candidate boxAlong(const DVec3& n, std::span<const DVec3> vertices) {
     low = std::min(low, h);
     high = std::max(high, h);
   }
-  const std::vector<glm::dvec2> hull = bounding::convexHull2d(std::move(projected));
+  const Array<glm::dvec2> hull = bounding::convexHull2d(std::move(projected));
   const bounding::Rectangle2d rectangle = bounding::minimumAreaRectangle(hull);
   Candidate candidate;
   const DVec3 first = rectangle.axis.x * u + rectangle.axis.y * v;
@@ -66,7 +66,7 @@ Candidate boxAlong(const DVec3& n, std::span<const DVec3> vertices) {
 // Every hull face normal, the principal axes and the coordinate axes, each over every hull vertex.
 Candidate bestOverFaces(const ConvexHull& hull, std::span<const DVec3> vertices,
                         const bounding::PrincipalAxes& pca) {
-  std::vector<DVec3> directions;
+  Array<DVec3> directions;
   for (const ConvexHull::Face& face : hull.faces())
     directions.push_back(glm::normalize(DVec3(face.plane.normal)));
   for (int i = 0; i < 3; ++i) directions.push_back(pca.axes[i]);
@@ -94,12 +94,12 @@ double volumeAlong(const glm::dmat3& axes, std::span<const DVec3> vertices) {
 // The faces of the coarse hull give candidate frames; the best few, the principal axes and the
 // coordinate axes are measured over every hull vertex.
 Candidate bestOverCoarseHull(std::span<const DVec3> vertices, const bounding::PrincipalAxes& pca) {
-  std::vector<Vec3> extremes;
+  Array<Vec3> extremes;
   for (const std::size_t k : bounding::extremeIndices(vertices, kCoarseDirections))
     extremes.push_back(Vec3(vertices[k]));
   const ConvexHull coarse = ConvexHull::fromPoints(extremes);
-  const std::vector<DVec3> coarseVertices(coarse.vertices().begin(), coarse.vertices().end());
-  std::vector<Candidate> finalists;
+  const Array<DVec3> coarseVertices(coarse.vertices().begin(), coarse.vertices().end());
+  Array<Candidate> finalists;
   for (const ConvexHull::Face& face : coarse.faces())
     finalists.push_back(boxAlong(glm::normalize(DVec3(face.plane.normal)), coarseVertices));
   const auto byVolume = [](const Candidate& a, const Candidate& b) { return a.volume < b.volume; };
@@ -132,7 +132,7 @@ OrientedBox fitOrientedBox(std::span<const Vec3> points) {
 }
 
 OrientedBox bounding::fitOrientedBoxOnHull(std::span<const Vec3> points, const ConvexHull& hull) {
-  std::vector<DVec3> vertices(hull.vertices().begin(), hull.vertices().end());
+  Array<DVec3> vertices(hull.vertices().begin(), hull.vertices().end());
   // Centre the vertices so that projections of a cloud far from the origin keep their precision.
   DVec3 origin(0.0);
   for (const DVec3& p : vertices) origin += p;

@@ -33,9 +33,9 @@ PrincipalAxes principalAxes(std::span<const Vec3> points);
 // (a golden spiral), without repeats, in increasing order. For a large set they are a coarse
 // stand-in that a fitter can search on, before it measures its result over every point (DiTO:
 // Larsson & Kallberg 2011, "Fast Computation of Tight-Fitting Oriented Bounding Boxes").
-std::vector<std::size_t> extremeIndices(std::span<const glm::dvec3> points, int directions);
+Array<std::size_t> extremeIndices(std::span<const glm::dvec3> points, int directions);
 // The same for float points, as the points themselves.
-std::vector<Vec3> extremePoints(std::span<const Vec3> points, int directions);
+Array<Vec3> extremePoints(std::span<const Vec3> points, int directions);
 
 // A unit quaternion (float) for the rotation whose columns are the given right-handed orthonormal
 // axes.

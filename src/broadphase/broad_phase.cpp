@@ -142,7 +142,7 @@ void BroadPhase::setLayer(ProxyId id, std::uint32_t layer) {
   proxies_[resolve(id, "setLayer")].layer = layer;
 }
 
-const BroadPhaseStats& BroadPhase::findPairs(std::vector<ProxyPair>& outPairs, detail::TaskRunner& tasks) {
+const BroadPhaseStats& BroadPhase::findPairs(Array<ProxyPair>& outPairs, detail::TaskRunner& tasks) {
   tasks_ = &tasks;
   struct Clear {
     detail::TaskRunner*& tasks;
@@ -151,7 +151,7 @@ const BroadPhaseStats& BroadPhase::findPairs(std::vector<ProxyPair>& outPairs, d
   return findPairs(outPairs);
 }
 
-const BroadPhaseStats& BroadPhase::findPairs(std::vector<ProxyPair>& outPairs) {
+const BroadPhaseStats& BroadPhase::findPairs(Array<ProxyPair>& outPairs) {
   keys_.clear();
   std::uint64_t boxTests = 0;
   const bool sorted = findPairKeys(keys_, boxTests);

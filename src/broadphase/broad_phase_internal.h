@@ -42,7 +42,7 @@ struct BroadPhase::RayQuery {
   Vec3 extent{0.0f};
   LayerMask mask = kAllLayers;
   const RayCastCallback* callback = nullptr;
-  const std::vector<ProxyRecord>* proxies = nullptr;
+  const Array<ProxyRecord>* proxies = nullptr;
   bool stopped = false;
 
   // Points the query from `from` along the unit `unitDirection` for `reach`, its inverse direction

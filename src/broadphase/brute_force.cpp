@@ -17,7 +17,7 @@ class BruteForceBroadPhase final : public LinearScanBroadPhase {
 
   std::size_t algorithmMemoryBytes() const override { return 0; }  // nothing beyond the records
 
-  bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
+  bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     const auto count = static_cast<std::uint32_t>(proxies_.size());
     for (std::uint32_t a = 0; a < count; ++a) {
       const ProxyRecord& pa = proxies_[a];

@@ -1,5 +1,6 @@
 // The dynamic AABB tree: node pool, SAH insertion, removal and AVL-style rebalancing.
 #include "broadphase/dynamic_tree.h"
+#include "base/assert.h"
 
 #include <collide/error.h>
 
@@ -55,12 +56,14 @@ std::int32_t DynamicTree::insert(const Aabb& box, std::uint32_t proxy) {
 }
 
 void DynamicTree::remove(std::int32_t leaf) {
+  COLLIDE_ASSERT(leaf >= 0 && static_cast<std::size_t>(leaf) < nodes_.size() && nodes_[leaf].isLeaf());
   removeLeaf(leaf);
   freeNode(leaf);
   --leafCount_;
 }
 
 void DynamicTree::move(std::int32_t leaf, const Aabb& box) {
+  COLLIDE_ASSERT(leaf >= 0 && static_cast<std::size_t>(leaf) < nodes_.size() && nodes_[leaf].isLeaf());
   removeLeaf(leaf);
   nodes_[leaf].box = box;
   insertLeaf(leaf);
@@ -212,7 +215,7 @@ void DynamicTree::validate() const {
   }
   if (nodes_[root_].parent != kNull) fail("root has a parent", root_);
   std::size_t leaves = 0;
-  std::vector<std::int32_t> stack{root_};
+  Array<std::int32_t> stack{root_};
   while (!stack.empty()) {
     const std::int32_t index = stack.back();
     stack.pop_back();

@@ -62,7 +62,7 @@ class DynamicTree {
   std::int32_t rebalance(std::int32_t index);
   void refitUpwards(std::int32_t index);
 
-  std::vector<Node> nodes_;
+  Array<Node> nodes_;
   std::int32_t root_ = kNull;
   std::int32_t freeList_ = kNull;
   std::size_t leafCount_ = 0;
@@ -93,7 +93,7 @@ class NodeStack {
   static constexpr std::size_t kInline = 128;
   std::int32_t inline_[kInline];
   std::size_t size_ = 0;
-  std::vector<std::int32_t> spill_;
+  Array<std::int32_t> spill_;
 };
 
 template <typename Test, typename Visit>

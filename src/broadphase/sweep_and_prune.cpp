@@ -30,7 +30,7 @@ class SweepAndPruneBroadPhase final : public LinearScanBroadPhase {
   };
 
   struct List {
-    std::vector<Entry> entries;
+    Array<Entry> entries;
     std::size_t appended = 0;  // entries pushed at the end since the last sort
     bool dirty = true;         // boxes changed since the last refresh
   };
@@ -75,7 +75,7 @@ class SweepAndPruneBroadPhase final : public LinearScanBroadPhase {
   // motion was too incoherent for it to pay.
   bool insertionSort(List& list) {
     const int axis = axis_;
-    std::vector<Entry>& v = list.entries;
+    Array<Entry>& v = list.entries;
     const std::size_t budget = 8 * v.size() + 64;
     std::size_t moves = 0;
     for (std::size_t i = 1; i < v.size(); ++i) {
@@ -131,13 +131,13 @@ class SweepAndPruneBroadPhase final : public LinearScanBroadPhase {
     return detail::heapBytes(movables_.entries) + detail::heapBytes(statics_.entries);
   }
 
-  bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
+  bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     refresh(movables_);
     refresh(statics_);
     sortLists();
     const int axis = axis_;
-    const std::vector<Entry>& m = movables_.entries;
-    const std::vector<Entry>& s = statics_.entries;
+    const Array<Entry>& m = movables_.entries;
+    const Array<Entry>& s = statics_.entries;
 
     // Movable against movable: every box that starts before box i ends, and after it starts.
     for (std::size_t i = 0; i < m.size(); ++i) {

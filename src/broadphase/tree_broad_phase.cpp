@@ -108,7 +108,7 @@ class TreeBroadPhase final : public BroadPhase {
     markMoved(index);
   }
 
-  bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
+  bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     // 1. New fat-box overlaps of the moved proxies, against both trees (a static one only against
     //    the movable tree: static-static pairs are never wanted).
     //    The queries only read the trees: with workers, ranges of them run in parallel, each
@@ -195,7 +195,7 @@ class TreeBroadPhase final : public BroadPhase {
 
   // The new fat-box overlaps of moved proxy i, against both trees (a static one only against the
   // movable tree: static-static pairs are never wanted).
-  void queryMoved(std::uint32_t i, std::vector<std::uint64_t>& keys, std::uint64_t& boxTests) const {
+  void queryMoved(std::uint32_t i, Array<std::uint64_t>& keys, std::uint64_t& boxTests) const {
     const Aabb query = fatBox(i);
     auto collect = [&](const DynamicTree::Node& leaf) {
       if (leaf.proxy != i) keys.push_back(pairKey(i, leaf.proxy));
@@ -213,7 +213,7 @@ class TreeBroadPhase final : public BroadPhase {
 
   static void visitTree(const DynamicTree& tree, MotionType motion, const NodeVisitor& visit) {
     if (tree.root() == DynamicTree::kNull) return;
-    std::vector<std::pair<std::int32_t, int>> stack{{tree.root(), 0}};  // node, depth
+    Array<std::pair<std::int32_t, int>> stack{{tree.root(), 0}};  // node, depth
     while (!stack.empty()) {
       const auto [index, depth] = stack.back();
       stack.pop_back();
@@ -281,24 +281,24 @@ class TreeBroadPhase final : public BroadPhase {
 
   DynamicTree staticTree_;
   DynamicTree movableTree_;
-  std::vector<std::int32_t> leaf_;   // per proxy: its leaf in its tree
-  std::vector<std::uint8_t> moved_;  // per proxy: in the move buffer
-  std::vector<std::uint32_t> moveBuffer_;
-  std::vector<std::uint64_t> pairs_;  // sorted keys of all fat-box overlaps (persistent)
-  std::vector<std::uint64_t> candidates_;
-  std::vector<std::uint32_t> queries_;  // the moved proxies still alive, in move-buffer order
+  Array<std::int32_t> leaf_;   // per proxy: its leaf in its tree
+  Array<std::uint8_t> moved_;  // per proxy: in the move buffer
+  Array<std::uint32_t> moveBuffer_;
+  Array<std::uint64_t> pairs_;  // sorted keys of all fat-box overlaps (persistent)
+  Array<std::uint64_t> candidates_;
+  Array<std::uint32_t> queries_;  // the moved proxies still alive, in move-buffer order
   // Per worker, on its own cache lines: the keys and box tests of its queries.
   struct alignas(64) WorkerCandidates {
-    std::vector<std::uint64_t> keys;
+    Array<std::uint64_t> keys;
     std::uint64_t boxTests = 0;
   };
-  std::vector<WorkerCandidates> workerCandidates_;
+  Array<WorkerCandidates> workerCandidates_;
   static constexpr std::uint32_t kQueriesPerRange = 128;
   // The merge's scratch: the union of pairs_ and candidates_, each key's verdict, the kept keys.
-  std::vector<std::uint64_t> union_;
-  std::vector<PairVerdict> verdicts_;
+  Array<std::uint64_t> union_;
+  Array<PairVerdict> verdicts_;
   static constexpr std::uint32_t kKeysPerRange = 2048;
-  std::vector<std::uint64_t> merged_;
+  Array<std::uint64_t> merged_;
 };
 
 }  // namespace

@@ -64,7 +64,7 @@ class GridBroadPhase final : public BroadPhase {
 
   struct Cell {
     Coord coord;
-    std::vector<std::uint32_t> members;
+    Array<std::uint32_t> members;
   };
 
   void setCellSize(float size) {
@@ -153,7 +153,7 @@ class GridBroadPhase final : public BroadPhase {
   void removeFromCell(const Coord& c, std::uint32_t index) {
     const auto it = cellIndex_.find(cellKey(c));
     const std::uint32_t cellSlot = it->second;
-    std::vector<std::uint32_t>& members = cells_[cellSlot].members;
+    Array<std::uint32_t>& members = cells_[cellSlot].members;
     auto m = std::find(members.begin(), members.end(), index);
     *m = members.back();
     members.pop_back();
@@ -207,10 +207,10 @@ class GridBroadPhase final : public BroadPhase {
     bin(index);
   }
 
-  bool findPairKeys(std::vector<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
+  bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     if (!built_) build();
     for (const Cell& cell : cells_) {
-      const std::vector<std::uint32_t>& members = cell.members;
+      const Array<std::uint32_t>& members = cell.members;
       for (std::size_t i = 0; i < members.size(); ++i) {
         const std::uint32_t a = members[i];
         const ProxyRecord& pa = proxies_[a];
@@ -319,7 +319,7 @@ class GridBroadPhase final : public BroadPhase {
     // The per-box plane test is conservative, so a box may pass while each of its cells fails a
     // different plane. Testing "loose" cells (grown by the largest binned box) keeps the pruning
     // exact: a loose cell contains every member's box, and a box containing a passing box passes.
-    std::vector<std::uint8_t> seen(proxies_.size(), 0);
+    Array<std::uint8_t> seen(proxies_.size(), 0);
     const Vec3 grow(maxExtent_);
     for (const Cell& cell : cells_) {
       const Vec3 cellMin = Vec3(cell.coord) * cellSize_;
@@ -401,13 +401,13 @@ class GridBroadPhase final : public BroadPhase {
   float maxExtent_ = 0.0f;
 
   std::unordered_map<std::uint64_t, std::uint32_t> cellIndex_;
-  std::vector<Cell> cells_;
-  std::vector<std::uint32_t> oversize_;
+  Array<Cell> cells_;
+  Array<std::uint32_t> oversize_;
 
-  std::vector<State> state_;
-  std::vector<Coord> lo_;
-  std::vector<Coord> hi_;
-  std::vector<std::uint32_t> oversizeSlot_;
+  Array<State> state_;
+  Array<Coord> lo_;
+  Array<Coord> hi_;
+  Array<std::uint32_t> oversizeSlot_;
 };
 
 }  // namespace

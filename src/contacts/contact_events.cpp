@@ -86,7 +86,7 @@ ContactData makeContactData(const BodyStorage& bodies, const Contact& c) {
   return d;
 }
 
-std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& contacts, StepEvents& events,
+std::size_t emitContactEvents(const BodyStorage& bodies, Array<Contact>& contacts, StepEvents& events,
                               bool persistEvents) {
   std::size_t touchingCount = 0;
   const auto emit = [&](const Contact& c, ContactEvent::Type type) {
@@ -117,8 +117,8 @@ std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& c
   return touchingCount;
 }
 
-void tellContactListener(const StepEvents& events, const BodyStorage& bodies,
-                         const std::vector<Contact>& contacts, ContactListener& listener) {
+void tellContactListener(const StepEvents& events, const BodyStorage& bodies, const Array<Contact>& contacts,
+                         ContactListener& listener) {
   for (std::size_t i = 0; i < events.contacts.size(); ++i) {
     const ContactEvent& event = events.contacts[i];
     const std::uint32_t contact = events.contactOfEvent[i];

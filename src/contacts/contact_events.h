@@ -18,16 +18,16 @@ namespace collide::detail {
 // The events of the last step, in a deterministic order (the contacts' pair order), and the end
 // events of contacts whose body was destroyed between steps, handed out first with the next step's.
 struct StepEvents {
-  std::vector<ContactEvent> contacts;
+  Array<ContactEvent> contacts;
   // For each contact event, its contact's index in the step's contact array (the contact listener
   // reads the manifold there), or kNoContact for the end of a vanished pair.
   static constexpr std::uint32_t kNoContact = 0xFFFFFFFFu;
-  std::vector<std::uint32_t> contactOfEvent;
-  std::vector<SensorEvent> sensors;
-  std::vector<FaultEvent> faults;
-  std::vector<JointBreakEvent> jointBreaks;
-  std::vector<ContactEvent> pendingContacts;
-  std::vector<SensorEvent> pendingSensors;
+  Array<std::uint32_t> contactOfEvent;
+  Array<SensorEvent> sensors;
+  Array<FaultEvent> faults;
+  Array<JointBreakEvent> jointBreaks;
+  Array<ContactEvent> pendingContacts;
+  Array<SensorEvent> pendingSensors;
 
   // The lists start over, with the pending end events first.
   void beginStep();
@@ -46,12 +46,12 @@ ContactData makeContactData(const BodyStorage& bodies, const Contact& contact);
 
 // The stage: begin, persist (with persistEvents) and end events of every contact after the solve,
 // and sensor begin and end events. Returns the number of touching (non-sensor) contacts.
-std::size_t emitContactEvents(const BodyStorage& bodies, std::vector<Contact>& contacts, StepEvents& events,
+std::size_t emitContactEvents(const BodyStorage& bodies, Array<Contact>& contacts, StepEvents& events,
                               bool persistEvents);
 
 // The step's contact events told to the listener in their order, each begin and persist with the
 // whole contact, after the step (a listener may then query the world).
-void tellContactListener(const StepEvents& events, const BodyStorage& bodies,
-                         const std::vector<Contact>& contacts, ContactListener& listener);
+void tellContactListener(const StepEvents& events, const BodyStorage& bodies, const Array<Contact>& contacts,
+                         ContactListener& listener);
 
 }  // namespace collide::detail

@@ -67,10 +67,10 @@ bool settingsInRange(const ContactSettings& s) {
 class PairPass {
  public:
   PairPass(const ContactUpdate& scratch, const BodyStorage& bodies, std::span<const ProxyPair> pairs,
-           std::vector<Contact>& contacts, const std::vector<Contact>& previous,
-           std::vector<ApartPair>& apart, const std::vector<ApartPair>& previousApart,
-           const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
-           const PairFilters& filters, StepEvents& events, std::string& callbackError)
+           Array<Contact>& contacts, const Array<Contact>& previous, Array<ApartPair>& apart,
+           const Array<ApartPair>& previousApart, const ContactUpdateSettings& settings, float dt,
+           const PreSolveCallback& preSolve, const PairFilters& filters, StepEvents& events,
+           std::string& callbackError)
       : s_(scratch),
         bodies_(bodies),
         pairs_(pairs),
@@ -447,10 +447,10 @@ class PairPass {
   const ContactUpdate& s_;
   const BodyStorage& bodies_;
   std::span<const ProxyPair> pairs_;
-  std::vector<Contact>& contacts_;
-  const std::vector<Contact>& previous_;
-  std::vector<ApartPair>& apart_;
-  const std::vector<ApartPair>& previousApart_;
+  Array<Contact>& contacts_;
+  const Array<Contact>& previous_;
+  Array<ApartPair>& apart_;
+  const Array<ApartPair>& previousApart_;
   const ContactUpdateSettings& settings_;
   float dt_;
   const PreSolveCallback& preSolve_;
@@ -501,8 +501,7 @@ void ContactUpdate::snapshotRange(const BodyStorage& bodies, float dt, float cac
 }
 
 void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
-                               const std::vector<Contact>& previous,
-                               const std::vector<ApartPair>& previousApart,
+                               const Array<Contact>& previous, const Array<ApartPair>& previousApart,
                                const ContactUpdateSettings& settings, float dt, TaskRunner& tasks) {
   stagedIndex_.resize(pairs.size());
   staged_.resize(static_cast<std::size_t>(tasks.workerCount()));
@@ -510,7 +509,7 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
   tasks.parallelFor(
       static_cast<std::uint32_t>(pairs.size()), kPairsPerRange,
       [&](std::uint32_t begin, std::uint32_t end, std::uint32_t worker) {
-        std::vector<StagedTest>& list = staged_[worker].tests;
+        Array<StagedTest>& list = staged_[worker].tests;
         Manifold scratch;
         // Last step's contacts, merged in key order as the walk does, from where
         // this range's first pair would find them.
@@ -558,11 +557,10 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
 }
 
 ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPhase& broadPhase,
-                                       std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
-                                       std::vector<Contact>& previous, std::vector<ApartPair>& apart,
-                                       std::vector<ApartPair>& previousApart,
-                                       const ContactUpdateSettings& settings, float dt,
-                                       const PreSolveCallback& preSolve, const PairFilters& filters,
+                                       std::span<const ProxyPair> pairs, Array<Contact>& contacts,
+                                       Array<Contact>& previous, Array<ApartPair>& apart,
+                                       Array<ApartPair>& previousApart, const ContactUpdateSettings& settings,
+                                       float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
                                        StepEvents& events, std::string& callbackError, TaskRunner& tasks) {
   snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance, tasks);
   std::swap(contacts, previous);

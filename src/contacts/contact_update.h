@@ -73,11 +73,11 @@ class ContactUpdate {
   // snapshot), and the walk in pair order takes their results: the contacts, the events and the callbacks are
   // those of one worker, in the same order.
   ContactUpdateCounts run(const BodyStorage& bodies, const BroadPhase& broadPhase,
-                          std::span<const ProxyPair> pairs, std::vector<Contact>& contacts,
-                          std::vector<Contact>& previous, std::vector<ApartPair>& apart,
-                          std::vector<ApartPair>& previousApart, const ContactUpdateSettings& settings,
-                          float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
-                          StepEvents& events, std::string& callbackError, TaskRunner& tasks);
+                          std::span<const ProxyPair> pairs, Array<Contact>& contacts,
+                          Array<Contact>& previous, Array<ApartPair>& apart, Array<ApartPair>& previousApart,
+                          const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
+                          const PairFilters& filters, StepEvents& events, std::string& callbackError,
+                          TaskRunner& tasks);
 
   // A pair's collider test, run ahead: the manifold, and the distance when it came out empty
   // between polyhedra (for the separating-axis cache).
@@ -102,9 +102,9 @@ class ContactUpdate {
   void snapshotRange(const BodyStorage& bodies, float dt, float cacheDistance, std::uint32_t begin,
                      std::uint32_t end);
   // The tests of the pairs whose walk will reach collide(), in parallel ranges.
-  void stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
-                  const std::vector<Contact>& previous, const std::vector<ApartPair>& previousApart,
-                  const ContactUpdateSettings& settings, float dt, TaskRunner& tasks);
+  void stageTests(const BodyStorage& bodies, std::span<const ProxyPair> pairs, const Array<Contact>& previous,
+                  const Array<ApartPair>& previousApart, const ContactUpdateSettings& settings, float dt,
+                  TaskRunner& tasks);
   // Whether the stage found the pair apart this way (PairPass::ManifoldRoute).
   template <typename Route>
   bool stagedRoute(std::size_t pair, Route route) const {
@@ -117,20 +117,20 @@ class ContactUpdate {
     return &staged_[index >> 26].tests[index & ((1u << 26) - 1)];
   }
 
-  std::vector<Transform> poses_;
-  std::vector<Mat3> scaledRotations_;  // mat3_cast(rotation) * scale
-  std::vector<float> spinReaches_;
-  std::vector<Vec3> velocities_;            // linear, for the speculative margins
-  std::vector<std::uint8_t> likelyPlaced_;  // moves beyond the manifold cache's tolerance this step
-  std::vector<std::uint32_t> proxyBodies_;  // the body of each broad-phase proxy slot (its user value)
+  Array<Transform> poses_;
+  Array<Mat3> scaledRotations_;  // mat3_cast(rotation) * scale
+  Array<float> spinReaches_;
+  Array<Vec3> velocities_;            // linear, for the speculative margins
+  Array<std::uint8_t> likelyPlaced_;  // moves beyond the manifold cache's tolerance this step
+  Array<std::uint32_t> proxyBodies_;  // the body of each broad-phase proxy slot (its user value)
   // Per pair, its staged test (worker << 26 | index in that worker's array) or kNotStaged; empty
   // with one worker.
-  std::vector<std::uint32_t> stagedIndex_;
+  Array<std::uint32_t> stagedIndex_;
   // Per worker, apart by a cache line: each worker's push_back writes its own vector's end.
   struct alignas(64) WorkerTests {
-    std::vector<StagedTest> tests;
+    Array<StagedTest> tests;
   };
-  std::vector<WorkerTests> staged_;
+  Array<WorkerTests> staged_;
   // Last step's pairs that reached the narrow phase, and of those the ones not reused: the stage
   // runs ahead when at least one in kStageWhenTestedOneIn was tested.
   static constexpr std::uint64_t kStageWhenTestedOneIn = 4;

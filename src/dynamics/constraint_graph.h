@@ -4,6 +4,7 @@
 // contact solver, so any number of constraints of a colour may share them.
 #pragma once
 
+#include <collide/hooks.h>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -18,7 +19,7 @@ inline constexpr std::uint8_t kOverflowColor = kGraphColors;  // solved one at a
 // deterministic. A constraint touching a static or kinematic body starts at colour 1 (Box2D v3:
 // the ground's contacts are then solved after some of the contacts they support, which helps
 // stacks). `bits` is scratch, reused across steps.
-void colorConstraints(const std::vector<std::array<std::int32_t, 2>>& writtenBodies, std::size_t bodyCount,
-                      std::vector<std::uint8_t>& outColors, std::vector<std::uint64_t>& bits);
+void colorConstraints(const Array<std::array<std::int32_t, 2>>& writtenBodies, std::size_t bodyCount,
+                      Array<std::uint8_t>& outColors, Array<std::uint64_t>& bits);
 
 }  // namespace collide::detail

@@ -199,7 +199,7 @@ class LaneContactSolver final : public ContactLanes {
     }
   }
 
-  void warmStart(std::vector<SolverBody>& bodies, TaskRunner& tasks) override {
+  void warmStart(Array<SolverBody>& bodies, TaskRunner& tasks) override {
     // Backwards: it starts with the batches the last pass (the previous substep's relax) ended
     // with, still in the L2 cache, and ends with those the solve pass starts with.
     forEachBatch(tasks, true, [&](Batch& c) {
@@ -226,7 +226,7 @@ class LaneContactSolver final : public ContactLanes {
     });
   }
 
-  void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) override {
+  void solve(Array<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) override {
     if (useBias) {
       solvePass<true>(bodies, h, tasks);
     } else {
@@ -236,7 +236,7 @@ class LaneContactSolver final : public ContactLanes {
 
   // Newton's restitution on the approach velocity measured before the solve: the soft contact has
   // absorbed the impact by now, so the bounce is added at the end (Box2D v3's b2ApplyRestitution).
-  void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) override {
+  void applyRestitution(Array<SolverBody>& bodies, TaskRunner& tasks) override {
     const F zero = zeroT<F>();
     const F threshold = splatT<F>(-restitutionThreshold_);
     forEachBatch(tasks, false, [&](Batch& c) {
@@ -273,13 +273,13 @@ class LaneContactSolver final : public ContactLanes {
     return heapBytes(batches_) + heapBytes(points_) + heapBytes(batchPoints_);
   }
 
-  void store(std::vector<Contact>& contacts, TaskRunner& tasks) const override {
+  void store(Array<Contact>& contacts, TaskRunner& tasks) const override {
     tasks.parallelFor(
         static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,
         [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { storeBatches(contacts, begin, end); });
   }
 
-  void storeBatches(std::vector<Contact>& contacts, std::size_t begin, std::size_t end) const {
+  void storeBatches(Array<Contact>& contacts, std::size_t begin, std::size_t end) const {
     // The contacts of a batch two places on, asked for ahead: they lie anywhere in the array.
     constexpr std::size_t kAhead = 2;
     const auto prefetchContacts = [&](std::size_t batch) {
@@ -323,7 +323,7 @@ class LaneContactSolver final : public ContactLanes {
     F qx, qy, qz, qw;
   };
 
-  static COLLIDE_INLINE void records(const std::vector<SolverBody>& bodies,
+  static COLLIDE_INLINE void records(const Array<SolverBody>& bodies,
                                      const std::array<std::int32_t, kWidth>& index,
                                      const float* (&out)[kWidth]) {
     static const SolverBody kRestingBody{};
@@ -331,7 +331,7 @@ class LaneContactSolver final : public ContactLanes {
       out[i] = reinterpret_cast<const float*>(index[i] >= 0 ? &bodies[index[i]] : &kRestingBody);
   }
 
-  static COLLIDE_INLINE Velocities gatherVelocities(const std::vector<SolverBody>& bodies,
+  static COLLIDE_INLINE Velocities gatherVelocities(const Array<SolverBody>& bodies,
                                                     const std::array<std::int32_t, kWidth>& index) {
     const float* b[kWidth];
     records(bodies, index, b);
@@ -342,7 +342,7 @@ class LaneContactSolver final : public ContactLanes {
     return out;
   }
 
-  static COLLIDE_INLINE Poses gatherPoses(const std::vector<SolverBody>& bodies,
+  static COLLIDE_INLINE Poses gatherPoses(const Array<SolverBody>& bodies,
                                           const std::array<std::int32_t, kWidth>& index) {
     const float* b[kWidth];
     records(bodies, index, b);
@@ -354,8 +354,7 @@ class LaneContactSolver final : public ContactLanes {
   }
 
   // The contact solver changes velocities only; lanes of bodies it must not write are skipped.
-  static COLLIDE_INLINE void scatter(std::vector<SolverBody>& bodies,
-                                     const std::array<std::int32_t, kWidth>& index,
+  static COLLIDE_INLINE void scatter(Array<SolverBody>& bodies, const std::array<std::int32_t, kWidth>& index,
                                      const std::array<bool, kWidth>& write, const Velocities& body) {
     FloatW vRows[kWidth];  // one row of four floats per lane
     FloatW wRows[kWidth];
@@ -402,7 +401,7 @@ class LaneContactSolver final : public ContactLanes {
   // without a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r. Its own function so
   // that the poses are dropped before the velocities are read, which then keep the registers.
   template <bool useBias>
-  static COLLIDE_INLINE PoseChange poseChange(const std::vector<SolverBody>& bodies, const Batch& c) {
+  static COLLIDE_INLINE PoseChange poseChange(const Array<SolverBody>& bodies, const Batch& c) {
     const F zero = zeroT<F>();
     PoseChange out;
     out.drift1 = zero;
@@ -522,7 +521,7 @@ class LaneContactSolver final : public ContactLanes {
   // Each batch: the pose change, then the normal points, the friction patch and the twist, in that
   // order, on the same gathered velocities.
   template <bool useBias>
-  void solvePass(std::vector<SolverBody>& bodies, float h, TaskRunner& tasks) {
+  void solvePass(Array<SolverBody>& bodies, float h, TaskRunner& tasks) {
     const F inverseH = splatT<F>(1.0f / h);
     const F maxPushOut = splatT<F>(-pushOutSpeed_);
     forEachBatch(tasks, false, [&](Batch& c) {
@@ -753,9 +752,9 @@ class LaneContactSolver final : public ContactLanes {
   // The fewest batches a parallel range takes; the pool makes ranges longer to give each worker a
   // few. A colour of no more batches than this runs on the calling thread.
   static constexpr std::uint32_t kBatchesPerRange = 4;
-  std::vector<Batch> batches_;
-  std::vector<BatchPoint<F>> points_;                         // the batches' point slots
-  std::vector<std::uint32_t> batchPoints_;                    // batch b's slots: [batchPoints_[b], [b + 1])
+  Array<Batch> batches_;
+  Array<BatchPoint<F>> points_;                               // the batches' point slots
+  Array<std::uint32_t> batchPoints_;                          // batch b's slots: [batchPoints_[b], [b + 1])
   std::array<std::uint32_t, kGraphColors + 2> batchStart_{};  // colour c's batches: [batchStart_[c], [c + 1])
   float pushOutSpeed_ = 3.0f;
   float restitutionThreshold_ = 1.0f;

@@ -12,8 +12,8 @@ namespace collide::detail {
 
 void ContactProjection::prepare(std::span<const Contact> contacts,
                                 std::span<const std::uint32_t> solvedContacts,
-                                const std::vector<std::int32_t>& solverOf,
-                                const std::vector<SolverBodyInfo>& infos, const BodyStorage& storage) {
+                                const Array<std::int32_t>& solverOf, const Array<SolverBodyInfo>& infos,
+                                const BodyStorage& storage) {
   constraints_.clear();
   points_.clear();
   const auto inverseMass = [&](std::int32_t solverBody) {
@@ -44,7 +44,7 @@ void ContactProjection::prepare(std::span<const Contact> contacts,
   }
 }
 
-void ContactProjection::project(std::vector<SolverBody>& bodies, float linearSlop) const {
+void ContactProjection::project(Array<SolverBody>& bodies, float linearSlop) const {
   static const SolverBody kStill;  // a static body: not moved, not turned
   for (const Constraint& c : constraints_) {
     const SolverBody& a = c.bodyA != kNoSolverBody ? bodies[c.bodyA] : kStill;

@@ -24,10 +24,10 @@ class ContactProjection {
   // The step's solved contacts, their points as anchors from the centres of mass at the step's start
   // (what the contact solver measures separations from).
   void prepare(std::span<const Contact> contacts, std::span<const std::uint32_t> solvedContacts,
-               const std::vector<std::int32_t>& solverOf, const std::vector<SolverBodyInfo>& infos,
+               const Array<std::int32_t>& solverOf, const Array<SolverBodyInfo>& infos,
                const BodyStorage& storage);
   // One pass over the contacts, each projected with the bodies' displacements so far (Gauss-Seidel).
-  void project(std::vector<SolverBody>& bodies, float linearSlop) const;
+  void project(Array<SolverBody>& bodies, float linearSlop) const;
 
   std::size_t memoryBytes() const;  // World::memoryUse
 
@@ -46,8 +46,8 @@ class ContactProjection {
     std::uint32_t firstPoint = 0;
     std::uint32_t pointCount = 0;
   };
-  std::vector<Constraint> constraints_;
-  std::vector<Point> points_;
+  Array<Constraint> constraints_;
+  Array<Point> points_;
 };
 
 }  // namespace collide::detail

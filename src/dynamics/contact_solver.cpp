@@ -60,9 +60,9 @@ ContactSolver::~ContactSolver() = default;
 ContactSolver::ContactSolver(ContactSolver&&) noexcept = default;
 ContactSolver& ContactSolver::operator=(ContactSolver&&) noexcept = default;
 
-void ContactSolver::prepare(std::vector<Contact>& contacts, const BodyStorage& storage,
-                            const std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
-                            const std::vector<std::int32_t>& solverOf, const ContactSolverSettings& settings,
+void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage,
+                            const Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
+                            const Array<std::int32_t>& solverOf, const ContactSolverSettings& settings,
                             float h, TaskRunner& tasks) {
   // The contacts to solve and the solver bodies each may write.
   solvedContacts_.clear();

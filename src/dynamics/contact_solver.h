@@ -66,16 +66,16 @@ struct ContactSolverSettings {
 // contacts of colour c are order[colorStart[c] .. colorStart[c + 1]), the overflow last), and the
 // step's bodies and settings.
 struct ContactBatchInput {
-  std::vector<Contact>& contacts;
-  const std::vector<std::uint32_t>& order;
+  Array<Contact>& contacts;
+  const Array<std::uint32_t>& order;
   const std::array<std::uint32_t, kGraphColors + 2>& colorStart;
   // Within colour c (but the overflow), order[countStart[c * kMaxPoints + 4 - n], ... + 1) are the
   // contacts of n points: a batch's first contact has the most points of its lanes.
   const std::array<std::uint32_t, (kGraphColors + 1) * Manifold::kMaxPoints + 1>& countStart;
   const BodyStorage& storage;
-  const std::vector<SolverBody>& bodies;
-  const std::vector<SolverBodyInfo>& infos;
-  const std::vector<std::int32_t>& solverOf;
+  const Array<SolverBody>& bodies;
+  const Array<SolverBodyInfo>& infos;
+  const Array<std::int32_t>& solverOf;
   Softness softness;
   Softness oneWaySoftness;
   bool friction = true;
@@ -92,10 +92,10 @@ class ContactLanes {
   virtual int width() const = 0;
   // Each takes its batches in parallel ranges, a colour at a time (tasks: the step's workers).
   virtual void build(const ContactBatchInput& input, TaskRunner& tasks) = 0;
-  virtual void warmStart(std::vector<SolverBody>& bodies, TaskRunner& tasks) = 0;
-  virtual void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) = 0;
-  virtual void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) = 0;
-  virtual void store(std::vector<Contact>& contacts, TaskRunner& tasks) const = 0;
+  virtual void warmStart(Array<SolverBody>& bodies, TaskRunner& tasks) = 0;
+  virtual void solve(Array<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) = 0;
+  virtual void applyRestitution(Array<SolverBody>& bodies, TaskRunner& tasks) = 0;
+  virtual void store(Array<Contact>& contacts, TaskRunner& tasks) const = 0;
   virtual std::size_t memoryBytes() const = 0;
 };
 
@@ -119,36 +119,35 @@ class ContactSolver {
 
   int laneWidth() const { return lanes_->width(); }
   // The contacts in the batches, in solve order (the response models and revert walk them).
-  const std::vector<std::uint32_t>& solvedContacts() const { return solvedContacts_; }
+  const Array<std::uint32_t>& solvedContacts() const { return solvedContacts_; }
 
-  void prepare(std::vector<Contact>& contacts, const BodyStorage& storage,
-               const std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
-               const std::vector<std::int32_t>& solverOf, const ContactSolverSettings& settings, float h,
-               TaskRunner& tasks);
+  void prepare(Array<Contact>& contacts, const BodyStorage& storage, const Array<SolverBody>& bodies,
+               const Array<SolverBodyInfo>& infos, const Array<std::int32_t>& solverOf,
+               const ContactSolverSettings& settings, float h, TaskRunner& tasks);
   // Per substep: apply the accumulated impulses.
-  void warmStart(std::vector<SolverBody>& bodies, TaskRunner& tasks) { lanes_->warmStart(bodies, tasks); }
+  void warmStart(Array<SolverBody>& bodies, TaskRunner& tasks) { lanes_->warmStart(bodies, tasks); }
   // Per substep: one pass; useBias = false is the relax pass.
-  void solve(std::vector<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) {
+  void solve(Array<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) {
     lanes_->solve(bodies, h, useBias, tasks);
   }
   // Once at the end: Newton's restitution from the approach velocity taken in prepare().
-  void applyRestitution(std::vector<SolverBody>& bodies, TaskRunner& tasks) {
+  void applyRestitution(Array<SolverBody>& bodies, TaskRunner& tasks) {
     lanes_->applyRestitution(bodies, tasks);
   }
   // The impulses back into the contacts (warm starting next step, events, response models).
-  void store(std::vector<Contact>& contacts, TaskRunner& tasks) const { lanes_->store(contacts, tasks); }
+  void store(Array<Contact>& contacts, TaskRunner& tasks) const { lanes_->store(contacts, tasks); }
 
   std::size_t memoryBytes() const;  // the batches, the colouring and support scratch (World::memoryUse)
 
  private:
   std::unique_ptr<ContactLanes> lanes_;
   SupportMasses supportMasses_;
-  std::vector<std::uint32_t> solvedContacts_;
+  Array<std::uint32_t> solvedContacts_;
   // Colouring scratch (constraint_graph.h).
-  std::vector<std::array<std::int32_t, 2>> writtenBodies_;
-  std::vector<std::uint64_t> colorBits_;
-  std::vector<std::uint32_t> order_;
-  std::vector<std::uint8_t> colorOf_;
+  Array<std::array<std::int32_t, 2>> writtenBodies_;
+  Array<std::uint64_t> colorBits_;
+  Array<std::uint32_t> order_;
+  Array<std::uint8_t> colorOf_;
 };
 
 }  // namespace collide::detail

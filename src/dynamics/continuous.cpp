@@ -51,8 +51,8 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
   ContinuousStats stats;
   // Per joint group (indexed by its id, a body index), the earliest stop of its bodies; and each
   // grouped body's sweep as the solve left it, for the group's stop.
-  thread_local std::vector<float> groupStop;
-  thread_local std::vector<Sweep> groupSweeps;
+  thread_local Array<float> groupStop;
+  thread_local Array<Sweep> groupSweeps;
   const bool grouped = !jointGroup.empty();
   if (grouped) {
     groupStop.assign(bodies.records.size(), 1.0f);

@@ -31,7 +31,7 @@ std::uint8_t nonFiniteFields(const BodyState& s) {
   return fields;
 }
 
-void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, TaskRunner& tasks) {
+void guardFiniteStates(BodyStorage& bodies, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const std::size_t n = bodies.states.size();
   // Faults are rare: the look at every body runs in parallel and only says whether one was found
   // (a flag any range may set, whichever sets it); the walk below then freezes and reports.
@@ -67,8 +67,8 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, Tas
   }
 }
 
-void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
-                         std::vector<ApartPair>& apartPairs, std::vector<Joint>& joints) {
+void dropFaultedContacts(std::span<const FaultEvent> faults, Array<Contact>& contacts,
+                         Array<ApartPair>& apartPairs, Array<Joint>& joints) {
   const auto faulted = [&](std::uint32_t body) {
     return std::any_of(faults.begin(), faults.end(),
                        [&](const FaultEvent& f) { return f.body.index == body; });

@@ -27,7 +27,7 @@ std::uint8_t nonFiniteFields(const BodyState& state);
 // per step: a body already there gets the new fields added to its event. The bodies are looked at
 // in parallel ranges; only when one of them found a fault is the freezing and reporting done, in
 // body order on the calling thread.
-void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, TaskRunner& tasks);
+void guardFiniteStates(BodyStorage& bodies, Array<FaultEvent>& faults, TaskRunner& tasks);
 
 // The bodies in `faults` took part in a solve that produced a non-finite value; so may their
 // contacts' manifolds (a degenerate pair is a source of NaN) and accumulated impulses, and their
@@ -36,8 +36,8 @@ void guardFiniteStates(BodyStorage& bodies, std::vector<FaultEvent>& faults, Tas
 // so that no event reports those numbers and the next step's warm start does not hand them to the
 // bodies' neighbours. The next narrow phase finds the contacts again, at the frozen pose, and
 // tests their pairs found apart anew (their caches are dropped).
-void dropFaultedContacts(std::span<const FaultEvent> faults, std::vector<Contact>& contacts,
-                         std::vector<ApartPair>& apartPairs, std::vector<Joint>& joints);
+void dropFaultedContacts(std::span<const FaultEvent> faults, Array<Contact>& contacts,
+                         Array<ApartPair>& apartPairs, Array<Joint>& joints);
 
 // Back to the pose at the start of the step, stopped, forces cleared. A dynamic body also loses its
 // inverse mass and inertia and sleeps: the solver then treats it as an immovable obstacle, and

@@ -54,7 +54,7 @@ constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 // skips the Newton solve for every resting body.
 constexpr float kGyroscopicMinTurn = 1e-4f;
 
-void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos,
+void integrateVelocities(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
                          const BodyStorage& storage, float h, std::uint32_t begin, std::uint32_t end) {
   const float maxAngularSpeed = kMaxRotationPerSubstep / h;
   for (std::size_t j = begin; j < end; ++j) {
@@ -82,7 +82,7 @@ void integrateVelocities(std::vector<SolverBody>& bodies, const std::vector<Solv
   }
 }
 
-void integratePositions(std::vector<SolverBody>& bodies, const std::vector<SolverBodyInfo>& infos, float h,
+void integratePositions(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos, float h,
                         std::uint32_t begin, std::uint32_t end) {
   for (std::size_t j = begin; j < end; ++j) {
     const SolverBodyInfo& info = infos[j];

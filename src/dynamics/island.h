@@ -45,8 +45,8 @@ class Islands {
   std::uint32_t findRoot(std::uint32_t i);
   void unite(std::uint32_t a, std::uint32_t b);
 
-  std::vector<std::uint32_t> parent_;
-  std::vector<float> sleepTime_;  // per root: the least rest time of the island's bodies
+  Array<std::uint32_t> parent_;
+  Array<float> sleepTime_;  // per root: the least rest time of the island's bodies
 };
 
 }  // namespace collide::detail

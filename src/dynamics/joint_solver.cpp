@@ -22,7 +22,7 @@ float twistAngle(const Quat& q) {
   return q.w >= 0.0f ? 2.0f * std::atan2(q.x, q.w) : 2.0f * std::atan2(-q.x, -q.w);
 }
 
-void prepareJoints(const JointSolverView& view, std::vector<Joint>& joints) {
+void prepareJoints(const JointSolverView& view, Array<Joint>& joints) {
   for (Joint& joint : joints) {
     const BodyRecord& a = view.storage.records[joint.bodyA];
     const BodyRecord& b = view.storage.records[joint.bodyB];
@@ -31,7 +31,7 @@ void prepareJoints(const JointSolverView& view, std::vector<Joint>& joints) {
   }
 }
 
-void warmStartJoints(const JointSolverView& view, std::vector<Joint>& joints) {
+void warmStartJoints(const JointSolverView& view, Array<Joint>& joints) {
   for (Joint& joint : joints) {
     if (!joint.active) continue;
     switch (joint.type) {
@@ -57,8 +57,7 @@ void warmStartJoints(const JointSolverView& view, std::vector<Joint>& joints) {
   }
 }
 
-void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
-                 bool useBias) {
+void solveJoints(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias) {
   for (Joint& joint : joints) {
     if (!joint.active) continue;
     switch (joint.type) {
@@ -84,7 +83,7 @@ void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float 
   }
 }
 
-void projectJoints(const JointSolverView& view, std::vector<Joint>& joints) {
+void projectJoints(const JointSolverView& view, Array<Joint>& joints) {
   for (int pass = 0; pass < kJointProjectionPasses; ++pass) {
     bool projected = false;
     for (Joint& joint : joints) {
@@ -95,8 +94,7 @@ void projectJoints(const JointSolverView& view, std::vector<Joint>& joints) {
   }
 }
 
-void jointGroups(const BodyStorage& storage, const std::vector<Joint>& joints,
-                 std::vector<std::uint32_t>& groupOf) {
+void jointGroups(const BodyStorage& storage, const Array<Joint>& joints, Array<std::uint32_t>& groupOf) {
   groupOf.assign(storage.records.size(), kNoJointGroup);
   const auto root = [&](std::uint32_t i) {
     while (groupOf[i] != i) i = groupOf[i] = groupOf[groupOf[i]];
@@ -147,8 +145,8 @@ JointLoad jointLoad(const Joint& joint, float h) {
   return {force / h, torque / h};
 }
 
-void findBrokenJoints(const BodyStorage& storage, const std::vector<Joint>& joints, float h,
-                      std::vector<JointBreakEvent>& broken) {
+void findBrokenJoints(const BodyStorage& storage, const Array<Joint>& joints, float h,
+                      Array<JointBreakEvent>& broken) {
   for (std::uint32_t i = 0; i < joints.size(); ++i) {
     const Joint& joint = joints[i];
     if (!joint.active || (joint.breakForce == kUnbreakable && joint.breakTorque == kUnbreakable)) continue;

@@ -76,20 +76,19 @@ struct Joint {
 // The step's bodies as the joints see them: the solver bodies of moving bodies, the body storage
 // for the start-of-step poses and for static bodies.
 struct JointSolverView {
-  std::vector<SolverBody>& bodies;
-  const std::vector<SolverBodyInfo>& infos;
-  const std::vector<std::int32_t>& solverOf;
+  Array<SolverBody>& bodies;
+  const Array<SolverBodyInfo>& infos;
+  const Array<std::int32_t>& solverOf;
   const BodyStorage& storage;
 };
 
 // Once per step: which joints take part (at least one awake dynamic body).
-void prepareJoints(const JointSolverView& view, std::vector<Joint>& joints);
+void prepareJoints(const JointSolverView& view, Array<Joint>& joints);
 // Per substep, over the active joints: apply the accumulated impulses at the current pose.
-void warmStartJoints(const JointSolverView& view, std::vector<Joint>& joints);
+void warmStartJoints(const JointSolverView& view, Array<Joint>& joints);
 // Per substep: one pass; useBias = false is the relax pass (rigid rows without position bias).
 // rigidHertz: the stiffness of the rigid rows' position correction (twice the contact hertz).
-void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
-                 bool useBias);
+void solveJoints(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias);
 
 // Per substep, after the position update: the length a rigid distance joint lost or gained beyond
 // kJointLengthSlop is removed by moving its bodies (non-linear Gauss-Seidel on positions, Box2D
@@ -102,13 +101,12 @@ void solveJoints(const JointSolverView& view, std::vector<Joint>& joints, float 
 inline constexpr float kJointLengthSlop = 0.005f;   // of the joint's length
 inline constexpr float kBallJointGapSlop = 0.001f;  // m (or rad): the tree's projection slop
 inline constexpr int kJointProjectionPasses = 128;
-void projectJoints(const JointSolverView& view, std::vector<Joint>& joints);
+void projectJoints(const JointSolverView& view, Array<Joint>& joints);
 
 // The groups of dynamic bodies the step's active joints connect: groupOf[body] is the lowest body
 // index of its group, kNoJointGroup (continuous.h) for a body without such a joint. The continuous
 // pass stops a group together.
-void jointGroups(const BodyStorage& storage, const std::vector<Joint>& joints,
-                 std::vector<std::uint32_t>& groupOf);
+void jointGroups(const BodyStorage& storage, const Array<Joint>& joints, Array<std::uint32_t>& groupOf);
 
 // The force and torque a joint carried in the last substep (its accumulated impulses over h).
 struct JointLoad {
@@ -119,8 +117,8 @@ JointLoad jointLoad(const Joint& joint, float h);
 
 // After the solve: every active joint whose load exceeds its break force or torque, as events (in
 // joint order); the caller destroys them.
-void findBrokenJoints(const BodyStorage& storage, const std::vector<Joint>& joints, float h,
-                      std::vector<JointBreakEvent>& broken);
+void findBrokenJoints(const BodyStorage& storage, const Array<Joint>& joints, float h,
+                      Array<JointBreakEvent>& broken);
 
 // The free coordinate of a joint at the bodies' current poses: a hinge's angle, a slider's offset,
 // a cone joint's twist, a distance joint's length; 0 for a ball or fixed joint. Also the anchors'

@@ -1,5 +1,6 @@
 // The direct solve of joint trees (joint_tree.h).
 #include "dynamics/joint_tree.h"
+#include "base/assert.h"
 #include "memory/heap_bytes.h"
 
 #include <algorithm>
@@ -92,7 +93,7 @@ std::int32_t treeBody(const JointSolverView& view, std::uint32_t body) {
   return info.dynamic && !info.particle && !info.faulted ? j : -1;
 }
 
-std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t i) {
+std::int32_t findRoot(Array<std::int32_t>& parent, std::int32_t i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
     parent[static_cast<std::size_t>(i)] =
         parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
@@ -118,6 +119,7 @@ void jacobianRow(const JointRow& row, bool onB, double out[6]) {
 // "Symmetric quasi-definite matrices", 1995). False if a pivot falls below a relative tolerance:
 // rows that lost their rank.
 bool factorLdl(double* a, int n) {
+  COLLIDE_ASSERT(n >= 0 && n <= kMaxNodeSize);  // the scratch row below holds kMaxNodeSize
   double scale = 0.0;
   for (int i = 0; i < n; ++i) {
     for (int k = 0; k <= i; ++k) scale = std::max(scale, std::abs(a[i * n + k]));
@@ -158,7 +160,7 @@ void forwardSubstitute(const double* ldl, int n, double* x, int cols) {
 
 }  // namespace
 
-void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints) {
+void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   entries_.clear();
   nodes_.clear();
   treeStart_.clear();
@@ -212,7 +214,7 @@ void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints)
   for (std::size_t s = 0; s < bodyCount; ++s) adjacencyStart_[s + 1] += adjacencyStart_[s];
   adjacency_.assign(adjacencyStart_[bodyCount], 0);
   {
-    std::vector<std::uint32_t> fill(adjacencyStart_.begin(), adjacencyStart_.end() - 1);
+    Array<std::uint32_t> fill(adjacencyStart_.begin(), adjacencyStart_.end() - 1);
     for (std::uint32_t e = 0; e < entries_.size(); ++e) {
       const std::int32_t a = entries_[e].bodyA;
       const std::int32_t b = entries_[e].bodyB;
@@ -228,8 +230,8 @@ void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints)
   // joint's rows (a grid's link to the body beside a pin, along the line to the pin), and that
   // row's pivot is zero.
   bodyNode_.assign(bodyCount, -1);
-  std::vector<Node> order;
-  std::vector<std::int32_t> entryNode(entries_.size(), -1);
+  Array<Node> order;
+  Array<std::int32_t> entryNode(entries_.size(), -1);
   for (std::size_t candidate = 0; candidate < 2 * bodyCount; ++candidate) {
     const std::size_t root = candidate % bodyCount;
     const bool grounded = groundJoint_[root] >= 0;
@@ -322,7 +324,7 @@ void JointTree::prepare(const JointSolverView& view, std::vector<Joint>& joints)
 // impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
 // The biased pass comes at the warm start's pose (only velocities change in between), so it keeps
 // the warm start's frames and equality rows and takes its limits afresh.
-void JointTree::buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, RowPass pass) {
+void JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass) {
   EqualityRows candidates;
   for (Entry& entry : entries_) {
     Joint& joint = joints[entry.joint];
@@ -355,7 +357,7 @@ void JointTree::buildRows(const JointSolverView& view, std::vector<Joint>& joint
 
 // Drops the limit rows of a tree whose impulse would pull (the solve's total below 0): those
 // limits are not reached after all. False if none was.
-bool JointTree::dropPullingLimits(std::vector<Joint>& joints, std::size_t first, std::size_t last,
+bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::size_t last,
                                   const Softness& soft) {
   bool dropped = false;
   for (std::size_t n = first; n < last; ++n) {
@@ -393,7 +395,7 @@ bool JointTree::dropPullingLimits(std::vector<Joint>& joints, std::size_t first,
 // the bodies through it; the joints' internal impulses still cancel, so momentum is kept. The
 // projection uses the bodies' own inertia: through the stiffened one, its Newton steps after a
 // plank chain's hard landing moved the planks off their rows instead of onto them.
-void JointTree::addGeometricStiffness(const JointSolverView& view, std::vector<Joint>& joints, float h) {
+void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h) {
   for (const Node& node : nodes_) {
     if (node.body < 0) continue;
     const std::size_t body = static_cast<std::size_t>(node.body);
@@ -430,7 +432,7 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, std::vector<J
   }
 }
 
-void JointTree::warmStart(const JointSolverView& view, std::vector<Joint>& joints, float h) {
+void JointTree::warmStart(const JointSolverView& view, Array<Joint>& joints, float h) {
   if (entries_.empty()) return;
   buildRows(view, joints, h, RowPass::WarmStart);
   for (Entry& entry : entries_) {
@@ -442,7 +444,7 @@ void JointTree::warmStart(const JointSolverView& view, std::vector<Joint>& joint
   }
 }
 
-void JointTree::solve(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
+void JointTree::solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz,
                       bool useBias) {
   if (entries_.empty()) return;
   h_ = h;
@@ -475,7 +477,7 @@ void JointTree::solve(const JointSolverView& view, std::vector<Joint>& joints, f
   }
 }
 
-void JointTree::project(const JointSolverView& view, std::vector<Joint>& joints) {
+void JointTree::project(const JointSolverView& view, Array<Joint>& joints) {
   if (entries_.empty()) return;
   for (std::size_t t = 0; t + 1 < treeStart_.size(); ++t) {
     const std::size_t first = treeStart_[t];
@@ -496,7 +498,7 @@ void JointTree::project(const JointSolverView& view, std::vector<Joint>& joints)
 }
 
 // The rows of one tree at the current pose (the projection's: bodies with their own inertia).
-void JointTree::buildTreeRows(const JointSolverView& view, std::vector<Joint>& joints, std::size_t first,
+void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints, std::size_t first,
                               std::size_t last) {
   for (std::size_t n = first; n < last; ++n) {
     if (nodes_[n].joint < 0) continue;

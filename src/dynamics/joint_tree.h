@@ -39,23 +39,22 @@ inline constexpr int kMaxNodeSize = 6 + kMaxJointTreeRows;
 class JointTree {
  public:
   // Once per step, after prepareJoints: the forest of the active rigid joints and its order.
-  void prepare(const JointSolverView& view, std::vector<Joint>& joints);
+  void prepare(const JointSolverView& view, Array<Joint>& joints);
   // Per substep, after warmStartJoints (which leaves a tree joint's rigid rows out): the rows'
   // accumulated impulses applied, through the inertia the tree's bodies solve with.
-  void warmStart(const JointSolverView& view, std::vector<Joint>& joints, float h);
+  void warmStart(const JointSolverView& view, Array<Joint>& joints, float h);
   // One pass (useBias as in solveJoints): each tree's rows at the bodies' current pose, factored and
   // solved, the impulses applied. A tree whose factor fails (rows that lost their rank) hands its
   // joints to the Gauss-Seidel pass that follows (Joint::inTree false for that pass). The biased
   // pass must follow warmStart with no position update between: it reuses the warm start's rows.
-  void solve(const JointSolverView& view, std::vector<Joint>& joints, float h, float rigidHertz,
-             bool useBias);
+  void solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias);
 
   // After the position update: a tree whose rows are off by more than kBallJointGapSlop (m or rad)
   // is moved back onto them by Newton steps on positions through the same system, K lambda = -C
   // (post-stabilisation, Cline and Pai 2003), with the bodies' own inertia. Velocities are not
   // touched. A whipping chain opens its joints by the curvature of its links' paths, which no
   // velocity row sees.
-  void project(const JointSolverView& view, std::vector<Joint>& joints);
+  void project(const JointSolverView& view, Array<Joint>& joints);
 
   // Joints solved in trees this step (for tests and statistics).
   std::size_t jointCount() const { return entries_.size(); }
@@ -87,12 +86,10 @@ class JointTree {
   bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
                 bool positions);
   enum class RowPass { WarmStart, SolveAtWarmStartPose, Solve };
-  void buildRows(const JointSolverView& view, std::vector<Joint>& joints, float h, RowPass pass);
-  bool dropPullingLimits(std::vector<Joint>& joints, std::size_t first, std::size_t last,
-                         const Softness& soft);
-  void addGeometricStiffness(const JointSolverView& view, std::vector<Joint>& joints, float h);
-  void buildTreeRows(const JointSolverView& view, std::vector<Joint>& joints, std::size_t first,
-                     std::size_t last);
+  void buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass);
+  bool dropPullingLimits(Array<Joint>& joints, std::size_t first, std::size_t last, const Softness& soft);
+  void addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h);
+  void buildTreeRows(const JointSolverView& view, Array<Joint>& joints, std::size_t first, std::size_t last);
   bool factorTree(std::size_t first, std::size_t last);
   void solveTree(std::size_t first, std::size_t last);
   // f(entry, row, lambda) for every row of the tree's joints, lambda from the last solveTree.
@@ -109,22 +106,22 @@ class JointTree {
   }
 
   float h_ = 0.0f;  // the substep of the last solve pass
-  std::vector<Entry> entries_;
-  std::vector<Node> nodes_;               // per tree, in elimination order (leaves first, root last)
-  std::vector<std::uint32_t> treeStart_;  // tree t's nodes: [treeStart_[t], treeStart_[t + 1])
-  std::vector<double> matrices_;
-  std::vector<double> rhs_;
-  std::vector<double> solution_;
+  Array<Entry> entries_;
+  Array<Node> nodes_;               // per tree, in elimination order (leaves first, root last)
+  Array<std::uint32_t> treeStart_;  // tree t's nodes: [treeStart_[t], treeStart_[t + 1])
+  Array<double> matrices_;
+  Array<double> rhs_;
+  Array<double> solution_;
   // prepare's scratch
-  std::vector<std::int32_t> parentOf_;
-  std::vector<std::int32_t> groundJoint_;
-  std::vector<std::uint8_t> grounded_;  // per union-find root: the tree hangs from the ground
-  std::vector<std::uint32_t> adjacencyStart_;
-  std::vector<std::uint32_t> adjacency_;
-  std::vector<std::int32_t> bodyNode_;
+  Array<std::int32_t> parentOf_;
+  Array<std::int32_t> groundJoint_;
+  Array<std::uint8_t> grounded_;  // per union-find root: the tree hangs from the ground
+  Array<std::uint32_t> adjacencyStart_;
+  Array<std::uint32_t> adjacency_;
+  Array<std::int32_t> bodyNode_;
   // Per solver body of a tree: the inertia its loads add this pass, and its inverse inertia with it.
-  std::vector<Mat3> addedInertia_;
-  std::vector<Mat3> effectiveInverseInertia_;
+  Array<Mat3> addedInertia_;
+  Array<Mat3> effectiveInverseInertia_;
 };
 
 }  // namespace collide::detail

@@ -82,7 +82,7 @@ void StepSolver::guard(std::uint32_t begin, std::uint32_t end) {
   }
 }
 
-void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults, TaskRunner& tasks) {
+void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks) {
   tasks.parallelFor(static_cast<std::uint32_t>(bodies_.size()), kBodiesPerRange,
                     [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
                       for (std::size_t j = begin; j < end; ++j) {
@@ -109,9 +109,8 @@ void StepSolver::writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults
   }
 }
 
-void StepSolver::solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<Joint>& joints,
-                       const StepSettings& settings, float dt, std::vector<FaultEvent>& faults,
-                       TaskRunner& tasks) {
+void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joint>& joints,
+                       const StepSettings& settings, float dt, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const float h = dt / static_cast<float>(settings.substeps);
   gatherBodies(storage, settings.gravity);
   faultFields_.assign(bodies_.size(), 0);

@@ -42,11 +42,11 @@ inline constexpr std::uint32_t kBodiesPerRange = 1024;
 
 class StepSolver {
  public:
-  void solve(BodyStorage& storage, std::vector<Contact>& contacts, std::vector<Joint>& joints,
-             const StepSettings& settings, float dt, std::vector<FaultEvent>& faults, TaskRunner& tasks);
+  void solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joint>& joints,
+             const StepSettings& settings, float dt, Array<FaultEvent>& faults, TaskRunner& tasks);
 
   // The contacts the last solve took, in solve order (the response models and revert walk them).
-  const std::vector<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
+  const Array<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
 
   // World::memoryUse: the solver bodies, contact batches and projection; the joint trees apart.
   std::size_t memoryBytes() const;
@@ -54,15 +54,15 @@ class StepSolver {
 
  private:
   void gatherBodies(BodyStorage& storage, const Vec3& gravity);
-  void writeBack(BodyStorage& storage, std::vector<FaultEvent>& faults, TaskRunner& tasks);
+  void writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks);
   // Over every solver body, in parallel ranges; and over bodies [begin, end) (each body's own state).
   void guard(TaskRunner& tasks);
   void guard(std::uint32_t begin, std::uint32_t end);
 
-  std::vector<SolverBody> bodies_;
-  std::vector<SolverBodyInfo> infos_;
-  std::vector<std::int32_t> solverOf_;  // body index -> solver body, kNoSolverBody if none
-  std::vector<std::uint8_t> faultFields_;
+  Array<SolverBody> bodies_;
+  Array<SolverBodyInfo> infos_;
+  Array<std::int32_t> solverOf_;  // body index -> solver body, kNoSolverBody if none
+  Array<std::uint8_t> faultFields_;
   ContactSolver contacts_;
   ContactProjection projection_;
   JointTree jointTree_;

@@ -23,7 +23,7 @@ Vec3 manifoldCentre(const Manifold& m) {
 
 // A body's velocity along the contact's normal at `point`.
 float speedAlongNormal(const Contact& c, const Vec3& point, std::uint32_t body, std::int32_t solverBody,
-                       const std::vector<SolverBody>& bodies, const BodyStorage& storage) {
+                       const Array<SolverBody>& bodies, const BodyStorage& storage) {
   const SolverBody& b = bodies[solverBody];
   const Vec3 velocity =
       b.linearVelocity + glm::cross(b.angularVelocity, point - storage.states[body].centerOfMass);
@@ -33,9 +33,9 @@ float speedAlongNormal(const Contact& c, const Vec3& point, std::uint32_t body, 
 }  // namespace
 
 void SupportMasses::compute(std::span<const Contact> contacts, std::span<const std::uint32_t> solvedContacts,
-                            const std::vector<std::int32_t>& solverOf,
-                            const std::vector<SolverBodyInfo>& infos, const std::vector<SolverBody>& bodies,
-                            const BodyStorage& storage, const Vec3& gravity, float restingSpeed) {
+                            const Array<std::int32_t>& solverOf, const Array<SolverBodyInfo>& infos,
+                            const Array<SolverBody>& bodies, const BodyStorage& storage, const Vec3& gravity,
+                            float restingSpeed) {
   scaleA_.clear();
   scaleB_.clear();
   supports_.clear();
@@ -52,8 +52,8 @@ void SupportMasses::compute(std::span<const Contact> contacts, std::span<const s
 // The supporting contacts; true when one has a heavier body on a lighter one (else nothing to do).
 bool SupportMasses::findSupports(std::span<const Contact> contacts,
                                  std::span<const std::uint32_t> solvedContacts,
-                                 const std::vector<std::int32_t>& solverOf,
-                                 const std::vector<SolverBodyInfo>& infos, const Vec3& up) {
+                                 const Array<std::int32_t>& solverOf, const Array<SolverBodyInfo>& infos,
+                                 const Vec3& up) {
   const auto isDynamic = [&](std::int32_t s) {
     return s != kNoSolverBody && infos[s].dynamic && infos[s].inverseMass > 0.0f;
   };
@@ -115,7 +115,7 @@ void SupportMasses::orderCarryingSupports(std::size_t bodyCount) {
   int maxLevel = 0;
   for (const std::uint32_t body : queue_) maxLevel = std::max(maxLevel, level_[body]);
   supporters_.assign(bodyCount, 0);
-  std::vector<std::uint32_t>& start = edgeStart_;  // the CSR is no longer needed
+  Array<std::uint32_t>& start = edgeStart_;  // the CSR is no longer needed
   start.assign(static_cast<std::size_t>(maxLevel) + 2, 0);
   for (const Support& s : supports_) {
     if (!carries(s)) continue;
@@ -131,7 +131,7 @@ void SupportMasses::orderCarryingSupports(std::size_t bodyCount) {
 
 // Carried mass, from the top down: a body's support mass is its own plus an equal share of the
 // support mass of each body resting on it. Uppers come before the bodies under them.
-void SupportMasses::carryMasses(const std::vector<SolverBodyInfo>& infos) {
+void SupportMasses::carryMasses(const Array<SolverBodyInfo>& infos) {
   supportMass_.assign(infos.size(), 0.0f);
   for (const std::uint32_t body : queue_) supportMass_[body] = 1.0f / infos[body].inverseMass;
   for (const std::uint32_t i : byLevel_) {
@@ -147,7 +147,7 @@ std::int32_t SupportMasses::stackRoot(std::int32_t body) {
 }
 
 // The stacks (bodies joined by carrying supports) that hold a heavier body on a lighter one.
-void SupportMasses::markHeavyOnLightStacks(const std::vector<SolverBodyInfo>& infos) {
+void SupportMasses::markHeavyOnLightStacks(const Array<SolverBodyInfo>& infos) {
   const std::size_t bodyCount = infos.size();
   stackOf_.resize(bodyCount);
   for (std::size_t b = 0; b < bodyCount; ++b) stackOf_[b] = static_cast<std::int32_t>(b);
@@ -172,9 +172,8 @@ void SupportMasses::markHeavyOnLightStacks(const std::vector<SolverBodyInfo>& in
 // Scaled, a falling body would hit as a lighter one and a rising one would lift its load without
 // slowing, and either gains energy; at rest the scaling moves only what gravity added this step.
 void SupportMasses::scaleRestingContacts(std::span<const Contact> contacts,
-                                         const std::vector<SolverBodyInfo>& infos,
-                                         const std::vector<SolverBody>& bodies, const BodyStorage& storage,
-                                         float restingSpeed) {
+                                         const Array<SolverBodyInfo>& infos, const Array<SolverBody>& bodies,
+                                         const BodyStorage& storage, float restingSpeed) {
   scaleA_.assign(contacts.size(), 1.0f);
   scaleB_.assign(contacts.size(), 1.0f);
   const auto scaleOf = [&](std::int32_t body) {

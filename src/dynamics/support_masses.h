@@ -37,8 +37,8 @@ class SupportMasses {
   // The scales for the step's solved contacts. None without gravity or where no body rests on a
   // lighter one (the common case costs one scan of the solved contacts).
   void compute(std::span<const Contact> contacts, std::span<const std::uint32_t> solvedContacts,
-               const std::vector<std::int32_t>& solverOf, const std::vector<SolverBodyInfo>& infos,
-               const std::vector<SolverBody>& bodies, const BodyStorage& storage, const Vec3& gravity,
+               const Array<std::int32_t>& solverOf, const Array<SolverBodyInfo>& infos,
+               const Array<SolverBody>& bodies, const BodyStorage& storage, const Vec3& gravity,
                float restingSpeed);
 
   std::size_t memoryBytes() const;  // World::memoryUse
@@ -61,25 +61,23 @@ class SupportMasses {
   };
   // The stages of compute, in order.
   bool findSupports(std::span<const Contact> contacts, std::span<const std::uint32_t> solvedContacts,
-                    const std::vector<std::int32_t>& solverOf, const std::vector<SolverBodyInfo>& infos,
-                    const Vec3& up);
+                    const Array<std::int32_t>& solverOf, const Array<SolverBodyInfo>& infos, const Vec3& up);
   void assignLevels(std::size_t bodyCount);
   void orderCarryingSupports(std::size_t bodyCount);
-  void carryMasses(const std::vector<SolverBodyInfo>& infos);
-  void markHeavyOnLightStacks(const std::vector<SolverBodyInfo>& infos);
-  void scaleRestingContacts(std::span<const Contact> contacts, const std::vector<SolverBodyInfo>& infos,
-                            const std::vector<SolverBody>& bodies, const BodyStorage& storage,
-                            float restingSpeed);
+  void carryMasses(const Array<SolverBodyInfo>& infos);
+  void markHeavyOnLightStacks(const Array<SolverBodyInfo>& infos);
+  void scaleRestingContacts(std::span<const Contact> contacts, const Array<SolverBodyInfo>& infos,
+                            const Array<SolverBody>& bodies, const BodyStorage& storage, float restingSpeed);
   std::int32_t stackRoot(std::int32_t body);  // union-find with path halving
 
-  std::vector<float> scaleA_, scaleB_;  // by contact index; empty when nothing is scaled
+  Array<float> scaleA_, scaleB_;  // by contact index; empty when nothing is scaled
   // Scratch, kept between steps for its capacity.
-  std::vector<Support> supports_;
-  std::vector<std::int32_t> level_;
-  std::vector<float> supportMass_;
-  std::vector<std::int32_t> stackOf_;       // union-find over the carrying supports
-  std::vector<std::uint8_t> heavyOnLight_;  // by stack root
-  std::vector<std::uint32_t> supporters_, edgeStart_, edges_, queue_, byLevel_;
+  Array<Support> supports_;
+  Array<std::int32_t> level_;
+  Array<float> supportMass_;
+  Array<std::int32_t> stackOf_;       // union-find over the carrying supports
+  Array<std::uint8_t> heavyOnLight_;  // by stack root
+  Array<std::uint32_t> supporters_, edgeStart_, edges_, queue_, byLevel_;
 };
 
 }  // namespace collide::detail

@@ -17,8 +17,8 @@ void blockCoordinatesInto(std::span<const Vec3> points, float* out) {
   }
 }
 
-std::vector<float> blockCoordinates(std::span<const Vec3> points) {
-  std::vector<float> blocked(points.empty() ? 0 : 3 * blockedLanes(points.size()));
+Array<float> blockCoordinates(std::span<const Vec3> points) {
+  Array<float> blocked(points.empty() ? 0 : 3 * blockedLanes(points.size()));
   blockCoordinatesInto(points, blocked.data());
   return blocked;
 }

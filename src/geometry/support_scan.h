@@ -25,7 +25,7 @@ constexpr std::uint32_t blockedLanes(std::size_t count) {
 
 // The points' coordinates blocked for the scan: blockedLanes(n) floats of x, then of y, then of z;
 // the padding repeats point 0, which can never win over it.
-std::vector<float> blockCoordinates(std::span<const Vec3> points);
+Array<float> blockCoordinates(std::span<const Vec3> points);
 // The same into `out` (3 * blockedLanes(n) floats), for callers that keep their own storage.
 void blockCoordinatesInto(std::span<const Vec3> points, float* out);
 

@@ -19,7 +19,7 @@ bool collideChildrenAny(std::span<const Compound::Child> children, const Transfo
                         const Shape& other, const Transform& otherTransform, float margin, Manifold& out) {
   const bool otherIsPlane = other.type() == ShapeType::Plane;
   const Aabb otherBounds = otherIsPlane ? Aabb{} : worldBounds(other, otherTransform).expanded(margin);
-  std::vector<NormalContact> contacts;
+  Array<NormalContact> contacts;
   for (std::size_t i = 0; i < children.size(); ++i) {
     const Compound::Child& child = children[i];
     const Transform placed = compoundTransform * child.transform;

@@ -140,7 +140,7 @@ bool mergeContacts(std::span<const NormalContact> contacts, float margin, Manifo
   // cos 25°: contacts of nearly coplanar triangles or of children resting on the same surface.
   constexpr float kSameDirection = 0.906f;
   ContactPoint kept[64];
-  std::vector<ContactPoint> overflow;
+  Array<ContactPoint> overflow;
   std::size_t count = 0;
   for (const NormalContact& contact : contacts) {
     if (glm::dot(contact.normal, normal) < kSameDirection) continue;

@@ -90,7 +90,7 @@ namespace {
 
 // The triangles' contacts with a convex shape by the routine for its kind.
 void collideTriangles(std::span<const SatTriangle> triangles, const Shape& convex, const Transform& transform,
-                      float margin, std::vector<NormalContact>& contacts) {
+                      float margin, Array<NormalContact>& contacts) {
   if (isPolyhedron(convex)) {
     collideTrianglesPolyhedron(triangles, convex, transform, margin, contacts);
   } else if (isRoundedForTriangles(convex)) {
@@ -106,7 +106,7 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
                             const Transform& trianglesTransform, const Shape& convex,
                             const Transform& convexTransform, float margin, Manifold& out) {
   // Loose triangles: no adjacency, every edge active.
-  std::vector<SatTriangle> placed(triangles.size());
+  Array<SatTriangle> placed(triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     for (int k = 0; k < 3; ++k) placed[i].vertices[k] = trianglesTransform.applyToPoint(triangles[i][k]);
     placed[i].faceFeature = static_cast<std::uint16_t>(kMeshFace | (i & kMeshIndex));
@@ -116,7 +116,7 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
     }
   }
   std::erase_if(placed, [](const SatTriangle& t) { return !hasFinitePlane(t); });
-  std::vector<NormalContact> contacts;
+  Array<NormalContact> contacts;
   collideTriangles(placed, convex, convexTransform, margin, contacts);
   return mergeContacts(contacts, margin, out);
 }
@@ -124,7 +124,7 @@ bool collideTrianglesConvex(std::span<const std::array<Vec3, 3>> triangles,
 bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
                        const Transform& transformB, float margin, Manifold& out) {
   const TriangleMesh& mesh = shapeA.mesh();
-  thread_local std::vector<SatTriangle> triangles;
+  thread_local Array<SatTriangle> triangles;
   triangles.clear();
   // Two valid poses can still be farther apart than float holds in the mesh's frame (a body at
   // 3e38 m, a small mesh near the origin): no triangle reaches that far.
@@ -136,7 +136,7 @@ bool collideMeshConvex(const Shape& shapeA, const Transform& transformA, const S
     if (hasFinitePlane(triangle)) triangles.push_back(triangle);
   });
   // Per-thread, like the triangles: no allocation once warm (the step calls this per pair).
-  thread_local std::vector<NormalContact> contacts;
+  thread_local Array<NormalContact> contacts;
   contacts.clear();
   collideTriangles(triangles, shapeB, transformB, margin, contacts);
   return mergeContacts(contacts, margin, out);
@@ -151,7 +151,7 @@ bool collideMeshMesh(const Shape& shapeA, const Transform& transformA, const Sha
   const Transform aInB = transformB.inverse() * transformA;
   if (!isValid(bInA) || !isValid(aInB)) return mergeContacts({}, margin, out);  // beyond float range apart
   const Aabb boundsB = transformAabb(meshB.bounds(), bInA).expanded(margin / transformA.scale);
-  std::vector<NormalContact> contacts;
+  Array<NormalContact> contacts;
   meshA.forEachTriangleOverlapping(boundsB, [&](std::uint32_t indexA) {
     const std::array<Vec3, 3> triangleA = meshA.triangle(indexA);
     const ConvexSupport supportA = makePointsSupport(triangleA.data(), 3, transformA);

@@ -98,22 +98,21 @@ struct SatTriangle {
 // the triangle as a flat polyhedron (faces ±n, three edges), face clipping, and the replacement
 // of normals on inactive edges by the face's contact. Appends to `contacts` (merge them after).
 void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& polyhedron,
-                                const Transform& transform, float margin,
-                                std::vector<NormalContact>& contacts);
+                                const Transform& transform, float margin, Array<NormalContact>& contacts);
 
 // Contacts of each triangle (A) with a sphere or capsule (B), normal from the triangle: closest
 // points of the core and the triangle, a capsule's clipped segment on a face, and the mesh's
 // internal edges replaced by face contacts (triangle_rounded.cpp). Appends to `contacts`.
 bool isRoundedForTriangles(const Shape& shape);
 void collideTrianglesRounded(std::span<const SatTriangle> triangles, const Shape& shape,
-                             const Transform& transform, float margin, std::vector<NormalContact>& contacts);
+                             const Transform& transform, float margin, Array<NormalContact>& contacts);
 
 // Contacts of each triangle (A) with any other convex shape (B; the table sends ellipsoids and
 // cylinders), normal from the triangle: GJK/EPA for the best axis, the face preferred, a face
 // contact from the shape's lowest features (a cylinder's rim points) clipped to the triangle, and
 // internal edges replaced by face contacts (triangle_generic.cpp). Appends to `contacts`.
 void collideTrianglesGeneric(std::span<const SatTriangle> triangles, const Shape& shape,
-                             const Transform& transform, float margin, std::vector<NormalContact>& contacts);
+                             const Transform& transform, float margin, Array<NormalContact>& contacts);
 
 bool collidePlaneSphere(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 bool collidePlaneCapsule(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);

@@ -111,7 +111,7 @@ bool collidePlanePolytope(const Shape& shapeA, const Transform& transformA, cons
     out.count = 0;
     return false;
   }
-  std::vector<ContactPoint> candidates(hull.vertices().size());
+  Array<ContactPoint> candidates(hull.vertices().size());
   int count = 0;
   for (std::size_t i = 0; i < hull.vertices().size(); ++i) {
     addIfBelow(plane, transformB.applyToPoint(hull.vertices()[i]), margin, static_cast<std::uint32_t>(i),
@@ -170,11 +170,11 @@ bool collidePlaneMesh(const Shape& shapeA, const Transform& transformA, const Sh
   // candidates come in the same order whatever order the triangles are listed in.
   const Plane plane = worldPlane(shapeA.plane(), transformA);
   const TriangleMesh& mesh = shapeB.mesh();
-  std::vector<std::uint8_t> onSurface(mesh.vertices().size(), 0);
+  Array<std::uint8_t> onSurface(mesh.vertices().size(), 0);
   for (const MeshTriangle& triangle : mesh.triangles()) {
     for (const std::uint32_t v : triangle.v) onSurface[v] = 1;
   }
-  std::vector<ContactPoint> candidates(mesh.vertices().size());
+  Array<ContactPoint> candidates(mesh.vertices().size());
   int count = 0;
   for (std::size_t i = 0; i < mesh.vertices().size(); ++i) {
     if (!onSurface[i]) continue;

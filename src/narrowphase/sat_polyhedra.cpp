@@ -142,14 +142,14 @@ std::uint32_t firstLargest(const float* __restrict values, std::size_t count, st
 
 // Per-thread scratch for the world vertices and planes of both shapes: no allocation once warm.
 struct Scratch {
-  std::vector<Vec3> vertices[2];
-  std::vector<Plane> planes[2];
-  std::vector<float> normalBlocks[2];
-  std::vector<float> lowest;             // per face: the face query's bound, the triangle test's separation
-  std::vector<float> arcSides;           // the triangle test's face normals dotted with each triangle edge
-  std::vector<WorldEdge> edgesB;         // the edges of B that the edge query keeps
-  std::vector<float> keptEdgeBlocks;     // their face and arc normals as blocks (queryEdges)
-  std::vector<std::uint32_t> behind[2];  // per face: which of the other shape's points lie behind it
+  Array<Vec3> vertices[2];
+  Array<Plane> planes[2];
+  Array<float> normalBlocks[2];
+  Array<float> lowest;             // per face: the face query's bound, the triangle test's separation
+  Array<float> arcSides;           // the triangle test's face normals dotted with each triangle edge
+  Array<WorldEdge> edgesB;         // the edges of B that the edge query keeps
+  Array<float> keptEdgeBlocks;     // their face and arc normals as blocks (queryEdges)
+  Array<std::uint32_t> behind[2];  // per face: which of the other shape's points lie behind it
 };
 
 // The placed polyhedra of this thread, by hull and pose: within a step each body keeps its pose, so
@@ -163,9 +163,9 @@ struct PlacementCache {
     std::uint64_t serial = 0;  // with the address: a hull freed and another built in its place differ here
     Vec3 scale{0.0f};
     Transform transform;
-    std::vector<Vec3> vertices;
-    std::vector<Plane> planes;
-    std::vector<float> normalBlocks;
+    Array<Vec3> vertices;
+    Array<Plane> planes;
+    Array<float> normalBlocks;
     WorldPolyhedron poly;
   };
   std::array<Entry, kEntries> entries;
@@ -183,8 +183,7 @@ std::size_t placementHash(const ConvexHull& hull, const Transform& transform) {
 }
 
 void placeInto(const ConvexHull& hull, const Transform& transform, const Vec3& localScale,
-               std::vector<Vec3>& vertices, std::vector<Plane>& planes, std::vector<float>& blocks,
-               WorldPolyhedron& poly) {
+               Array<Vec3>& vertices, Array<Plane>& planes, Array<float>& blocks, WorldPolyhedron& poly) {
   const Mat3 rotation = glm::mat3_cast(transform.rotation);
   vertices.resize(hull.vertices().size());
   planes.resize(hull.faces().size());
@@ -300,7 +299,7 @@ float faceSeparation(const WorldPolyhedron& a, std::uint32_t f, const WorldPolyh
 FaceQuery queryFaces(const WorldPolyhedron& a, const WorldPolyhedron& b, Scratch& scratch) {
   const std::size_t stride = a.blockStride;
   const std::size_t faces = a.planes.size();
-  std::vector<float>& bounds = scratch.lowest;
+  Array<float>& bounds = scratch.lowest;
   bounds.resize(stride);
   const float* __restrict xs = a.normalBlocks.data();
   const float* __restrict ys = xs + stride;
@@ -353,7 +352,7 @@ struct EdgeQuery {
 // tolerance, 1e-6 of its size, well inside the callers' rounding allowance); an edge whose two
 // faces share a bit cannot matter.
 void facesBehind(const WorldPolyhedron& poly, std::span<const Vec3> others, float threshold,
-                 std::vector<std::uint32_t>& mask) {
+                 Array<std::uint32_t>& mask) {
   const std::size_t stride = poly.blockStride;
   mask.assign(stride, 0);
   const float* __restrict xs = poly.normalBlocks.data();
@@ -379,8 +378,7 @@ Vec3 farthestVertex(const WorldPolyhedron& poly, const Vec3& direction) {
 
 // The edges of B whose faces facesBehind does not rule out: made once per query, so that the loop
 // over A's edges reads them without following B's topology.
-void keepEdges(const WorldPolyhedron& b, const std::vector<std::uint32_t>& behindB,
-               std::vector<WorldEdge>& kept) {
+void keepEdges(const WorldPolyhedron& b, const Array<std::uint32_t>& behindB, Array<WorldEdge>& kept) {
   kept.clear();
   for (const ConvexHull::Edge& edge : b.hull->edges()) {
     if (behindB[edge.face1] & behindB[edge.face2]) continue;
@@ -402,8 +400,7 @@ void keepEdges(const WorldPolyhedron& b, const std::vector<std::uint32_t>& behin
 // against a block of B's edges at a time, without a branch per pair (the pairs that pass are few,
 // and which ones is unpredictable); those that pass go on one by one, in the order of B's edges, so
 // the answer is the one the pair-by-pair loop gives. Returns the stride.
-std::size_t blockKeptEdges(const WorldPolyhedron& b, const std::vector<WorldEdge>& kept,
-                           std::vector<float>& blocks) {
+std::size_t blockKeptEdges(const WorldPolyhedron& b, const Array<WorldEdge>& kept, Array<float>& blocks) {
   const std::size_t keptCount = kept.size();
   const std::size_t stride = blockedLanes(keptCount);
   blocks.assign(9 * stride, 0.0f);
@@ -444,14 +441,14 @@ EdgeQuery queryEdges(const WorldPolyhedron& a, const WorldPolyhedron& b, float s
   // towards the other along the reference normal (near the contact, where the relevant edges are).
   const Vec3 pointsOfA[2] = {a.inside, farthestVertex(a, towardB)};
   const Vec3 pointsOfB[2] = {b.inside, farthestVertex(b, -towardB)};
-  std::vector<std::uint32_t>& behindA = scratch.behind[0];
-  std::vector<std::uint32_t>& behindB = scratch.behind[1];
+  Array<std::uint32_t>& behindA = scratch.behind[0];
+  Array<std::uint32_t>& behindB = scratch.behind[1];
   facesBehind(a, pointsOfB, threshold, behindA);
   facesBehind(b, pointsOfA, threshold, behindB);
-  std::vector<WorldEdge>& kept = scratch.edgesB;
+  Array<WorldEdge>& kept = scratch.edgesB;
   keepEdges(b, behindB, kept);
   if (kept.empty()) return best;
-  std::vector<float>& blocks = scratch.keptEdgeBlocks;
+  Array<float>& blocks = scratch.keptEdgeBlocks;
   const std::size_t stride = blockKeptEdges(b, kept, blocks);
   const FloatW zero = zeroW();
   for (const ConvexHull::Edge& edge : a.hull->edges()) {
@@ -709,7 +706,7 @@ namespace {
 // Face contact on the triangle's face, seen from `side` (+1: the polyhedron above the front):
 // the polyhedron's incident face clipped against the triangle's three side planes.
 void triangleFaceContact(const TriangleFrame& t, const SatTriangle& triangle, float side,
-                         const WorldPolyhedron& poly, float margin, std::vector<NormalContact>& contacts) {
+                         const WorldPolyhedron& poly, float margin, Array<NormalContact>& contacts) {
   const Vec3 normal = side * t.normal;  // from the triangle to the polyhedron
   const float offset = glm::dot(normal, t.v[0]);
   const std::uint32_t incFace = incidentFace(poly, normal);
@@ -740,7 +737,7 @@ void triangleFaceContact(const TriangleFrame& t, const SatTriangle& triangle, fl
 
 // Face contact on a face of the polyhedron: the triangle clipped against its side planes.
 void polyhedronFaceContact(const TriangleFrame& t, const SatTriangle& triangle, const WorldPolyhedron& poly,
-                           std::uint32_t refFace, float margin, std::vector<NormalContact>& contacts) {
+                           std::uint32_t refFace, float margin, Array<NormalContact>& contacts) {
   const Plane& refPlane = poly.planes[refFace];
   constexpr std::size_t kMaxClip = 64;
   std::array<ClipVertex, kMaxClip> bufferA, bufferB;
@@ -817,7 +814,7 @@ FaceQuery deepestFaceOverTriangle(const WorldPolyhedron& poly, const TriangleFra
   const float* __restrict ys = xs + stride;
   const float* __restrict zs = ys + stride;
   const float* __restrict ds = zs + stride;
-  std::vector<float>& lowestOnFace = scratch.lowest;
+  Array<float>& lowestOnFace = scratch.lowest;
   lowestOnFace.resize(stride);
   float* __restrict low = lowestOnFace.data();
   const Vec3 v0 = t.v[0], v1 = t.v[1], v2 = t.v[2];
@@ -852,9 +849,9 @@ TriangleEdgeQuery queryTriangleEdges(const TriangleFrame& t, const WorldPolyhedr
   const float* __restrict ys = xs + stride;
   const float* __restrict zs = ys + stride;
   const Vec3 trianglePoints[4] = {(t.v[0] + t.v[1] + t.v[2]) / 3.0f, t.v[0], t.v[1], t.v[2]};
-  std::vector<std::uint32_t>& behind = scratch.behind[0];
+  Array<std::uint32_t>& behind = scratch.behind[0];
   facesBehind(poly, trianglePoints, edgeMatters, behind);
-  std::vector<float>& along = scratch.arcSides;
+  Array<float>& along = scratch.arcSides;
   along.resize(3 * stride);
   for (int k = 0; k < 3; ++k) {
     const Vec3 e = t.edge[k];
@@ -896,7 +893,7 @@ TriangleEdgeQuery queryTriangleEdges(const TriangleFrame& t, const WorldPolyhedr
 // 4. Edge contact: the closest points of the two edges. False when they lie beyond the margin, and
 // a face contact answers instead.
 bool triangleEdgeContact(const TriangleFrame& t, const SatTriangle& triangle, const WorldPolyhedron& poly,
-                         const TriangleEdgeQuery& edge, float margin, std::vector<NormalContact>& contacts) {
+                         const TriangleEdgeQuery& edge, float margin, Array<NormalContact>& contacts) {
   const auto edges = poly.hull->halfEdges();
   const SegmentPair closest =
       closestPointsSegmentSegment(t.v[edge.edgeT], t.v[(edge.edgeT + 1) % 3],
@@ -915,8 +912,7 @@ bool triangleEdgeContact(const TriangleFrame& t, const SatTriangle& triangle, co
 }  // namespace
 
 void collideTrianglesPolyhedron(std::span<const SatTriangle> triangles, const Shape& shape,
-                                const Transform& transform, float margin,
-                                std::vector<NormalContact>& contacts) {
+                                const Transform& transform, float margin, Array<NormalContact>& contacts) {
   thread_local Scratch scratch;
   const WorldPolyhedron poly = place(shape, transform, 0, scratch);
   for (const SatTriangle& triangle : triangles) {

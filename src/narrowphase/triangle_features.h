@@ -85,7 +85,7 @@ inline bool insideFlatPatch(const SatTriangle& triangle, std::uint32_t bits) {
 // inside a flat patch (its neighbours' points span the region without it).
 inline void appendClippedFaceContacts(std::span<const ClipVertex> points, const SatTriangle& triangle,
                                       const Vec3& normal, float offset, float margin,
-                                      std::vector<NormalContact>& contacts) {
+                                      Array<NormalContact>& contacts) {
   for (const ClipVertex& clipped : points) {
     const Vec3 p = clipped.position;
     const float separation = glm::dot(normal, p) - offset;

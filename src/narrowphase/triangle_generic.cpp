@@ -72,7 +72,7 @@ std::size_t faceFeatures(const Shape& shape, const Transform& transform, const V
 // The face contact of the triangle seen from `side`: the shape's lowest features clipped to the
 // triangle's prism, the points within the margin, except those on flat edges and at flat vertices.
 void faceContact(const TriangleFrame& t, const SatTriangle& triangle, float side, const Shape& shape,
-                 const Transform& transform, float margin, std::vector<NormalContact>& contacts) {
+                 const Transform& transform, float margin, Array<NormalContact>& contacts) {
   const Vec3 normal = side * t.normal;  // from the triangle to the shape
   const float offset = glm::dot(normal, t.v[0]);
   std::array<ClipVertex, 4> features;
@@ -144,7 +144,7 @@ float shapeSize(const Shape& shape, const Transform& transform) {
 }  // namespace
 
 void collideTrianglesGeneric(std::span<const SatTriangle> triangles, const Shape& shape,
-                             const Transform& transform, float margin, std::vector<NormalContact>& contacts) {
+                             const Transform& transform, float margin, Array<NormalContact>& contacts) {
   const ConvexSupport support = makeConvexSupport(shape, transform);
   const float size = shapeSize(shape, transform);
   for (const SatTriangle& triangle : triangles) {

@@ -139,7 +139,7 @@ NormalContact closestPointContact(const Vec3& onTriangle, const Vec3& onCore, fl
 // side would otherwise be cut far from it.
 void faceContact(const SatTriangle& triangle, const TrianglePlane& t, float side, const Vec3& p0,
                  const Vec3& p1, float radius, float margin, bool isCapsule, float closestS,
-                 std::vector<NormalContact>& contacts) {
+                 Array<NormalContact>& contacts) {
   const Vec3 normal = side * t.normal;
   const Vec3 direction = p1 - p0;
   float t0 = 0.0f, t1 = 1.0f;
@@ -194,7 +194,7 @@ void faceContact(const SatTriangle& triangle, const TrianglePlane& t, float side
 
 // Deep overlap (the core touches or pierces the triangle): GJK/EPA on the triangle and the shape.
 void generalContact(const SatTriangle& triangle, const ConvexSupport& shape, float margin,
-                    std::uint32_t featureId, std::vector<NormalContact>& contacts) {
+                    std::uint32_t featureId, Array<NormalContact>& contacts) {
   const ConvexSupport support = makePointsSupport(triangle.vertices.data(), 3, Transform::identity());
   DistanceResult distance;
   if (!convexSignedDistance(support, shape, margin, distance)) return;
@@ -208,7 +208,7 @@ void generalContact(const SatTriangle& triangle, const ConvexSupport& shape, flo
 }
 
 void sphereTriangle(const SatTriangle& triangle, const Vec3& center, float radius, const ConvexSupport& shape,
-                    float margin, std::vector<NormalContact>& contacts) {
+                    float margin, Array<NormalContact>& contacts) {
   const auto& v = triangle.vertices;
   const TriangleClosestPoint closest = closestPointOnTriangle(center, v[0], v[1], v[2]);
   const Vec3 offset = center - closest.point;
@@ -239,7 +239,7 @@ void sphereTriangle(const SatTriangle& triangle, const Vec3& center, float radiu
 }
 
 void capsuleTriangle(const SatTriangle& triangle, const Vec3& p0, const Vec3& p1, float radius,
-                     const ConvexSupport& shape, float margin, std::vector<NormalContact>& contacts) {
+                     const ConvexSupport& shape, float margin, Array<NormalContact>& contacts) {
   const auto& v = triangle.vertices;
   const TrianglePlane t = planeOf(triangle);
   // A segment crossing the triangle's plane inside it pierces the triangle.
@@ -307,7 +307,7 @@ bool isRoundedForTriangles(const Shape& shape) {
 }
 
 void collideTrianglesRounded(std::span<const SatTriangle> triangles, const Shape& shape,
-                             const Transform& transform, float margin, std::vector<NormalContact>& contacts) {
+                             const Transform& transform, float margin, Array<NormalContact>& contacts) {
   const ConvexSupport support = makeConvexSupport(shape, transform);
   if (shape.type() == ShapeType::Sphere) {
     const float radius = shape.sphere().radius * transform.scale;

@@ -21,8 +21,8 @@ bool solverActed(const Contact& c) {
 
 }  // namespace
 
-void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
-                            const std::vector<std::uint32_t>& solved, FrictionModel model, float dt) {
+void applyProlongedFriction(BodyStorage& bodies, Array<Contact>& contacts, const Array<std::uint32_t>& solved,
+                            FrictionModel model, float dt) {
   if (model != FrictionModel::Viscous && model != FrictionModel::Damping) return;
   for (const std::uint32_t index : solved) {
     Contact& c = contacts[index];
@@ -47,8 +47,8 @@ void applyProlongedFriction(BodyStorage& bodies, std::vector<Contact>& contacts,
   }
 }
 
-void applyRollingResistance(BodyStorage& bodies, std::vector<Contact>& contacts,
-                            const std::vector<std::uint32_t>& solved) {
+void applyRollingResistance(BodyStorage& bodies, Array<Contact>& contacts,
+                            const Array<std::uint32_t>& solved) {
   for (const std::uint32_t index : solved) {
     const Contact& c = contacts[index];
     if (!(c.rollingResistance > 0.0f)) continue;

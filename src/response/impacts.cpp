@@ -50,7 +50,7 @@ bool meetsThisStep(float depth, float approach, const ContactTuning& tuning, flo
 
 // Every contact that can act this step is an entry, for an impact elsewhere may set its bodies
 // approaching; those that meet this step at their present velocities, fast enough, start the queue.
-void ImpactStage::collect(const BodyStorage& bodies, const std::vector<Contact>& contacts, ImpactModel model,
+void ImpactStage::collect(const BodyStorage& bodies, const Array<Contact>& contacts, ImpactModel model,
                           const ContactTuning& tuning, float dt) {
   entries_.clear();
   queue_.clear();
@@ -74,7 +74,7 @@ void ImpactStage::collect(const BodyStorage& bodies, const std::vector<Contact>&
 }
 
 // Each body's entries, so that a body hit by an impact has its other contacts looked at again.
-void ImpactStage::linkBodies(const std::vector<Contact>& contacts, std::size_t bodyCount) {
+void ImpactStage::linkBodies(const Array<Contact>& contacts, std::size_t bodyCount) {
   firstOfBody_.assign(bodyCount + 1, 0);
   for (const Entry& e : entries_) {
     ++firstOfBody_[contacts[e.contact].bodyA + 1];
@@ -82,7 +82,7 @@ void ImpactStage::linkBodies(const std::vector<Contact>& contacts, std::size_t b
   }
   for (std::size_t b = 0; b < bodyCount; ++b) firstOfBody_[b + 1] += firstOfBody_[b];
   entryOfBody_.resize(firstOfBody_[bodyCount]);
-  std::vector<std::uint32_t> next(firstOfBody_.begin(), firstOfBody_.end() - 1);
+  Array<std::uint32_t> next(firstOfBody_.begin(), firstOfBody_.end() - 1);
   for (std::uint32_t i = 0; i < entries_.size(); ++i) {
     entryOfBody_[next[contacts[entries_[i].contact].bodyA]++] = i;
     entryOfBody_[next[contacts[entries_[i].contact].bodyB]++] = i;
@@ -173,7 +173,7 @@ void ImpactStage::applyTimeShifts(BodyStorage& bodies) {
   }
 }
 
-void ImpactStage::run(BodyStorage& bodies, std::vector<Contact>& contacts, ImpactModel model,
+void ImpactStage::run(BodyStorage& bodies, Array<Contact>& contacts, ImpactModel model,
                       const ContactTuning& tuning, const Vec3& gravity, float dt) {
   collect(bodies, contacts, model, tuning, dt);
   if (queue_.empty()) return;  // nothing meets fast enough this step: the common case

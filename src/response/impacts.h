@@ -30,8 +30,8 @@ inline constexpr int kImpactVisits = 8;
 
 class ImpactStage {
  public:
-  void run(BodyStorage& bodies, std::vector<Contact>& contacts, ImpactModel model,
-           const ContactTuning& tuning, const Vec3& gravity, float dt);
+  void run(BodyStorage& bodies, Array<Contact>& contacts, ImpactModel model, const ContactTuning& tuning,
+           const Vec3& gravity, float dt);
   // After the solve: each body hit this step moved back by its velocity change times the time of
   // its impact (see resolve), once the step's integration has moved it.
   void applyTimeShifts(BodyStorage& bodies);
@@ -45,21 +45,21 @@ class ImpactStage {
     bool queued = false;
     int visits = 0;
   };
-  void collect(const BodyStorage& bodies, const std::vector<Contact>& contacts, ImpactModel model,
+  void collect(const BodyStorage& bodies, const Array<Contact>& contacts, ImpactModel model,
                const ContactTuning& tuning, float dt);
-  void linkBodies(const std::vector<Contact>& contacts, std::size_t bodyCount);
+  void linkBodies(const Array<Contact>& contacts, std::size_t bodyCount);
   bool resolve(BodyStorage& bodies, Contact& contact, const Entry& entry, ImpactModel model,
                const ContactTuning& tuning, const Vec3& gravity, float dt);
   void enqueueContactsOf(std::uint32_t body);
 
-  std::vector<Entry> entries_;
-  std::vector<std::uint32_t> queue_;
+  Array<Entry> entries_;
+  Array<std::uint32_t> queue_;
   // The entries of body b are entryOfBody_[firstOfBody_[b], firstOfBody_[b + 1]).
-  std::vector<std::uint32_t> firstOfBody_;
-  std::vector<std::uint32_t> entryOfBody_;
-  std::vector<float> impactTime_;  // per body: when in the step its last impact happened
-  std::vector<Vec3> linearShift_;  // per body: the motion to take back after the step
-  std::vector<Vec3> angularShift_;
+  Array<std::uint32_t> firstOfBody_;
+  Array<std::uint32_t> entryOfBody_;
+  Array<float> impactTime_;  // per body: when in the step its last impact happened
+  Array<Vec3> linearShift_;  // per body: the motion to take back after the step
+  Array<Vec3> angularShift_;
   bool shifted_ = false;
 };
 

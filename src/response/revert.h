@@ -41,10 +41,10 @@ class RevertResponse {
     std::uint32_t b;
     std::uint64_t key;  // the contacts' pair key
   };
-  std::span<const Contact> contacts_;      // this step's, during apply
-  std::vector<Candidate> candidates_;      // the pairs that can respond this step
-  std::vector<std::uint8_t> reverted_;     // per body: went back this step
-  std::vector<std::uint8_t> penetrating_;  // per body: penetrates something (last pass)
+  std::span<const Contact> contacts_;  // this step's, during apply
+  Array<Candidate> candidates_;        // the pairs that can respond this step
+  Array<std::uint8_t> reverted_;       // per body: went back this step
+  Array<std::uint8_t> penetrating_;    // per body: penetrates something (last pass)
 };
 
 // Every body's current pose becomes its valid one (the world switched to the revert response).

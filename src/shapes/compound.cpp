@@ -31,7 +31,7 @@ Compound Compound::fromChildren(std::vector<Child> children) {
     }
     compound.bounds_.grow(worldBounds(child.shape, child.transform));
   }
-  compound.children_ = std::move(children);
+  compound.children_.assign(children.begin(), children.end());
   return compound;
 }
 
@@ -59,7 +59,7 @@ MassProperties computeMassProperties(const Compound& s, float density) {
     Vec3 center;
     Mat3 inertia;
   };
-  std::vector<Placed> placed;
+  Array<Placed> placed;
   placed.reserve(s.children().size());
   MassProperties total;
   Vec3 weightedCenter(0.0f);

@@ -101,13 +101,13 @@ class QhullSession {
 };
 
 struct RawFace {
-  std::vector<std::uint32_t> inputIndices;  // Qhull's order, oriented below
+  Array<std::uint32_t> inputIndices;  // Qhull's order, oriented below
   DVec3 qhullNormal{0.0};
 };
 
 // Runs Qhull and reads each (merged) facet's vertices in order around it.
-std::vector<RawFace> runQhull(std::span<const Vec3> points, double size) {
-  std::vector<coordT> coordinates;
+Array<RawFace> runQhull(std::span<const Vec3> points, double size) {
+  Array<coordT> coordinates;
   coordinates.reserve(points.size() * 3);
   double largestCoordinate = 0.0;
   for (const Vec3& p : points) {
@@ -134,7 +134,7 @@ std::vector<RawFace> runQhull(std::span<const Vec3> points, double size) {
     throw Error("convex_hull: Qhull failed with code " + std::to_string(exitCode) +
                 (detail.empty() ? std::string() : ": " + detail));
   }
-  std::vector<RawFace> faces;
+  Array<RawFace> faces;
   facetT* facet;
   FORALLfacets {
     RawFace face;
@@ -151,7 +151,7 @@ std::vector<RawFace> runQhull(std::span<const Vec3> points, double size) {
 }
 
 // Newell's method: the area-weighted normal of a polygon, robust for nearly degenerate ones.
-DVec3 newellNormal(const std::vector<DVec3>& polygon) {
+DVec3 newellNormal(const Array<DVec3>& polygon) {
   DVec3 normal(0.0);
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const DVec3& a = polygon[i];
@@ -171,8 +171,8 @@ std::uint64_t edgeKey(std::uint32_t from, std::uint32_t to) { return (std::uint6
 // plane; only the points Qhull made vertices are kept, numbered in order of first use. Every
 // half-edge goes into `edgeByEndpoints`, where its twin finds it. The one stage that reads Qhull's
 // facets: the rest of the build works on the half-edges alone.
-void addFaces(std::span<const Vec3> points, const std::vector<RawFace>& rawFaces, std::vector<Vec3>& vertices,
-              std::vector<ConvexHull::Face>& faces, std::vector<ConvexHull::HalfEdge>& halfEdges,
+void addFaces(std::span<const Vec3> points, const Array<RawFace>& rawFaces, Array<Vec3>& vertices,
+              Array<ConvexHull::Face>& faces, Array<ConvexHull::HalfEdge>& halfEdges,
               EdgeMap& edgeByEndpoints) {
   std::unordered_map<std::uint32_t, std::uint32_t> vertexIndex;
   auto remap = [&](std::uint32_t input) {
@@ -181,8 +181,8 @@ void addFaces(std::span<const Vec3> points, const std::vector<RawFace>& rawFaces
     return it->second;
   };
   for (const RawFace& raw : rawFaces) {
-    std::vector<std::uint32_t> loop;
-    std::vector<DVec3> polygon;
+    Array<std::uint32_t> loop;
+    Array<DVec3> polygon;
     for (std::uint32_t input : raw.inputIndices) {
       loop.push_back(remap(input));
       polygon.emplace_back(points[input]);
@@ -218,13 +218,13 @@ void addFaces(std::span<const Vec3> points, const std::vector<RawFace>& rawFaces
 // The table behind ConvexHull::facesAround. Each half-edge leaves one vertex for one face, and the
 // half-edges go face by face, so filling in their order keeps each vertex's faces in increasing
 // order.
-void fillVertexFaces(std::size_t vertexCount, const std::vector<ConvexHull::HalfEdge>& halfEdges,
-                     std::vector<std::uint32_t>& table) {
+void fillVertexFaces(std::size_t vertexCount, const Array<ConvexHull::HalfEdge>& halfEdges,
+                     Array<std::uint32_t>& table) {
   table.assign(vertexCount + 1 + halfEdges.size(), 0);
   table[0] = static_cast<std::uint32_t>(vertexCount + 1);
   for (const ConvexHull::HalfEdge& edge : halfEdges) ++table[edge.origin + 1];
   for (std::size_t v = 0; v < vertexCount; ++v) table[v + 1] += table[v];
-  std::vector<std::uint32_t> filled(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(vertexCount));
+  Array<std::uint32_t> filled(table.begin(), table.begin() + static_cast<std::ptrdiff_t>(vertexCount));
   for (const ConvexHull::HalfEdge& edge : halfEdges) table[filled[edge.origin]++] = edge.face;
 }
 
@@ -288,7 +288,7 @@ double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) 
 
 ConvexHull HullBuilder::build(std::span<const Vec3> points) {
   const double size = requireSolidPointSet("convex_hull", points);
-  const std::vector<RawFace> rawFaces = runQhull(points, size);
+  const Array<RawFace> rawFaces = runQhull(points, size);
 
   ConvexHull hull;
   static std::atomic<std::uint64_t> builtHulls{0};

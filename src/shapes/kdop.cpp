@@ -59,7 +59,7 @@ std::shared_ptr<const ConvexHull> enclosedPolytope(int k, const std::array<float
   }
   const double tolerance = 1e-6 * (magnitude + extent);
   const double sameCorner = 1e-5 * extent + 2e-6 * magnitude;
-  std::vector<glm::dvec3> candidates;
+  Array<glm::dvec3> candidates;
   for (int a = 0; a < n; ++a) {
     for (int b = a + 1; b < n; ++b) {
       for (int c = b + 1; c < n; ++c) {
@@ -91,7 +91,7 @@ std::shared_ptr<const ConvexHull> enclosedPolytope(int k, const std::array<float
     throw Error("kdop: the slabs enclose no volume (" + std::to_string(candidates.size()) +
                 " corner points satisfy every slab)");
   }
-  std::vector<Vec3> points(candidates.begin(), candidates.end());
+  Array<Vec3> points(candidates.begin(), candidates.end());
   try {
     return std::make_shared<const ConvexHull>(ConvexHull::fromPoints(points));
   } catch (const Error& e) {

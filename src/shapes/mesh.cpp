@@ -29,7 +29,7 @@ constexpr double kDegenerateRelativeHeight = 1e-6;
 // Closed: every directed edge appears once and its reverse appears once, i.e. each undirected edge
 // is shared by exactly two triangles that walk it in opposite directions.
 bool isClosedSurface(std::span<const MeshTriangle> triangles) {
-  std::vector<std::uint64_t> edges;
+  Array<std::uint64_t> edges;
   edges.reserve(3 * triangles.size());
   for (const MeshTriangle& t : triangles) {
     for (int i = 0; i < 3; ++i) {
@@ -54,13 +54,13 @@ bool isClosedSurface(std::span<const MeshTriangle> triangles) {
 constexpr double kFlatCosine = 0.99999847691;  // cos(0.1°)
 
 struct Adjacency {
-  std::vector<TriangleMesh::EdgeKind> edgeKinds;  // 3 per triangle
-  std::vector<float> bendCosines;                 // 3 per triangle: -1 on the outline
-  std::vector<std::uint8_t> flatVertices;
-  std::vector<std::uint32_t> patches;
+  Array<TriangleMesh::EdgeKind> edgeKinds;  // 3 per triangle
+  Array<float> bendCosines;                 // 3 per triangle: -1 on the outline
+  Array<std::uint8_t> flatVertices;
+  Array<std::uint32_t> patches;
 };
 
-std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+std::uint32_t findRoot(Array<std::uint32_t>& parent, std::uint32_t i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];
     i = parent[i];
@@ -71,7 +71,7 @@ std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t i) {
 // A vertex is inside a flat patch when every edge at it is flat (then its fan is closed). A stage
 // of its own: it reads only the finished edge kinds.
 void flagFlatVertices(std::size_t vertexCount, std::span<const MeshTriangle> triangles,
-                      const std::vector<TriangleMesh::EdgeKind>& edgeKinds, std::vector<std::uint8_t>& flat) {
+                      const Array<TriangleMesh::EdgeKind>& edgeKinds, Array<std::uint8_t>& flat) {
   flat.assign(vertexCount, 0);
   for (const MeshTriangle& t : triangles) {
     for (const std::uint32_t v : t.v) flat[v] = 1;
@@ -89,7 +89,7 @@ void flagFlatVertices(std::size_t vertexCount, std::span<const MeshTriangle> tri
 Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTriangle> triangles) {
   using Kind = TriangleMesh::EdgeKind;
   const std::size_t count = triangles.size();
-  std::vector<glm::dvec3> normals(count);
+  Array<glm::dvec3> normals(count);
   for (std::size_t t = 0; t < count; ++t) {
     const glm::dvec3 a(vertices[triangles[t].v[0]]), b(vertices[triangles[t].v[1]]),
         c(vertices[triangles[t].v[2]]);
@@ -100,7 +100,7 @@ Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTri
     std::uint64_t key;
     std::uint32_t triangleEdge;  // 3 * triangle + k
   };
-  std::vector<Entry> entries;
+  Array<Entry> entries;
   entries.reserve(3 * count);
   for (std::size_t t = 0; t < count; ++t) {
     for (int k = 0; k < 3; ++k) {
@@ -203,8 +203,8 @@ TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector
   }
 
   TriangleMesh mesh;
-  mesh.vertices_ = std::move(vertices);
-  mesh.triangles_ = std::move(triangles);
+  mesh.vertices_.assign(vertices.begin(), vertices.end());
+  mesh.triangles_.assign(triangles.begin(), triangles.end());
   detail::TriangleBvh bvh = detail::buildTriangleBvh(mesh.vertices_, mesh.triangles_);
   mesh.nodes_ = std::move(bvh.nodes);
   mesh.triangleOrder_ = std::move(bvh.triangleOrder);

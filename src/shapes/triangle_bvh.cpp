@@ -154,8 +154,8 @@ class Builder {
 
   int maxDepth_;
   TriangleBvh& out_;
-  std::vector<Aabb> boxes_;
-  std::vector<Vec3> centers_;
+  Array<Aabb> boxes_;
+  Array<Vec3> centers_;
 };
 
 }  // namespace
@@ -177,7 +177,7 @@ int triangleBvhDepth(std::span<const TriangleMesh::BvhNode> nodes) {
     std::uint32_t node;
     int depth;
   };
-  std::vector<Entry> stack{{0, 0}};
+  Array<Entry> stack{{0, 0}};
   while (!stack.empty()) {
     const Entry e = stack.back();
     stack.pop_back();

@@ -19,8 +19,8 @@ inline constexpr int kTriangleBvhMaxDepth = 56;
 struct TriangleBvh {
   // Depth-first: an inner node's first child is at index + 1, its second at
   // firstTriangleOrSecondChild; a leaf covers triangleOrder[first, first + count).
-  std::vector<TriangleMesh::BvhNode> nodes;
-  std::vector<std::uint32_t> triangleOrder;
+  Array<TriangleMesh::BvhNode> nodes;
+  Array<std::uint32_t> triangleOrder;
 };
 
 // Binned SAH build (Wald, "On fast construction of SAH-based bounding volume hierarchies", 2007),

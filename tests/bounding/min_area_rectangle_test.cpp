@@ -13,7 +13,7 @@ using namespace collide::bounding;
 
 namespace {
 
-double rectangleAreaAlong(const glm::dvec2& axis, const std::vector<glm::dvec2>& points) {
+double rectangleAreaAlong(const glm::dvec2& axis, const Array<glm::dvec2>& points) {
   const glm::dvec2 perpendicular(-axis.y, axis.x);
   glm::dvec2 low(INFINITY), high(-INFINITY);
   for (const glm::dvec2& p : points) {
@@ -27,9 +27,8 @@ double rectangleAreaAlong(const glm::dvec2& axis, const std::vector<glm::dvec2>&
 }  // namespace
 
 TEST(ConvexHull2d, SquareWithInteriorAndEdgePointsKeepsOnlyTheCornersCounterClockwise) {
-  const std::vector<glm::dvec2> points = {{0, 0},     {1, 0},   {1, 1},   {0, 1},
-                                          {0.5, 0.5}, {0.5, 0}, {1, 0.3}, {0, 0}};
-  const std::vector<glm::dvec2> hull = convexHull2d(points);
+  const Array<glm::dvec2> points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}, {0.5, 0}, {1, 0.3}, {0, 0}};
+  const Array<glm::dvec2> hull = convexHull2d(points);
   ASSERT_EQ(hull.size(), 4u);
   double signedArea = 0.0;
   for (std::size_t i = 0; i < hull.size(); ++i) {
@@ -45,7 +44,7 @@ TEST(MinimumAreaRectangle, RotatedRectangleIsRecoveredExactly) {
     const double angle = random.uniform(0.0f, kPi), w = random.uniform(0.1f, 3.0f),
                  h = random.uniform(0.1f, 3.0f);
     const glm::dvec2 u(std::cos(angle), std::sin(angle)), v(-u.y, u.x);
-    std::vector<glm::dvec2> points;
+    Array<glm::dvec2> points;
     for (int i = 0; i < 4; ++i) points.push_back(((i & 1) ? w : -w) * u + ((i & 2) ? h : -h) * v);
     for (int i = 0; i < 20; ++i)
       points.push_back(random.uniform(-1, 1) * w * u + random.uniform(-1, 1) * h * v);
@@ -58,11 +57,11 @@ TEST(MinimumAreaRectangle, RotatedRectangleIsRecoveredExactly) {
 TEST(MinimumAreaRectangle, EqualsTheBestEdgeDirectionAndBeatsEveryOtherAngle) {
   test::Random random(6);
   for (int trial = 0; trial < 100; ++trial) {
-    std::vector<glm::dvec2> points;
+    Array<glm::dvec2> points;
     const int n = random.integer(3, 40);
     const double stretch = random.uniform(0.1f, 1.0f);
     for (int i = 0; i < n; ++i) points.emplace_back(random.uniform(-1, 1), stretch * random.uniform(-1, 1));
-    const std::vector<glm::dvec2> hull = convexHull2d(points);
+    const Array<glm::dvec2> hull = convexHull2d(points);
     if (hull.size() < 3) continue;
     const Rectangle2d r = minimumAreaRectangle(hull);
     // The calipers' extents are those of a full scan along the same axis.

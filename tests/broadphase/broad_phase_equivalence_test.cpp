@@ -108,7 +108,7 @@ class Scene {
 std::string name(std::size_t i) { return std::string(toString(kTypes[i])); }
 
 void expectSamePairs(Scene& scene, int step) {
-  std::vector<ProxyPair> reference;
+  Array<ProxyPair> reference;
   const BroadPhaseStats referenceStats = scene.phase(0).findPairs(reference);
   const std::uint64_t n = scene.phase(0).proxyCount();
   EXPECT_EQ(referenceStats.potentialPairs, n * (n - 1) / 2);
@@ -123,7 +123,7 @@ void expectSamePairs(Scene& scene, int step) {
     ASSERT_EQ(p.kind, aStatic || bStatic ? PairKind::OneWay : PairKind::TwoWay);
   }
   for (std::size_t i = 1; i < kTypes.size(); ++i) {
-    std::vector<ProxyPair> pairs;
+    Array<ProxyPair> pairs;
     const BroadPhaseStats stats = scene.phase(i).findPairs(pairs);
     EXPECT_EQ(stats.potentialPairs, referenceStats.potentialPairs);
     ASSERT_EQ(pairs.size(), reference.size()) << name(i) << " at step " << step;
@@ -151,7 +151,7 @@ TEST(BroadPhaseEquivalence, BruteForceKeepsOnlyATinyFractionOfPotentialPairs) {
   // the n(n-1)/2 potential pairs.
   Scene scene(7);
   scene.populate(300, 0);
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   const BroadPhaseStats stats = scene.phase(0).findPairs(pairs);
   EXPECT_EQ(stats.potentialPairs, 301u * 300u / 2u);
   EXPECT_LT(stats.keptFraction(), 0.01);
@@ -165,7 +165,7 @@ TEST(BroadPhaseEquivalence, QueriesEqualBruteForce) {
     for (int round = 0; round < 3; ++round) {
       // Queries are asked both right after edits and after a findPairs.
       if (round == 1) {
-        std::vector<ProxyPair> pairs;
+        Array<ProxyPair> pairs;
         for (std::size_t i = 0; i < kTypes.size(); ++i) scene.phase(i).findPairs(pairs);
       }
       for (int q = 0; q < 40; ++q) {

@@ -31,7 +31,7 @@ TEST_P(BroadPhaseKnownAnswers, LabelsOneWayTwoWayAndNeverStaticStatic) {
   const ProxyId other =
       bp->add({cube(Vec3(2.5f, 0.0f, 0.0f), 0.5f), MotionType::Movable});  // overlaps ball on [2.0, 2.3]
   const ProxyId far = bp->add({cube(Vec3(50.0f), 0.5f), MotionType::Movable});
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   const BroadPhaseStats& stats = bp->findPairs(pairs);
   // ball [1.3, 2.3] overlaps wallB [-0.5, 1.5] and other [2.0, 3.0]; wallA ends at 1.0.
   ASSERT_EQ(pairs.size(), 2u);
@@ -48,7 +48,7 @@ TEST_P(BroadPhaseKnownAnswers, TouchingBoxesOverlapAndPairsFollowMotion) {
   auto bp = make();
   const ProxyId a = bp->add({Aabb{Vec3(0.0f), Vec3(1.0f)}});
   const ProxyId b = bp->add({Aabb{Vec3(1.0f, 0.0f, 0.0f), Vec3(2.0f, 1.0f, 1.0f)}});  // shares the face x = 1
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   bp->findPairs(pairs);
   ASSERT_EQ(pairs.size(), 1u);
   // Move b away by less than any margin: the pair must go at once (exact, tight-box semantics).
@@ -212,7 +212,7 @@ TEST(BroadPhase, CountersAreThoseOfTheLastCall) {
   auto bp = createBroadPhase();
   std::vector<ProxyId> ids;
   for (int i = 0; i < 4; ++i) ids.push_back(bp->add({cube(Vec3(static_cast<float>(i)), 0.6f)}));
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   bp->findPairs(pairs);
   EXPECT_EQ(bp->lastStats().potentialPairs, 6u);
   EXPECT_EQ(bp->lastStats().keptPairs, 3u);  // neighbours along the diagonal: 0-1, 1-2, 2-3

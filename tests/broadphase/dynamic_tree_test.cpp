@@ -89,7 +89,7 @@ TEST(TreeBroadPhase, FatBoxesAbsorbSmallMotionAndTreesStayBalanced) {
     ids.push_back(bp->add(
         {Aabb::fromCenterHalfExtents(c, Vec3(0.5f)), i % 5 == 0 ? MotionType::Static : MotionType::Movable}));
   }
-  std::vector<ProxyPair> pairs;
+  Array<ProxyPair> pairs;
   bp->findPairs(pairs);
   const DynamicTree* movable = treeOfBroadPhase(*bp, MotionType::Movable);
   const DynamicTree* fixed = treeOfBroadPhase(*bp, MotionType::Static);

@@ -22,16 +22,16 @@ using test::kDt;
 TEST(ConstraintGraph, NoColourHasTwoConstraintsOnOneDynamicBody) {
   std::mt19937 rng(7);
   std::uniform_int_distribution<int> body(-3, 199);  // negative: a body the solver never writes
-  std::vector<std::array<std::int32_t, 2>> constraints(3000);
+  Array<std::array<std::int32_t, 2>> constraints(3000);
   for (auto& c : constraints) {
     do c = {body(rng), body(rng)};
     while (c[0] == c[1]);  // a contact joins two bodies
   }
-  std::vector<std::uint8_t> colors;
-  std::vector<std::uint64_t> bits;
+  Array<std::uint8_t> colors;
+  Array<std::uint64_t> bits;
   detail::colorConstraints(constraints, 200, colors, bits);
   ASSERT_EQ(colors.size(), constraints.size());
-  std::vector<std::set<std::int32_t>> used(detail::kGraphColors);
+  Array<std::set<std::int32_t>> used(detail::kGraphColors);
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     if (colors[i] == detail::kOverflowColor) continue;
     for (const std::int32_t b : constraints[i]) {
@@ -44,17 +44,17 @@ TEST(ConstraintGraph, NoColourHasTwoConstraintsOnOneDynamicBody) {
     }
   }
   // The same input gives the same colours.
-  std::vector<std::uint8_t> again;
+  Array<std::uint8_t> again;
   detail::colorConstraints(constraints, 200, again, bits);
   EXPECT_EQ(colors, again);
 }
 
 TEST(ConstraintGraph, ABodyInMoreConstraintsThanColoursOverflows) {
   // 30 constraints all on body 0: the first colours hold one each, the rest overflow.
-  std::vector<std::array<std::int32_t, 2>> constraints;
+  Array<std::array<std::int32_t, 2>> constraints;
   for (int i = 1; i <= 30; ++i) constraints.push_back({0, i});
-  std::vector<std::uint8_t> colors;
-  std::vector<std::uint64_t> bits;
+  Array<std::uint8_t> colors;
+  Array<std::uint64_t> bits;
   detail::colorConstraints(constraints, 31, colors, bits);
   for (int i = 0; i < 30; ++i)
     EXPECT_EQ(colors[i], i < detail::kGraphColors ? i : detail::kOverflowColor) << "constraint " << i;
@@ -68,7 +68,7 @@ TEST(ConstraintGraph, ABodyInMoreConstraintsThanColoursOverflows) {
 // Four boxes falling onto the ground far apart land in one colour, hence in one batch of four lanes.
 // Each must end bit for bit as it does alone in its own world: the lanes are independent solves.
 TEST(ContactSolver, LanesGiveWhatEachContactGivesAlone) {
-  std::vector<BodyDef> boxes;
+  Array<BodyDef> boxes;
   for (int i = 0; i < 4; ++i) {
     BodyDef def =
         test::boxBody(Vec3(10.0f * static_cast<float>(i), 0.6f + 0.1f * static_cast<float>(i), 0.0f),
@@ -80,7 +80,7 @@ TEST(ContactSolver, LanesGiveWhatEachContactGivesAlone) {
   }
   World together;
   together.createBody(test::groundBox());
-  std::vector<BodyId> ids;
+  Array<BodyId> ids;
   for (const BodyDef& def : boxes) ids.push_back(together.createBody(def));
   for (int s = 0; s < 120; ++s) together.step(kDt);
   for (int i = 0; i < 4; ++i) {
@@ -105,7 +105,7 @@ TEST(ContactSolver, EveryLaneWidthGivesTheSameResult) {
     World world;
     detail::setDefaultContactLanes(0);
     world.createBody(test::groundBox());
-    std::vector<BodyId> ids;
+    Array<BodyId> ids;
     for (int i = 0; i < 60; ++i) {
       BodyDef def =
           test::boxBody(Vec3(0.3f * static_cast<float>(i % 5), 0.5f + 1.05f * static_cast<float>(i / 5),
@@ -115,7 +115,7 @@ TEST(ContactSolver, EveryLaneWidthGivesTheSameResult) {
       ids.push_back(world.createBody(def));
     }
     for (int s = 0; s < 200; ++s) world.step(kDt);
-    std::vector<float> state;
+    Array<float> state;
     for (const BodyId id : ids) {
       const Transform t = world.transform(id);
       const Vec3 v = world.linearVelocity(id);
@@ -124,9 +124,9 @@ TEST(ContactSolver, EveryLaneWidthGivesTheSameResult) {
     }
     return state;
   };
-  const std::vector<float> four = run(4);
+  const Array<float> four = run(4);
   if (detail::widestContactLanes() < 8) GTEST_SKIP() << "no AVX2 here: only the four-lane kernel runs";
-  const std::vector<float> eight = run(8);
+  const Array<float> eight = run(8);
   ASSERT_EQ(four.size(), eight.size());
   EXPECT_EQ(std::memcmp(four.data(), eight.data(), four.size() * sizeof(float)), 0);
 }

@@ -30,7 +30,7 @@ TEST(FaultGuardRanges, NonFiniteBodiesInSeveralRangesAreFrozenAndReportedInBodyO
     bodies.states[8999].centerOfMass.z = nan;
     detail::TaskRunner tasks;
     tasks.configure(workers, nullptr, nullptr, nullptr);
-    std::vector<FaultEvent> faults;
+    Array<FaultEvent> faults;
     detail::guardFiniteStates(bodies, faults, tasks);
     ASSERT_EQ(faults.size(), 3u) << workers << " workers";
     EXPECT_EQ(faults[0].body.index, 17u);

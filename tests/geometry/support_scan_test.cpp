@@ -12,7 +12,7 @@ using namespace collide;
 
 namespace {
 
-std::uint32_t scalarScan(const std::vector<Vec3>& points, const Vec3& direction) {
+std::uint32_t scalarScan(const Array<Vec3>& points, const Vec3& direction) {
   std::uint32_t best = 0;
   for (std::uint32_t i = 1; i < points.size(); ++i) {
     if (glm::dot(points[i], direction) > glm::dot(points[best], direction)) best = i;
@@ -27,9 +27,9 @@ TEST(SupportScan, SameIndexAsThePlainLoopForEveryCount) {
   std::normal_distribution<float> normal(0.0f, 1.0f);
   int checks = 0;
   for (std::uint32_t count = 1; count <= 70; ++count) {
-    std::vector<Vec3> points(count);
+    Array<Vec3> points(count);
     for (Vec3& p : points) p = Vec3(normal(rng), normal(rng), normal(rng));
-    const std::vector<float> blocked = detail::blockCoordinates(points);
+    const Array<float> blocked = detail::blockCoordinates(points);
     ASSERT_EQ(blocked.size(), 3 * std::size_t(detail::blockedLanes(count)));
     for (int trial = 0; trial < 50; ++trial) {
       const Vec3 direction(normal(rng), normal(rng), normal(rng));
@@ -45,20 +45,20 @@ TEST(SupportScan, TiesGoToTheFirstPoint) {
   // A cube's corners listed twice: along an axis four (eight with the copies) corners tie, along a
   // diagonal one corner and its copy. The first of them wins, as in the plain loop; so does vertex 0
   // against the padding that repeats it.
-  std::vector<Vec3> corners;
+  Array<Vec3> corners;
   for (int pass = 0; pass < 2; ++pass) {
     for (int i = 0; i < 8; ++i)
       corners.emplace_back(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f);
   }
   corners.emplace_back(0.0f, 0.0f, 0.0f);  // 17 points: 3 lanes of padding
-  const std::vector<float> blocked = detail::blockCoordinates(corners);
+  const Array<float> blocked = detail::blockCoordinates(corners);
   const Vec3 directions[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {1, 1, 1}, {-1, 1, -1}, {0, 0, 0}};
   for (const Vec3& d : directions) {
     EXPECT_EQ(detail::farthestAlong(blocked.data(), 17, d), scalarScan(corners, d));
   }
   EXPECT_EQ(detail::farthestAlong(blocked.data(), 17, Vec3(1, 0, 0)), 1u);
   EXPECT_EQ(detail::farthestAlong(blocked.data(), 17, Vec3(0, 0, 0)), 0u);  // all tie
-  const std::vector<Vec3> one{{2.0f, 3.0f, 4.0f}};
+  const Array<Vec3> one{{2.0f, 3.0f, 4.0f}};
   EXPECT_EQ(detail::farthestAlong(detail::blockCoordinates(one).data(), 1, Vec3(-1, 0, 0)), 0u);
   EXPECT_EQ(detail::farthestAlong(nullptr, 0, Vec3(1, 0, 0)), 0u);
 }
@@ -66,10 +66,10 @@ TEST(SupportScan, TiesGoToTheFirstPoint) {
 TEST(SupportScan, ConvexHullSupportIsItsFarthestVertex) {
   std::mt19937 rng(5);
   std::normal_distribution<float> normal(0.0f, 1.0f);
-  std::vector<Vec3> cloud(40);
+  Array<Vec3> cloud(40);
   for (Vec3& p : cloud) p = Vec3(normal(rng), normal(rng), normal(rng));
   const ConvexHull hull = ConvexHull::fromPoints(cloud);
-  const std::vector<Vec3> vertices(hull.vertices().begin(), hull.vertices().end());
+  const Array<Vec3> vertices(hull.vertices().begin(), hull.vertices().end());
   for (int trial = 0; trial < 200; ++trial) {
     const Vec3 d(normal(rng), normal(rng), normal(rng));
     EXPECT_EQ(hull.support(d), vertices[scalarScan(vertices, d)]);

@@ -84,7 +84,7 @@ fcl::Transform3d fclTransform(const Transform& t, ShapeType type) {
 }
 #endif
 
-struct Tally {
+struct ReferenceTally {
   int verdictCompared = 0, verdictMismatches = 0, verdictLibccdWrong = 0;
   int depthCompared = 0, depthFailures = 0, normalFailures = 0, normalTies = 0;
   int depthLibccdWrong = 0;  // compared against the brute-force reference instead
@@ -92,16 +92,16 @@ struct Tally {
   std::vector<std::string> failures;
 };
 
-void fail(Tally& tally, const std::string& text) {
+void fail(ReferenceTally& tally, const std::string& text) {
   tally.failures.push_back(text);
   std::printf("  FAIL %s\n", text.c_str());
 }
 
-Tally runPairType(ShapeType typeA, ShapeType typeB, unsigned seed) {
+ReferenceTally runPairType(ShapeType typeA, ShapeType typeB, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   ccd_t ccd = makeCcd();
-  Tally tally;
+  ReferenceTally tally;
   for (int i = 0; i < kPairsPerType; ++i) {
     const Shape shapeA = randomPrimitive(typeA, rng);
     const Shape shapeB = randomPrimitive(typeB, rng);
@@ -248,7 +248,7 @@ TEST(NarrowphaseDifferential, AgreesWithLibccdAndFclOnRandomConvexPairs) {
   for (std::size_t i = 0; i < std::size(kTypes); ++i) {
     for (std::size_t j = i; j < std::size(kTypes); ++j) {
       const std::string pair = std::string(toString(kTypes[i])) + " x " + std::string(toString(kTypes[j]));
-      const Tally tally = runPairType(kTypes[i], kTypes[j], seed++);
+      const ReferenceTally tally = runPairType(kTypes[i], kTypes[j], seed++);
       std::printf(
           "%-21s verdicts %5d (%d differ, %d libccd wrong), depths %5d (%d fail, %d normal fail, %d ties, "
           "%d libccd wrong), distances %5d (%d fail, %d FCL wrong)\n",

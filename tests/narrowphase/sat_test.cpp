@@ -253,7 +253,7 @@ TEST(SatPolyhedra, CubeHullsAndKdopsAgreeWithBoxes) {
 
 namespace {
 
-struct Tally {
+struct SatTally {
   int compared = 0, failures = 0, normalFailures = 0, preferred = 0, verdictMismatches = 0;
   std::string firstFailure;
   void note(const std::string& text) {
@@ -271,7 +271,7 @@ struct Tally {
 //    as "preferred" when it is not the SAT axis.
 void judge(const detail::ConvexSupport& a, const detail::ConvexSupport& b, const Manifold& m,
            const detail::SatAxis& sat, float referenceDepth, const Vec3& referenceNormal, float size,
-           const char* where, Tally& tally) {
+           const char* where, SatTally& tally) {
   ++tally.compared;
   const float satDepth = -sat.separation;
   const float tolerance = 1e-3f * std::max(satDepth, referenceDepth) + 1e-5f;
@@ -301,7 +301,7 @@ void judge(const detail::ConvexSupport& a, const detail::ConvexSupport& b, const
 TEST(SatPolyhedra, RandomBoxPairsAgreeWithEpaAndAreSymmetric) {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  Tally tally;
+  SatTally tally;
   int symmetryFailures = 0, separatedSpeculative = 0;
   for (int i = 0; i < kRandomPairs; ++i) {
     const Shape shapeA = randomPrimitive(ShapeType::Box, rng), shapeB = randomPrimitive(ShapeType::Box, rng);
@@ -362,7 +362,7 @@ TEST(SatPolyhedra, RandomHullPairsAgreeWithLibccd) {
   std::mt19937 rng(99);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   ccd_t ccd = makeCcd();
-  Tally tally;
+  SatTally tally;
   int referenceErrors = 0;
   const int pairs = kRandomPairs / 2;
   for (int i = 0; i < pairs; ++i) {

@@ -14,7 +14,7 @@ using namespace collide::test;
 namespace {
 
 constexpr float kTarget = 0.005f;
-constexpr float kTolerance = 0.00125f;
+constexpr float kTimeTolerance = 0.00125f;
 
 Sweep moving(const Vec3& from, const Vec3& to, const Quat& rotation = Quat(1.0f, 0.0f, 0.0f, 0.0f)) {
   return Sweep::between(at(from, rotation), at(to, rotation));
@@ -42,7 +42,7 @@ void expectFirstContact(const Shape& a, const Sweep& sa, const Shape& b, const S
   if (r.state == ToiResult::State::Hit) {
     const float gap = distanceAt(a, sa, b, sb, r.t);
     EXPECT_GT(gap, kTarget - 2e-4f);
-    EXPECT_LT(gap, kTarget + kTolerance + 2e-4f);
+    EXPECT_LT(gap, kTarget + kTimeTolerance + 2e-4f);
   }
 }
 
@@ -125,14 +125,14 @@ TEST(TimeOfImpact, BoxesInALineByConservativeAdvancement) {
       timeOfImpact(box, moving(Vec3(0.0f), Vec3(10, 0, 0)), box, Sweep::fixed(at(Vec3(5, 0, 0))));
   ASSERT_EQ(r.state, ToiResult::State::Hit);
   EXPECT_LE(r.t, (4.0f - kTarget) / 10.0f + 1e-6f);
-  EXPECT_GE(r.t, (4.0f - kTarget - kTolerance) / 10.0f - 1e-6f);
+  EXPECT_GE(r.t, (4.0f - kTarget - kTimeTolerance) / 10.0f - 1e-6f);
   EXPECT_NEAR(r.normal.x, 1.0f, 1e-4f);
   EXPECT_LE(r.iterations, 4);  // face against face: the tangent bound is exact
   // Both moving towards each other at 5 m each: the same closing motion, the same time.
   const ToiResult both =
       timeOfImpact(box, moving(Vec3(0.0f), Vec3(5, 0, 0)), box, moving(Vec3(5, 0, 0), Vec3(0, 0, 0)));
   ASSERT_EQ(both.state, ToiResult::State::Hit);
-  EXPECT_NEAR(both.t, r.t, kTolerance / 10.0f + 1e-6f);
+  EXPECT_NEAR(both.t, r.t, kTimeTolerance / 10.0f + 1e-6f);
   // Rotated boxes: checked by brute force.
   std::mt19937 rng(7);
   for (int i = 0; i < 50; ++i) {
@@ -160,7 +160,7 @@ TEST(TimeOfImpact, TurningPlankReachesBallAtTheAnalyticAngle) {
   const float expected = phi / (kPi / 2.0f);
   // Within the tolerance, turned into an angle at 0.6 m, turned into t.
   EXPECT_LE(r.t, expected + 1e-5f);
-  EXPECT_GE(r.t, expected - (kTolerance / 0.6f) / (kPi / 2.0f) - 1e-5f);
+  EXPECT_GE(r.t, expected - (kTimeTolerance / 0.6f) / (kPi / 2.0f) - 1e-5f);
   // Catto's bound: each advance is (d - target) / (angle * r_max) with r_max = |(1, .05, .05)|; the
   // count is finite and small.
   EXPECT_LT(r.iterations, 40);
@@ -253,7 +253,7 @@ TEST(TimeOfImpact, MeshesAreTwoSided) {
     const ToiResult r =
         timeOfImpact(box, moving(Vec3(0, 2 * side, 0), Vec3(0, -3 * side, 0)), triangle, Sweep::fixed({}));
     ASSERT_EQ(r.state, ToiResult::State::Hit) << side;
-    EXPECT_NEAR(r.t, (2.0f - 0.1f - kTarget) / 5.0f, kTolerance / 5.0f + 1e-5f);
+    EXPECT_NEAR(r.t, (2.0f - 0.1f - kTarget) / 5.0f, kTimeTolerance / 5.0f + 1e-5f);
   }
 }
 

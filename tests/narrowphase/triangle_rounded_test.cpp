@@ -29,7 +29,7 @@ float degreesBetween(const Vec3& a, const Vec3& b) {
   return glm::degrees(std::acos(std::clamp(glm::dot(a, b) / (glm::length(a) * glm::length(b)), -1.0f, 1.0f)));
 }
 
-struct Tally {
+struct RoundedTally {
   int pairs = 0, hits = 0, faceHits = 0, edgeHits = 0, piercing = 0, normalsCompared = 0, failures = 0;
   std::string firstFailure;
   void fail(const std::string& text) {
@@ -42,7 +42,7 @@ struct Tally {
 // GJK/EPA on the triangle as a three-point polytope: the same verdict, the deepest depth within
 // 1e-3 relative, and the normal within 1° wherever the core stays clear of the triangle (there the
 // normal is unique; where the core pierces the triangle both go through EPA).
-void compareWithGjk(const Shape& shape, int pairs, std::uint32_t seed, Tally& tally) {
+void compareWithGjk(const Shape& shape, int pairs, std::uint32_t seed, RoundedTally& tally) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (int i = 0; i < pairs; ++i) {
@@ -99,7 +99,7 @@ void compareWithGjk(const Shape& shape, int pairs, std::uint32_t seed, Tally& ta
 }
 
 TEST(TriangleRounded, SphereAgreesWithGjkEpaOnOneTriangle) {
-  Tally tally;
+  RoundedTally tally;
   std::mt19937 sizes(3);
   std::uniform_real_distribution<float> size(0.1f, 1.0f);
   for (int round = 0; round < 6; ++round) {
@@ -114,7 +114,7 @@ TEST(TriangleRounded, SphereAgreesWithGjkEpaOnOneTriangle) {
 }
 
 TEST(TriangleRounded, CapsuleAgreesWithGjkEpaOnOneTriangle) {
-  Tally tally;
+  RoundedTally tally;
   std::mt19937 sizes(4);
   std::uniform_real_distribution<float> size(0.1f, 1.0f);
   for (int round = 0; round < 6; ++round) {

@@ -22,7 +22,7 @@ using namespace collide::test;
 
 namespace {
 
-constexpr float kTolerance = 1e-5f;
+constexpr float kQueryTolerance = 1e-5f;
 
 std::vector<Vec3> randomCloud(std::mt19937& rng, int count, float size) {
   std::vector<Vec3> points;
@@ -212,9 +212,9 @@ TEST_P(WorldQueries, RaysMatchBruteForceInRandomWorlds) {
       ASSERT_EQ(all.size(), expected.size()) << "seed " << seed << " ray " << r;
       for (std::size_t i = 0; i < all.size(); ++i) {
         EXPECT_EQ(all[i].body, expected[i].body) << "seed " << seed << " ray " << r << " hit " << i;
-        EXPECT_NEAR(all[i].distance, expected[i].distance, kTolerance);
-        EXPECT_NEAR(glm::length(all[i].point - expected[i].point), 0.0f, kTolerance);
-        EXPECT_NEAR(glm::length(all[i].normal - expected[i].normal), 0.0f, kTolerance);
+        EXPECT_NEAR(all[i].distance, expected[i].distance, kQueryTolerance);
+        EXPECT_NEAR(glm::length(all[i].point - expected[i].point), 0.0f, kQueryTolerance);
+        EXPECT_NEAR(glm::length(all[i].normal - expected[i].normal), 0.0f, kQueryTolerance);
         EXPECT_EQ(all[i].subShape, expected[i].subShape);
         const float fraction = std::isinf(ray.maxDistance) ? 0.0f : all[i].distance / ray.maxDistance;
         EXPECT_FLOAT_EQ(all[i].fraction, fraction);
@@ -227,18 +227,18 @@ TEST_P(WorldQueries, RaysMatchBruteForceInRandomWorlds) {
       ASSERT_EQ(any.has_value(), !expected.empty());
       if (expected.empty()) continue;
       EXPECT_EQ(closest->body, expected.front().body);
-      EXPECT_NEAR(closest->distance, expected.front().distance, kTolerance);
+      EXPECT_NEAR(closest->distance, expected.front().distance, kQueryTolerance);
       const auto same = std::find_if(expected.begin(), expected.end(),
                                      [&](const RayCastResult& e) { return e.body == any->body; });
       ASSERT_NE(same, expected.end());
-      EXPECT_NEAR(any->distance, same->distance, kTolerance);
+      EXPECT_NEAR(any->distance, same->distance, kQueryTolerance);
       // A collector that clips to each hit ends with the closest distance.
       float nearest = std::numeric_limits<float>::infinity();
       w.world.castRayCollect(ray, [&](const RayCastResult& hit) {
         nearest = std::min(nearest, hit.distance);
         return hit.distance;
       });
-      EXPECT_NEAR(nearest, expected.front().distance, kTolerance);
+      EXPECT_NEAR(nearest, expected.front().distance, kQueryTolerance);
     }
   }
   EXPECT_GT(hits, 500);
@@ -259,10 +259,10 @@ TEST_P(WorldQueries, ShapeCastsMatchBruteForceInRandomWorlds) {
       ASSERT_EQ(all.size(), expected.size()) << "seed " << seed << " cast " << q;
       for (std::size_t i = 0; i < all.size(); ++i) {
         EXPECT_EQ(all[i].body, expected[i].body) << "seed " << seed << " cast " << q << " hit " << i;
-        EXPECT_NEAR(all[i].fraction, expected[i].fraction, kTolerance);
+        EXPECT_NEAR(all[i].fraction, expected[i].fraction, kQueryTolerance);
         EXPECT_NEAR(all[i].distance, expected[i].fraction * glm::length(translation), 1e-4f);
-        EXPECT_NEAR(glm::length(all[i].point - expected[i].point), 0.0f, kTolerance);
-        EXPECT_NEAR(glm::length(all[i].normal - expected[i].normal), 0.0f, kTolerance);
+        EXPECT_NEAR(glm::length(all[i].point - expected[i].point), 0.0f, kQueryTolerance);
+        EXPECT_NEAR(glm::length(all[i].normal - expected[i].normal), 0.0f, kQueryTolerance);
         EXPECT_EQ(all[i].initiallyOverlapping, expected[i].initiallyOverlapping);
       }
       hits += static_cast<int>(all.size());

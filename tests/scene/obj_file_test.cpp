@@ -19,7 +19,7 @@ using ::testing::HasSubstr;
 
 using collide::test::kSceneData;
 
-std::string parseError(const std::string& text) {
+std::string objParseError(const std::string& text) {
   try {
     parseObj(text, "test.obj");
   } catch (const Error& e) {
@@ -73,11 +73,11 @@ TEST(ObjFile, LinesOtherThanVerticesAndFacesAreNotConverted) {
 }
 
 TEST(ObjFile, BadTextIsRefusedWithTheFileName) {
-  EXPECT_THAT(parseError(""), HasSubstr("test.obj: no triangles"));
-  EXPECT_THAT(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\n"), HasSubstr("test.obj: no triangles"));
-  EXPECT_THAT(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), HasSubstr("test.obj"));
-  EXPECT_THAT(parseError("\x01\x02\xff garbage\nf 1 2 3\n"), HasSubstr("test.obj"));
-  EXPECT_THAT(parseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), HasSubstr("test.obj"));  // 0 is no index
+  EXPECT_THAT(objParseError(""), HasSubstr("test.obj: no triangles"));
+  EXPECT_THAT(objParseError("v 0 0 0\nv 1 0 0\nv 0 1 0\n"), HasSubstr("test.obj: no triangles"));
+  EXPECT_THAT(objParseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), HasSubstr("test.obj"));
+  EXPECT_THAT(objParseError("\x01\x02\xff garbage\nf 1 2 3\n"), HasSubstr("test.obj"));
+  EXPECT_THAT(objParseError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), HasSubstr("test.obj"));  // 0 is no index
   try {
     readObjFile(kSceneData + "/missing.obj");
     ADD_FAILURE() << "a missing file must be refused";
@@ -92,30 +92,30 @@ TEST(ObjFile, BadTextIsRefusedWithTheFileName) {
 TEST(ObjFile, NonFiniteAndUnparsableCoordinatesNameTheLine) {
   const std::string before = "v 0 0 0\nv 1 0 0\n";
   const std::string after = "\nf 1 2 3\n";
-  EXPECT_THAT(parseError(before + "v nan 1 0" + after),
+  EXPECT_THAT(objParseError(before + "v nan 1 0" + after),
               HasSubstr("test.obj:3: vertex coordinate \"nan\" is not a finite number"));
-  EXPECT_THAT(parseError(before + "v 0 inf 0" + after),
+  EXPECT_THAT(objParseError(before + "v 0 inf 0" + after),
               HasSubstr("test.obj:3: vertex coordinate \"inf\" is not a finite number"));
-  EXPECT_THAT(parseError(before + "v 0 1 -Infinity" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1 -Infinity" + after),
               HasSubstr("test.obj:3: vertex coordinate \"-Infinity\" is not a finite number"));
-  EXPECT_THAT(parseError(before + "v 0 1 1e999" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1 1e999" + after),
               HasSubstr("test.obj:3: vertex coordinate \"1e999\" is not a finite number"));
   // Finite as a double, infinite as the float a mesh stores.
-  EXPECT_THAT(parseError(before + "v 0 1 -1e39" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1 -1e39" + after),
               HasSubstr("test.obj:3: vertex coordinate \"-1e39\" is not a finite number within float range"));
-  EXPECT_THAT(parseError(before + "v 0 1.5x 0" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1.5x 0" + after),
               HasSubstr("test.obj:3: vertex coordinate \"1.5x\" is not a number"));
-  EXPECT_THAT(parseError(before + "v 0 1,5 0" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1,5 0" + after),
               HasSubstr("test.obj:3: vertex coordinate \"1,5\" is not a number"));
-  EXPECT_THAT(parseError(before + "v 0 0x10 0" + after),
+  EXPECT_THAT(objParseError(before + "v 0 0x10 0" + after),
               HasSubstr("vertex coordinate \"0x10\" is not a number"));
-  EXPECT_THAT(parseError(before + "v 0 1" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1" + after),
               HasSubstr("test.obj:3: a vertex needs x, y and z, got 2 numbers"));
   // w and the colour extension's numbers are numbers too.
-  EXPECT_THAT(parseError(before + "v 0 1 0 0.5 nan 0.5" + after),
+  EXPECT_THAT(objParseError(before + "v 0 1 0 0.5 nan 0.5" + after),
               HasSubstr("test.obj:3: vertex coordinate \"nan\""));
   // Lines end at \n, \r\n or \r, as tinyobjloader reads them; bytes that do not print are escaped.
-  EXPECT_THAT(parseError("v 0 0 0\r\nv 1 0 0\rv 0 1 0\n# a comment\n  v\t0 \xff 0\nf 1 2 3\n"),
+  EXPECT_THAT(objParseError("v 0 0 0\r\nv 1 0 0\rv 0 1 0\n# a comment\n  v\t0 \xff 0\nf 1 2 3\n"),
               HasSubstr("test.obj:5: vertex coordinate \"\\xff\" is not a number"));
 }
 
@@ -134,14 +134,15 @@ TEST(ObjFile, CoordinatesAsModellingToolsWriteThemAreRead) {
 
 TEST(ObjFile, FaceVerticesMustBeIndices) {
   const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  EXPECT_THAT(parseError(vertices + "f 1 2 x\n"), HasSubstr("test.obj:4: face vertex \"x\" is not an index"));
-  EXPECT_THAT(parseError(vertices + "f 1 2 3.5\n"),
+  EXPECT_THAT(objParseError(vertices + "f 1 2 x\n"),
+              HasSubstr("test.obj:4: face vertex \"x\" is not an index"));
+  EXPECT_THAT(objParseError(vertices + "f 1 2 3.5\n"),
               HasSubstr("test.obj:4: face vertex \"3.5\" is not an index"));
-  EXPECT_THAT(parseError(vertices + "f 1 2/a 3\n"),
+  EXPECT_THAT(objParseError(vertices + "f 1 2/a 3\n"),
               HasSubstr("test.obj:4: face vertex \"2/a\" is not an index"));
-  EXPECT_THAT(parseError(vertices + "f 1 2 3/1/1/1\n"),
+  EXPECT_THAT(objParseError(vertices + "f 1 2 3/1/1/1\n"),
               HasSubstr("face vertex \"3/1/1/1\" has more than three indices"));
-  EXPECT_THAT(parseError(vertices + "f 1 0 3\n"),
+  EXPECT_THAT(objParseError(vertices + "f 1 0 3\n"),
               HasSubstr("test.obj:4: face vertex \"0\": vertex indices start at 1"));
   // The forms a modelling tool writes.
   EXPECT_EQ(parseObj(vertices + "vt 0 0\nvn 0 0 1\nf 1/1/1 +2//1 -1/1\n", "forms.obj").triangles.size(), 1u);
@@ -154,7 +155,7 @@ TEST(ObjFile, PolygonsAndMeshesWithinTheLimits) {
     polygon += ' ';
     polygon += std::to_string(i);
   }
-  EXPECT_THAT(parseError("v 0 0 0\n" + polygon + "\n"),
+  EXPECT_THAT(objParseError("v 0 0 0\n" + polygon + "\n"),
               HasSubstr("test.obj:2: a face of 257 vertices, more than the limit of 256"));
   // A circle of 256 vertices, the largest polygon allowed, is read.
   std::string circle;
@@ -171,7 +172,7 @@ TEST(ObjFile, PolygonsAndMeshesWithinTheLimits) {
   const std::size_t perFace = kMaxObjFaceVertices - 2;
   std::string text = "v 0 0 0\n";
   for (std::size_t t = 0; t <= kMaxMeshTriangles; t += perFace) text += bigFace;
-  EXPECT_THAT(parseError(text),
+  EXPECT_THAT(objParseError(text),
               HasSubstr("test.obj: more than 4000000 triangles (the limit), reached at line"));
 }
 

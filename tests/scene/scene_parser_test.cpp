@@ -17,7 +17,7 @@ using ::testing::HasSubstr;
 using collide::test::kSceneData;
 
 // The message of the Error that parsing `text` throws ("" if it does not throw).
-std::string parseError(const std::string& text) {
+std::string sceneParseError(const std::string& text) {
   try {
     parseScene(text, "test.json", kSceneData);
   } catch (const Error& e) {
@@ -166,10 +166,10 @@ TEST(SceneParser, GravityScaleAndDampingReachTheWorld) {
   EXPECT_EQ(sw.world.gravityScale(b), -0.5f);
   EXPECT_EQ(sw.world.linearDamping(b), 0.25f);
   EXPECT_EQ(sw.world.angularDamping(b), 2.0f);
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "angular_damping": -1,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "angular_damping": -1,
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].angular_damping: must be >= 0, got -1"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "gravity_scale": "heavy",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "gravity_scale": "heavy",
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].gravity_scale: must be a number"));
 }
@@ -205,21 +205,21 @@ TEST(SceneParser, PartsTakeTheBodysValuesThenTheirOwn) {
   EXPECT_TRUE(sw.world.partIsSensor(b, 2));
 
   EXPECT_THAT(
-      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1},
+      sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1},
       "parts": [{"shape": {"type": "sphere", "radius": 1}}]})")),
       HasSubstr("bodies[0].parts: give shape or parts, not both"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "parts": []})")),
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "parts": []})")),
               HasSubstr("bodies[0].parts: must hold at least one part"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "parts": [{"shape": {"type": "sphere", "radius": 1}, "frictoin": 1}]})")),
               HasSubstr("bodies[0].parts[0]"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "static",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "static",
       "parts": [{"shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}}]})")),
               HasSubstr("bodies[0].parts[0].shape: a plane cannot be a part"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "parts": [{"shape": {"type": "sphere", "radius": 1}, "density": 0}]})")),
               HasSubstr("bodies[0].parts: a dynamic body needs a part with density > 0"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic"})")), HasSubstr("shape"));
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic"})")), HasSubstr("shape"));
 }
 
 TEST(SceneParser, DefaultsAreTheEngines) {
@@ -234,163 +234,163 @@ TEST(SceneParser, DefaultsAreTheEngines) {
 
 TEST(SceneParserErrors, MalformedJsonGivesLineAndColumn) {
   const std::string message =
-      parseError("{ \"format\": \"collide-scene/1\",\n  \"bodies\": [ { \"name\": 1 ]\n}");
+      sceneParseError("{ \"format\": \"collide-scene/1\",\n  \"bodies\": [ { \"name\": 1 ]\n}");
   EXPECT_THAT(message, HasSubstr("test.json: malformed JSON at line 2, column 27"));
 }
 
 TEST(SceneParserErrors, NegativeSizeNamesThePathAndValue) {
   EXPECT_THAT(
-      parseError(withBody(R"({"name": "a", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+      sceneParseError(withBody(R"({"name": "a", "type": "static", "shape": {"type": "sphere", "radius": 1}},
       {"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": -1}})")),
       HasSubstr("test.json: bodies[1].shape.radius: must be > 0, got -1"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "box",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "box",
       "half_extents": [1, 0, 1]}})")),
               HasSubstr("bodies[0].shape.half_extents[1]: must be > 0, got 0"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "rolling_resistance": -0.01,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "rolling_resistance": -0.01,
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].rolling_resistance: must be >= 0, got -0.01"));
 }
 
 TEST(SceneParserErrors, WrongTypeNamesTheField) {
-  EXPECT_THAT(parseError(withBody(
+  EXPECT_THAT(sceneParseError(withBody(
                   R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": "big"}})")),
               HasSubstr("bodies[0].shape.radius: must be a number, got \"big\""));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"sleeping": 1}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"sleeping": 1}})"),
               HasSubstr("settings.sleeping: must be true or false, got 1"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"steps": 2.5}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"steps": 2.5}})"),
               HasSubstr("settings.steps: must be an integer, got 2.5"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": {}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "bodies": {}})"),
               HasSubstr("bodies: must be an array, got an object"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "position": [1, 2],
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "position": [1, 2],
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].position: must be [x, y, z], got [1,2]"));
 }
 
 TEST(SceneParserErrors, LayerAndMaskAre32Bits) {
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "mask": 4294967296,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "mask": 4294967296,
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].mask: must be from 0 to 4294967295 (32 bits), got 4294967296"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "layer": -1,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "layer": -1,
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].layer: must be from 0 to 4294967295 (32 bits), got -1"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "group": 1.5,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "group": 1.5,
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].group: must be an integer, got 1.5"));
 }
 
 TEST(SceneParserErrors, MissingRequiredField) {
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic"})")),
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic"})")),
               HasSubstr("bodies[0].shape: missing required field"));
-  EXPECT_THAT(
-      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "capsule", "radius": 1}})")),
-      HasSubstr("bodies[0].shape.half_height: missing required field"));
-  EXPECT_THAT(parseError(R"({"bodies": []})"), HasSubstr("test.json: format: missing required field"));
+  EXPECT_THAT(sceneParseError(
+                  withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "capsule", "radius": 1}})")),
+              HasSubstr("bodies[0].shape.half_height: missing required field"));
+  EXPECT_THAT(sceneParseError(R"({"bodies": []})"), HasSubstr("test.json: format: missing required field"));
 }
 
 TEST(SceneParserErrors, UnknownFieldIsRefused) {
-  EXPECT_THAT(
-      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radus": 1}})")),
-      HasSubstr("bodies[0].shape.radus: unknown field (expected type, radius)"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravty": [0, 0, 0]}})"),
+  EXPECT_THAT(sceneParseError(
+                  withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radus": 1}})")),
+              HasSubstr("bodies[0].shape.radus: unknown field (expected type, radius)"));
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"gravty": [0, 0, 0]}})"),
               HasSubstr("settings.gravty: unknown field"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "extra": 1})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "extra": 1})"),
               HasSubstr("test.json: extra: unknown field"));
 }
 
 TEST(SceneParserErrors, UnknownNames) {
-  EXPECT_THAT(
-      parseError(withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "spere", "radius": 1}})")),
-      HasSubstr("bodies[0].shape.type: unknown shape type \"spere\""));
-  EXPECT_THAT(
-      parseError(withBody(R"({"name": "b", "type": "dynamc", "shape": {"type": "sphere", "radius": 1}})")),
-      HasSubstr("bodies[0].type: unknown body type \"dynamc\""));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "material": "wood",
+  EXPECT_THAT(sceneParseError(
+                  withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "spere", "radius": 1}})")),
+              HasSubstr("bodies[0].shape.type: unknown shape type \"spere\""));
+  EXPECT_THAT(sceneParseError(
+                  withBody(R"({"name": "b", "type": "dynamc", "shape": {"type": "sphere", "radius": 1}})")),
+              HasSubstr("bodies[0].type: unknown body type \"dynamc\""));
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "material": "wood",
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].material: unknown material \"wood\""));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"broadphase": "octree"}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"broadphase": "octree"}})"),
               HasSubstr("settings.broadphase: broad phase: unknown type \"octree\""));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"friction_model": "sticky"}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"friction_model": "sticky"}})"),
               HasSubstr("settings.friction_model: "));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "bodies": [
       {"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}}],
       "constraints": [{"type": "distance", "a": "b", "b": "nobody"}]})"),
               HasSubstr("constraints[0].b: unknown body \"nobody\""));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/2"})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/2"})"),
               HasSubstr("format: must be \"collide-scene/1\", got \"collide-scene/2\""));
 }
 
 // JSON has no NaN or infinity: "1e999" parses to infinity, and 1e39 overflows a float.
 TEST(SceneParserErrors, HugeNumbersAreNotFinite) {
   EXPECT_THAT(
-      parseError(
+      sceneParseError(
           withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1e999}})")),
       HasSubstr("bodies[0].shape.radius: must be a finite number within float range, got 1e999 (line 1"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e999, 0]}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e999, 0]}})"),
               HasSubstr("settings.gravity[1]: must be a finite number within float range, got -1e999"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e39, 0]}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"gravity": [0, -1e39, 0]}})"),
               HasSubstr("settings.gravity[1]: must be a finite number within float range, got -1e+39"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": "NaN"}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"dt": "NaN"}})"),
               HasSubstr("settings.dt: must be a number, got \"NaN\""));
 }
 
 TEST(SceneParserErrors, OutOfRangeValues) {
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "bounciness": 1.5,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "bounciness": 1.5,
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].bounciness: must be in [0, 1], got 1.5"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 0}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"substeps": 0}})"),
               HasSubstr("settings.substeps: must be >= 1, got 0"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"restitution_threshold": -1}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"restitution_threshold": -1}})"),
               HasSubstr("settings.restitution_threshold: must be"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic", "rotation": [0, 0, 0, 2],
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic", "rotation": [0, 0, 0, 2],
       "shape": {"type": "sphere", "radius": 1}})")),
               HasSubstr("bodies[0].rotation: must be a unit quaternion"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "shape": {"type": "kdop", "k": 10, "points": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}})")),
               HasSubstr("bodies[0].shape.k: must be 6, 14, 18 or 26, got 10"));
 }
 
 TEST(SceneParserErrors, ShapesTheLibraryRefuses) {
   // Coplanar hull points: Qhull's refusal with the field in front.
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "shape": {"type": "convex_hull", "points": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]}})")),
               HasSubstr("bodies[0].shape.points: "));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "static",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "static",
       "shape": {"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,0,1]], "triangles": [[0, 1, 3]]}})")),
               HasSubstr("bodies[0].shape.triangles[0][2]: vertex index out of range (3 vertices), got 3"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "shape": {"type": "plane", "normal": [0, 1, 0], "distance": 0}})")),
               HasSubstr("bodies[0].shape: a plane can only be on a static body, got a dynamic body"));
-  EXPECT_THAT(parseError(withBody(
+  EXPECT_THAT(sceneParseError(withBody(
                   R"({"name": "b", "type": "static", "shape": {"type": "mesh", "file": "missing.obj"}})")),
               HasSubstr("bodies[0].shape.file: OBJ file "));
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "shape": {"type": "compound", "children": []}})")),
               HasSubstr("bodies[0].shape.children: a compound needs at least one child"));
 }
 
 TEST(SceneParserErrors, DuplicateNames) {
   EXPECT_THAT(
-      parseError(withBody(R"({"name": "b", "type": "static", "shape": {"type": "sphere", "radius": 1}},
+      sceneParseError(withBody(R"({"name": "b", "type": "static", "shape": {"type": "sphere", "radius": 1}},
       {"name": "b", "type": "static", "shape": {"type": "sphere", "radius": 1}})")),
       HasSubstr("bodies[1].name: duplicate name \"b\" (also bodies[0])"));
 }
 
 TEST(SceneParserErrors, ParticleIsADynamicSphereWithoutSpin) {
-  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "static", "particle": true,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "p", "type": "static", "particle": true,
       "shape": {"type": "sphere", "radius": 0.1}})")),
               HasSubstr("bodies[0].particle: a particle must be a dynamic body, got a static body"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
       "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]}})")),
               HasSubstr("bodies[0].particle: a particle's shape must be a sphere, got box"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "p", "type": "dynamic", "particle": true,
       "angular_velocity": [0, 1, 0], "shape": {"type": "sphere", "radius": 0.1}})")),
               HasSubstr("bodies[0].angular_velocity: a particle has no angular velocity, got [0,1,0]"));
-  EXPECT_THAT(parseError(withBody(R"({"name": "p", "type": "dynamic", "particle": "yes",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "p", "type": "dynamic", "particle": "yes",
       "shape": {"type": "sphere", "radius": 0.1}})")),
               HasSubstr("bodies[0].particle: must be true or false, got \"yes\""));
   // A particle cannot turn: an anchor off its centre has no lever.
   EXPECT_THAT(
-      parseError(R"({"format": "collide-scene/1", "bodies": [
+      sceneParseError(R"({"format": "collide-scene/1", "bodies": [
       {"name": "hook", "type": "static", "shape": {"type": "sphere", "radius": 0.1}},
       {"name": "p", "type": "dynamic", "particle": true, "shape": {"type": "sphere", "radius": 0.1},
        "position": [0, -1, 0]}],
@@ -411,32 +411,32 @@ TEST(SceneParser, ParticleReachesTheWorld) {
 // The JSON parser's whole explanation, after the line and column: "NaN", random bytes or a
 // truncated file each say what is wrong, bytes that do not print escaped.
 TEST(SceneParserErrors, MalformedJsonKeepsTheParsersExplanation) {
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": NaN}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"dt": NaN}})"),
               HasSubstr("test.json: malformed JSON at line 1, column 50: syntax error while parsing value - "
                         "invalid literal; last read: '\"dt\": N'"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [{"name": "a")"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "bodies": [{"name": "a")"),
               HasSubstr("test.json: malformed JSON at line 1, column 54: syntax error while parsing object - "
                         "unexpected end of input; expected '}'"));
-  EXPECT_THAT(parseError("\x89PNG\r\n\x1a\n"),
+  EXPECT_THAT(sceneParseError("\x89PNG\r\n\x1a\n"),
               HasSubstr("test.json: malformed JSON at line 1, column 1: syntax error while parsing value - "
                         "invalid literal; last read: '\\x89'"));
-  EXPECT_THAT(parseError(""),
+  EXPECT_THAT(sceneParseError(""),
               HasSubstr("test.json: malformed JSON at line 1, column 1: syntax error while parsing "
                         "value - unexpected end of input; expected '[', '{', or a literal"));
   // nlohmann's parser takes a NUL byte for the end of the text, which would hide what follows it.
-  EXPECT_THAT(parseError(std::string(R"({"format": "collide-scene/1"})") + '\0' + R"(, "bodies": 7})"),
+  EXPECT_THAT(sceneParseError(std::string(R"({"format": "collide-scene/1"})") + '\0' + R"(, "bodies": 7})"),
               HasSubstr("test.json: malformed JSON at line 1, column 30: a NUL byte (JSON text has none)"));
 }
 
 // nlohmann's parser keeps the last of two equal keys; the scene loader refuses them.
 TEST(SceneParserErrors, DuplicateKeysAreRefused) {
-  EXPECT_THAT(parseError(withBody(R"({"name": "b", "type": "dynamic",
+  EXPECT_THAT(sceneParseError(withBody(R"({"name": "b", "type": "dynamic",
       "shape": {"type": "sphere", "radius": 1, "radius": 2}})")),
               HasSubstr("test.json: bodies[0].shape.radius: duplicate key: an object holds each key once"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "format": "collide-scene/1"})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "format": "collide-scene/1"})"),
               HasSubstr("test.json: format: duplicate key"));
   EXPECT_THAT(
-      parseError(R"({"format": "collide-scene/1", "materials": {"felt": {}, "wood": {}, "felt": {}}})"),
+      sceneParseError(R"({"format": "collide-scene/1", "materials": {"felt": {}, "wood": {}, "felt": {}}})"),
       HasSubstr("test.json: materials.felt: duplicate key"));
   // The same key in different objects is no duplicate.
   EXPECT_EQ(parseScene(withBody(R"({"name": "b", "type": "dynamic", "position": [0, 1, 0],
@@ -450,14 +450,14 @@ TEST(SceneParserErrors, DuplicateKeysAreRefused) {
 // thousand deep would overflow the stack when an error message prints it.
 TEST(SceneParserErrors, JsonNestingIsLimited) {
   const std::string deep = std::string(100'000, '[') + std::string(100'000, ']');
-  const std::string message =
-      parseError(R"({"format": "collide-scene/1", "bodies": [{"name": "b", "type": "dynamic", "position": )" +
-                 deep + R"(, "shape": {"type": "sphere", "radius": 1}}]})");
+  const std::string message = sceneParseError(
+      R"({"format": "collide-scene/1", "bodies": [{"name": "b", "type": "dynamic", "position": )" + deep +
+      R"(, "shape": {"type": "sphere", "radius": 1}}]})");
   EXPECT_THAT(message, HasSubstr("test.json: bodies[0].position[0][0][0]"));
   EXPECT_THAT(message, HasSubstr(": arrays and objects nest more than 256 levels deep (the limit)"));
   // 256 levels are parsed (then refused for what they hold).
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "x": )" + std::string(255, '[') +
-                         std::string(255, ']') + "}"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "x": )" + std::string(255, '[') +
+                              std::string(255, ']') + "}"),
               HasSubstr("test.json: x: unknown field"));
 }
 
@@ -481,21 +481,22 @@ TEST(SceneParser, CompoundsNestUpToTheLimit) {
 
   std::string path = "bodies[0].shape";
   for (int i = 0; i < 64; ++i) path += ".children[0].shape";
-  EXPECT_THAT(parseError(nestedCompounds(65)),
+  EXPECT_THAT(sceneParseError(nestedCompounds(65)),
               HasSubstr("test.json: " + path + ": compounds nest more than 64 levels deep (the limit)"));
 }
 
 TEST(SceneParserErrors, SettingsWithinTheirLimits) {
   // One step of a billion substeps would not end; a step of 1e30 s overflows every position.
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 1000000000}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"substeps": 1000000000}})"),
               HasSubstr("test.json: settings.substeps: must be <= 64, got 1000000000"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"substeps": 18446744073709551615}})"),
-              HasSubstr("settings.substeps: must be <= 64, got 18446744073709551615"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": 1e30}})"),
+  EXPECT_THAT(
+      sceneParseError(R"({"format": "collide-scene/1", "settings": {"substeps": 18446744073709551615}})"),
+      HasSubstr("settings.substeps: must be <= 64, got 18446744073709551615"));
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"dt": 1e30}})"),
               HasSubstr("test.json: settings.dt: must be at most 1 s, got 1e+30"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"dt": 1.5}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"dt": 1.5}})"),
               HasSubstr("settings.dt: must be at most 1 s, got 1.5"));
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "settings": {"steps": 10000001}})"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "settings": {"steps": 10000001}})"),
               HasSubstr("test.json: settings.steps: must be <= 10000000, got 10000001"));
   const Scene s = parseScene(
       R"({"format": "collide-scene/1", "settings": {"substeps": 64, "dt": 1, "steps": 10000000}})");
@@ -508,14 +509,14 @@ TEST(SceneParserErrors, BodiesAndTrianglesWithinTheirLimits) {
   // Counted before any is read.
   std::string bodies = "0";
   for (int i = 0; i < 1'000'000; ++i) bodies += ",0";
-  EXPECT_THAT(parseError(R"({"format": "collide-scene/1", "bodies": [)" + bodies + "]}"),
+  EXPECT_THAT(sceneParseError(R"({"format": "collide-scene/1", "bodies": [)" + bodies + "]}"),
               HasSubstr("test.json: bodies: holds 1000001 bodies, more than the limit of 1000000"));
   std::string triangles = "0";
   for (int i = 0; i < 4'000'000; ++i) triangles += ",0";
   EXPECT_THAT(
-      parseError(withBody(R"({"name": "m", "type": "static", "shape": {"type": "mesh",
+      sceneParseError(withBody(R"({"name": "m", "type": "static", "shape": {"type": "mesh",
       "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]], "triangles": [)" +
-                          triangles + "]}}")),
+                               triangles + "]}}")),
       HasSubstr(
           "test.json: bodies[0].shape.triangles: holds 4000001 triangles, more than the limit of 4000000"));
 }
@@ -525,11 +526,12 @@ TEST(SceneParserErrors, MassOutsideFloatRangeNamesTheMass) {
     return withBody(R"({"name": "b", "type": "dynamic", "shape": {"type": "sphere", "radius": 1}, "mass": )" +
                     mass + "}");
   };
-  EXPECT_THAT(parseError(massBody("1e39")),
+  EXPECT_THAT(sceneParseError(massBody("1e39")),
               HasSubstr("test.json: bodies[0].mass: must be a finite number within float range, got 1e+39"));
-  EXPECT_THAT(parseError(massBody("1e999")),
+  EXPECT_THAT(sceneParseError(massBody("1e999")),
               HasSubstr("test.json: bodies[0].mass: must be a finite number within float range, got 1e999"));
-  EXPECT_THAT(parseError(massBody("1e-50")), HasSubstr("test.json: bodies[0].mass: must be > 0, got 1e-50"));
+  EXPECT_THAT(sceneParseError(massBody("1e-50")),
+              HasSubstr("test.json: bodies[0].mass: must be > 0, got 1e-50"));
   // Within float range but more than a 1 m sphere's inertia can carry in float: the World refuses
   // it, naming the mass.
   try {

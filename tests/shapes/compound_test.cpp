@@ -12,13 +12,9 @@ using namespace collide;
 
 namespace {
 
-void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
-  for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << "element " << c << "," << r;
-  }
-}
+using test::expectMatNear;
 
-std::string errorOf(std::vector<Compound::Child> children) {
+std::string compoundError(std::vector<Compound::Child> children) {
   try {
     Compound::fromChildren(std::move(children));
   } catch (const Error& e) {
@@ -196,23 +192,23 @@ TEST(Compound, ContainmentAndClosestPointsMatchBruteForceOverChildren) {
 }
 
 TEST(Compound, RejectsBadInputWithMessages) {
-  EXPECT_EQ(errorOf({}), "compound: needs at least one child, got 0");
-  EXPECT_EQ(errorOf({{Shape(Sphere{1.0f}), {}}, {Shape(Box{}), {}}, {Shape(Plane{}), {}}}),
+  EXPECT_EQ(compoundError({}), "compound: needs at least one child, got 0");
+  EXPECT_EQ(compoundError({{Shape(Sphere{1.0f}), {}}, {Shape(Box{}), {}}, {Shape(Plane{}), {}}}),
             "compound: child 2 is a plane; a half-space cannot be part of a compound");
 
   Transform zeroScale;
   zeroScale.scale = 0.0f;
-  EXPECT_NE(errorOf({{Shape(Sphere{1.0f}), {}}, {Shape(Sphere{1.0f}), zeroScale}})
+  EXPECT_NE(compoundError({{Shape(Sphere{1.0f}), {}}, {Shape(Sphere{1.0f}), zeroScale}})
                 .find("child 1 has an invalid transform"),
             std::string::npos);
   Transform nanPosition;
   nanPosition.position.x = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_NE(errorOf({{Shape(Sphere{1.0f}), nanPosition}}).find("child 0 has an invalid transform"),
+  EXPECT_NE(compoundError({{Shape(Sphere{1.0f}), nanPosition}}).find("child 0 has an invalid transform"),
             std::string::npos);
   Transform notUnit;
   notUnit.rotation = Quat(2.0f, 0.0f, 0.0f, 0.0f);
   const std::string message =
-      errorOf({{Shape(Box{}), {}}, {Shape(Box{}), {}}, {Shape(Box{}), {}}, {Shape(Box{}), notUnit}});
+      compoundError({{Shape(Box{}), {}}, {Shape(Box{}), {}}, {Shape(Box{}), {}}, {Shape(Box{}), notUnit}});
   EXPECT_NE(message.find("child 3 has an invalid transform"), std::string::npos) << message;
   EXPECT_NE(message.find("unit rotation"), std::string::npos) << message;
 

@@ -24,15 +24,7 @@ namespace {
 
 using test::boxCorners;
 
-std::vector<Vec3> randomPointsOnSphere(int count, float radius, std::mt19937& rng) {
-  std::normal_distribution<float> gaussian(0.0f, 1.0f);
-  std::vector<Vec3> points;
-  while (int(points.size()) < count) {
-    const Vec3 p(gaussian(rng), gaussian(rng), gaussian(rng));
-    if (glm::length(p) > 1e-3f) points.push_back(radius * glm::normalize(p));
-  }
-  return points;
-}
+using test::randomPointsOnSphere;
 
 void expectMatrixNear(const Mat3& actual, const Mat3& expected, float tolerance) {
   for (int c = 0; c < 3; ++c) {

@@ -3,6 +3,7 @@
 
 #include "support/hull_invariants.h"
 #include "support/simple_geometry.h"
+#include "support/test_random.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -18,15 +19,10 @@ namespace {
 
 using test::boxCorners;
 
-std::vector<Vec3> randomPointsOnSphere(int count, float radius, unsigned seed) {
+// `count` points on the sphere of `radius`, from the generator seeded `seed`.
+std::vector<Vec3> pointsOnSphere(int count, float radius, unsigned seed) {
   std::mt19937 rng(seed);
-  std::normal_distribution<float> gaussian(0.0f, 1.0f);
-  std::vector<Vec3> points;
-  while (int(points.size()) < count) {
-    const Vec3 p(gaussian(rng), gaussian(rng), gaussian(rng));
-    if (glm::length(p) > 1e-3f) points.push_back(radius * glm::normalize(p));
-  }
-  return points;
+  return test::randomPointsOnSphere(count, radius, rng);
 }
 
 }  // namespace
@@ -68,7 +64,7 @@ TEST(HullBuilder, KeepsOnlyHullVerticesOfARandomCloud) {
 }
 
 TEST(HullBuilder, SphereCloudIsAValidTriangulatedPolyhedron) {
-  const std::vector<Vec3> points = randomPointsOnSphere(200, 1.5f, 11);
+  const std::vector<Vec3> points = pointsOnSphere(200, 1.5f, 11);
   const ConvexHull hull = HullBuilder::build(points);
   // Points in general position on a sphere: all are vertices, every face a triangle, so
   // F = 2V - 4 and E = 3V - 6.
@@ -99,7 +95,7 @@ TEST(HullBuilder, ThinButSolidSlabBuilds) {
 
 TEST(HullBuilder, QhullPrintsNothing) {
   // Nearly degenerate input makes Qhull merge facets and talk about precision when allowed to.
-  std::vector<Vec3> points = randomPointsOnSphere(300, 1.0f, 3);
+  std::vector<Vec3> points = pointsOnSphere(300, 1.0f, 3);
   for (int i = 0; i < 100; ++i) points.push_back(points[i] * (1.0f + 1e-7f));
   ::testing::internal::CaptureStdout();
   ::testing::internal::CaptureStderr();

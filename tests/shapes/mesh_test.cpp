@@ -14,13 +14,9 @@ using namespace collide;
 
 namespace {
 
-void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
-  for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << "element " << c << "," << r;
-  }
-}
+using test::expectMatNear;
 
-std::string errorOf(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
+std::string meshError(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
   try {
     TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
   } catch (const Error& e) {
@@ -338,22 +334,22 @@ TEST(TriangleMesh, RejectsBadInputWithMessages) {
   const std::vector<Vec3> vertices(box.vertices().begin(), box.vertices().end());
   const std::vector<MeshTriangle> triangles(box.triangles().begin(), box.triangles().end());
 
-  EXPECT_EQ(errorOf(vertices, {}), "mesh: needs at least one triangle, got 0");
+  EXPECT_EQ(meshError(vertices, {}), "mesh: needs at least one triangle, got 0");
 
   std::vector<Vec3> nan = vertices;
   nan[5].y = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_NE(errorOf(nan, triangles).find("vertex 5 is not finite"), std::string::npos);
+  EXPECT_NE(meshError(nan, triangles).find("vertex 5 is not finite"), std::string::npos);
   std::vector<Vec3> infinite = vertices;
   infinite[2].x = std::numeric_limits<float>::infinity();
-  EXPECT_NE(errorOf(infinite, triangles).find("vertex 2 is not finite"), std::string::npos);
+  EXPECT_NE(meshError(infinite, triangles).find("vertex 2 is not finite"), std::string::npos);
 
   std::vector<MeshTriangle> outOfRange = triangles;
   outOfRange[3].v[1] = 9;
-  EXPECT_EQ(errorOf(vertices, outOfRange), "mesh: triangle 3 index 9 out of range (8 vertices)");
+  EXPECT_EQ(meshError(vertices, outOfRange), "mesh: triangle 3 index 9 out of range (8 vertices)");
 
   std::vector<MeshTriangle> repeated = triangles;
   repeated[7].v[2] = repeated[7].v[0];
-  EXPECT_NE(errorOf(vertices, repeated).find("triangle 7 has zero area: it repeats a vertex index"),
+  EXPECT_NE(meshError(vertices, repeated).find("triangle 7 has zero area: it repeats a vertex index"),
             std::string::npos);
 
   // Three distinct but collinear vertices.
@@ -362,14 +358,14 @@ TEST(TriangleMesh, RejectsBadInputWithMessages) {
   line.push_back({0.5f, 0.5f, 0.5f});
   std::vector<MeshTriangle> withSliver = triangles;
   withSliver.push_back({{7, 8, 9}});  // (1,1,1), origin, (0.5,0.5,0.5)
-  EXPECT_NE(errorOf(line, withSliver).find("triangle 12 has zero area"), std::string::npos);
+  EXPECT_NE(meshError(line, withSliver).find("triangle 12 has zero area"), std::string::npos);
 
   // Nonzero in float but far below the mesh's precision: a 1e-7-high sliver in a 2 m mesh.
   std::vector<Vec3> sliver = vertices;
   sliver.push_back({-1.0f, -1.0f, -1.0f + 1e-7f});
   sliver.push_back({1.0f, -1.0f, -1.0f});
   withSliver.back() = {{0, 9, 8}};
-  EXPECT_NE(errorOf(sliver, withSliver).find("triangle 12 has zero area"), std::string::npos);
+  EXPECT_NE(meshError(sliver, withSliver).find("triangle 12 has zero area"), std::string::npos);
 
   // A small triangle in a small mesh is fine: the tolerance is relative.
   EXPECT_NO_THROW(TriangleMesh::fromTriangles({{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0}}, {{{0, 1, 2}}}));

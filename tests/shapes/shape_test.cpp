@@ -7,14 +7,16 @@
 #include <cmath>
 #include <limits>
 
+#include "support/test_assertions.h"
+
 namespace collide {
 namespace {
 
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using test::kInf;
+using test::kNan;
 const float kBadSizes[] = {0.0f, -1.0f, kNan, kInf, -kInf};
 
 TEST(ShapeValidation, SphereRejectsBadRadius) {

@@ -1,10 +1,14 @@
 // Assertions shared by the tests.
 #pragma once
 
+#include <collide/error.h>
 #include <collide/math.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
 
 namespace collide::test {
 
@@ -13,7 +17,28 @@ inline constexpr float kEps = 1e-5f;
 // A finite float near the largest: two of them add up to infinity.
 inline constexpr float kHuge = 3.0e38f;
 
+inline constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
+inline constexpr float kDegree = kPi / 180.0f;
+
 inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Element-wise |a - b| <= tolerance.
+inline void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << "element " << c << "," << r;
+  }
+}
+
+// f throws collide::Error, and its message names `word`.
+inline void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
+  try {
+    f();
+    FAIL() << "no Error thrown (expected one naming \"" << word << "\")";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  }
+}
 
 // Component-wise |actual - expected| <= tolerance.
 inline void expectVecNear(const Vec3& actual, const Vec3& expected, float tolerance = 1e-5f) {

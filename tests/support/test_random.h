@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace collide::test {
 
@@ -22,6 +23,17 @@ inline Vec3 randomUnitVector(std::mt19937& rng) {
 inline Vec3 randomInUnitBall(std::mt19937& rng) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   return randomUnitVector(rng) * std::cbrt(u(rng));
+}
+
+// `count` points on the sphere of `radius` about the origin, uniformly.
+inline std::vector<Vec3> randomPointsOnSphere(int count, float radius, std::mt19937& rng) {
+  std::normal_distribution<float> gaussian(0.0f, 1.0f);
+  std::vector<Vec3> points;
+  while (int(points.size()) < count) {
+    const Vec3 p(gaussian(rng), gaussian(rng), gaussian(rng));
+    if (glm::length(p) > 1e-3f) points.push_back(radius * glm::normalize(p));
+  }
+  return points;
 }
 
 // A uniformly random rotation: a normalised 4D Gaussian is uniform on the unit 3-sphere.

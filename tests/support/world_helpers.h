@@ -32,6 +32,20 @@ inline BodyDef boxBody(const Vec3& position, const Vec3& halfExtents, float mass
   return def;
 }
 
+// A particle: a point mass that collides as a sphere and never turns.
+inline BodyDef particleBody(const Vec3& position, float radius, float mass) {
+  BodyDef def = sphereBody(position, radius, mass);
+  def.particle = true;
+  return def;
+}
+
+// The inertia tensor of a solid box of `mass` and half extents `half` about its centre.
+inline Mat3 boxInertia(float mass, const Vec3& half) {
+  const Vec3 s = 2.0f * half;
+  return Mat3(mass / 12.0f * (s.y * s.y + s.z * s.z), 0, 0, 0, mass / 12.0f * (s.x * s.x + s.z * s.z), 0, 0,
+              0, mass / 12.0f * (s.x * s.x + s.y * s.y));
+}
+
 // A static ground whose top face is y = 0 (the reference scenes' 200 x 200 box).
 inline BodyDef groundBox() {
   BodyDef def;

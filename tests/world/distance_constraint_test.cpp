@@ -1,5 +1,6 @@
 // Distance constraints in the soft step: rigid and compliant, against analytic answers (pendulum
 // period, spring frequency and static stretch, momentum) and shape keeping (chain, particle cube).
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -18,12 +19,6 @@ namespace {
 
 using test::kDt;
 
-BodyDef particleDef(const Vec3& position, float radius, float mass) {
-  BodyDef def = test::sphereBody(position, radius, mass);
-  def.particle = true;
-  return def;
-}
-
 BodyDef pinDef(const Vec3& position) {
   BodyDef def;
   def.type = BodyType::Static;
@@ -40,14 +35,7 @@ JointId connect(World& world, BodyId a, BodyId b, float compliance = 0.0f) {
   return world.createDistanceConstraint(def);
 }
 
-void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
-  try {
-    f();
-    FAIL() << "no Error thrown (expected one naming \"" << word << "\")";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
-  }
-}
+using test::expectErrorMentions;
 
 // Times at which x(t) crosses zero going up, linearly interpolated between steps.
 std::vector<double> upwardCrossings(const std::vector<float>& x, float dt) {
@@ -69,7 +57,7 @@ TEST(DistanceConstraint, BadDefinitionsAndStaleIdsAreErrors) {
   const BodyId ground = world.createBody(test::groundBox());
   const BodyId wall = world.createBody(pinDef(Vec3(5.0f, 1.0f, 0.0f)));
   const BodyId ball = world.createBody(test::sphereBody(Vec3(0.0f, 2.0f, 0.0f), 0.5f, 1.0f));
-  const BodyId p = world.createBody(particleDef(Vec3(1.0f, 2.0f, 0.0f), 0.1f, 1.0f));
+  const BodyId p = world.createBody(test::particleBody(Vec3(1.0f, 2.0f, 0.0f), 0.1f, 1.0f));
   const BodyId gone = world.createBody(test::sphereBody(Vec3(3.0f, 2.0f, 0.0f), 0.5f, 1.0f));
   world.destroyBody(gone);
 
@@ -134,7 +122,8 @@ TEST(DistanceConstraint, ParticleChainKeepsItsLinkLengths) {
   std::vector<JointId> joints;
   for (int i = 1; i <= 10; ++i) {
     const Vec3 along(std::sin(0.5236f), -std::cos(0.5236f), 0.0f);
-    bodies.push_back(world.createBody(particleDef(top + link * static_cast<float>(i) * along, 0.05f, 0.5f)));
+    bodies.push_back(
+        world.createBody(test::particleBody(top + link * static_cast<float>(i) * along, 0.05f, 0.5f)));
     joints.push_back(connect(world, bodies[i - 1], bodies[i]));
   }
   float worst = 0.0f;
@@ -160,8 +149,8 @@ float worstStretchOfAChainReleasedHorizontal(int links) {
   std::vector<BodyId> bodies{world.createBody(pinDef(top))};
   std::vector<JointId> joints;
   for (int i = 1; i <= links; ++i) {
-    bodies.push_back(
-        world.createBody(particleDef(top + link * static_cast<float>(i) * Vec3(1, 0, 0), 0.05f, 0.5f)));
+    bodies.push_back(world.createBody(
+        test::particleBody(top + link * static_cast<float>(i) * Vec3(1, 0, 0), 0.05f, 0.5f)));
     joints.push_back(connect(world, bodies[i - 1], bodies[i]));
   }
   float worst = 0.0f;
@@ -190,7 +179,8 @@ TEST(DistanceConstraint, ParticleCubeFallsAndRestsKeepingItsShape) {
   std::vector<BodyId> corners;
   for (int i = 0; i < 8; ++i) {
     const Vec3 local((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f);
-    corners.push_back(world.createBody(particleDef(Vec3(0.0f, 2.0f, 0.0f) + tilt * local, radius, 1.0f)));
+    corners.push_back(
+        world.createBody(test::particleBody(Vec3(0.0f, 2.0f, 0.0f) + tilt * local, radius, 1.0f)));
   }
   std::vector<JointId> joints;
   std::vector<float> rest;
@@ -226,7 +216,7 @@ TEST(DistanceConstraint, PendulumPeriodMatchesTheSmallAngleFormula) {
   const Vec3 pin(0.0f, 3.0f, 0.0f);
   const BodyId top = world.createBody(pinDef(pin));
   const BodyId bob = world.createBody(
-      particleDef(pin + length * Vec3(std::sin(theta0), -std::cos(theta0), 0.0f), 0.02f, 1.0f));
+      test::particleBody(pin + length * Vec3(std::sin(theta0), -std::cos(theta0), 0.0f), 0.02f, 1.0f));
   connect(world, top, bob);
   std::vector<float> x;
   for (int step = 0; step < 600; ++step) {
@@ -245,9 +235,9 @@ TEST(DistanceConstraint, TwoFreeParticlesConserveMomentum) {
   World world(test::zeroGravityWorld());
   const float m1 = 1.0f;
   const float m2 = 3.0f;
-  BodyDef a = particleDef(Vec3(-0.6f, 0.0f, 0.0f), 0.05f, m1);
+  BodyDef a = test::particleBody(Vec3(-0.6f, 0.0f, 0.0f), 0.05f, m1);
   a.linearVelocity = Vec3(0.5f, 2.0f, -0.3f);
-  BodyDef b = particleDef(Vec3(0.4f, 0.1f, 0.0f), 0.05f, m2);
+  BodyDef b = test::particleBody(Vec3(0.4f, 0.1f, 0.0f), 0.05f, m2);
   b.linearVelocity = Vec3(0.2f, -1.0f, 0.4f);
   const BodyId ia = world.createBody(a);
   const BodyId ib = world.createBody(b);
@@ -278,8 +268,8 @@ TEST(DistanceConstraint, CompliantConstraintOscillatesAtTheSpringFrequency) {
   const float m2 = 3.0f;
   const float mu = m1 * m2 / (m1 + m2);
   const float compliance = 0.01f;  // m/N: 100 N/m
-  const BodyId a = world.createBody(particleDef(Vec3(-0.5f, 0.0f, 0.0f), 0.05f, m1));
-  const BodyId b = world.createBody(particleDef(Vec3(0.5f, 0.0f, 0.0f), 0.05f, m2));
+  const BodyId a = world.createBody(test::particleBody(Vec3(-0.5f, 0.0f, 0.0f), 0.05f, m1));
+  const BodyId b = world.createBody(test::particleBody(Vec3(0.5f, 0.0f, 0.0f), 0.05f, m2));
   DistanceConstraintDef def;
   def.a = a;
   def.b = b;
@@ -302,7 +292,7 @@ TEST(DistanceConstraint, CompliantConstraintHangsAtTheStaticStretch) {
   World world;
   const Vec3 pin(0.0f, 3.0f, 0.0f);
   const BodyId top = world.createBody(pinDef(pin));
-  const BodyId bob = world.createBody(particleDef(pin - Vec3(0.0f, 1.0f, 0.0f), 0.05f, 2.0f));
+  const BodyId bob = world.createBody(test::particleBody(pin - Vec3(0.0f, 1.0f, 0.0f), 0.05f, 2.0f));
   DistanceConstraintDef def;
   def.a = top;
   def.b = bob;

@@ -19,9 +19,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
 using test::kHuge;
+using test::kInf;
+using test::kNan;
 
 bool finiteState(const World& world, BodyId id) {
   const Transform t = world.transform(id);

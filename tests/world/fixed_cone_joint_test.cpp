@@ -1,6 +1,7 @@
 // Fixed (weld) and cone (swing-twist) joints against known answers: two welded boxes tumble as one
 // rigid body (their relative pose, momentum and energy kept), a welded cantilever holds its pose, a
 // cone joint keeps its axis within the swing and its twist within the limits.
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -14,14 +15,10 @@
 namespace collide {
 namespace {
 
+using test::kDegree;
 using test::kDt;
-constexpr float kDegree = kPi / 180.0f;
 
-Mat3 boxInertia(float mass, const Vec3& half) {
-  const Vec3 s = 2.0f * half;
-  return Mat3(mass / 12.0f * (s.y * s.y + s.z * s.z), 0, 0, 0, mass / 12.0f * (s.x * s.x + s.z * s.z), 0, 0,
-              0, mass / 12.0f * (s.x * s.x + s.y * s.y));
-}
+using test::boxInertia;
 
 TEST(FixedJoint, TwoWeldedBoxesTumbleAsOneRigidBodyForTenSeconds) {
   World world(test::zeroGravityWorld());

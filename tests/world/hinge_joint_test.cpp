@@ -1,5 +1,6 @@
 // Hinge (revolute) joints against known answers: the physical pendulum's period and energy, a
 // door held at its limit, a motor at its speed and at its torque, a spring at its frequency.
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -16,9 +17,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
+using test::kDegree;
 using test::kDt;
 using test::kG;
-constexpr float kDegree = kPi / 180.0f;
 
 // A uniform rod of length L hinged at its top end about z, turned by `angle` about z.
 struct HingedRod {

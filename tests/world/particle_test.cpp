@@ -1,4 +1,5 @@
 // Particles: point masses that collide as spheres and never turn.
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -11,34 +12,21 @@ namespace {
 
 using test::kDt;
 
-BodyDef particleDef(const Vec3& position, float radius, float mass) {
-  BodyDef def = test::sphereBody(position, radius, mass);
-  def.particle = true;
-  return def;
-}
-
-void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
-  try {
-    f();
-    FAIL() << "no Error thrown (expected one naming \"" << word << "\")";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
-  }
-}
+using test::expectErrorMentions;
 
 TEST(Particle, BadDefinitionsAreErrors) {
   World world;
-  BodyDef def = particleDef(Vec3(0.0f), 0.1f, 1.0f);
+  BodyDef def = test::particleBody(Vec3(0.0f), 0.1f, 1.0f);
   def.shape = Shape(Box{Vec3(0.1f)});
   expectErrorMentions([&] { world.createBody(def); }, "sphere");
-  def = particleDef(Vec3(0.0f), 0.1f, 1.0f);
+  def = test::particleBody(Vec3(0.0f), 0.1f, 1.0f);
   def.type = BodyType::Static;
   expectErrorMentions([&] { world.createBody(def); }, "dynamic");
-  def = particleDef(Vec3(0.0f), 0.1f, 1.0f);
+  def = test::particleBody(Vec3(0.0f), 0.1f, 1.0f);
   def.angularVelocity = Vec3(0.0f, 1.0f, 0.0f);
   expectErrorMentions([&] { world.createBody(def); }, "angular");
   EXPECT_EQ(world.bodyCount(), 0u);
-  const BodyId p = world.createBody(particleDef(Vec3(0.0f), 0.1f, 1.0f));
+  const BodyId p = world.createBody(test::particleBody(Vec3(0.0f), 0.1f, 1.0f));
   EXPECT_TRUE(world.isParticle(p));
   expectErrorMentions([&] { world.setAngularVelocity(p, Vec3(1.0f, 0.0f, 0.0f)); }, "particle");
   EXPECT_NO_THROW(world.setAngularVelocity(p, Vec3(0.0f)));
@@ -48,7 +36,7 @@ TEST(Particle, BadDefinitionsAreErrors) {
 TEST(Particle, TakesOnlyTheLinearPartOfImpulsesAndForces) {
   World world(test::zeroGravityWorld());
   const Quat tilt = glm::angleAxis(0.4f, glm::normalize(Vec3(1.0f, 2.0f, 3.0f)));
-  BodyDef def = particleDef(Vec3(0.0f), 0.1f, 2.0f);
+  BodyDef def = test::particleBody(Vec3(0.0f), 0.1f, 2.0f);
   def.rotation = tilt;
   const BodyId p = world.createBody(def);
   world.applyImpulse(p, Vec3(0.0f, 0.0f, 4.0f), Vec3(1.0f, 0.0f, 0.0f));
@@ -69,7 +57,7 @@ TEST(Particle, SlidesToRestAfterTheCoulombDistance) {
   world.createBody(test::groundBox());
   const float v0 = 3.0f;
   const float mu = 0.5f;
-  BodyDef def = particleDef(Vec3(0.0f, 0.1f, 0.0f), 0.1f, 1.0f);
+  BodyDef def = test::particleBody(Vec3(0.0f, 0.1f, 0.0f), 0.1f, 1.0f);
   def.linearVelocity = Vec3(v0, 0.0f, 0.0f);
   def.friction = mu;
   const BodyId p = world.createBody(def);
@@ -87,10 +75,10 @@ TEST(Particle, SlidesToRestAfterTheCoulombDistance) {
 TEST(Particle, CollidesAsASphereOfItsRadius) {
   WorldDef wd = test::zeroGravityWorld();
   World world(wd);
-  BodyDef a = particleDef(Vec3(-1.0f, 0.0f, 0.0f), 0.25f, 1.0f);
+  BodyDef a = test::particleBody(Vec3(-1.0f, 0.0f, 0.0f), 0.25f, 1.0f);
   a.linearVelocity = Vec3(2.0f, 0.0f, 0.0f);
   a.bounciness = 1.0f;
-  BodyDef b = particleDef(Vec3(1.0f, 0.0f, 0.0f), 0.25f, 1.0f);
+  BodyDef b = test::particleBody(Vec3(1.0f, 0.0f, 0.0f), 0.25f, 1.0f);
   b.bounciness = 1.0f;
   const BodyId ia = world.createBody(a);
   const BodyId ib = world.createBody(b);

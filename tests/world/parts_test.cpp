@@ -35,11 +35,7 @@ PartDef spherePart(const Vec3& position, float radius) {
 }
 
 // The inertia of a solid box of mass m and half extents h about its centre, box axes.
-Mat3 boxInertia(float m, const Vec3& h) {
-  const Vec3 d = 4.0f * h * h;  // full sides squared
-  return Mat3(Vec3(m * (d.y + d.z) / 12.0f, 0, 0), Vec3(0, m * (d.x + d.z) / 12.0f, 0),
-              Vec3(0, 0, m * (d.x + d.y) / 12.0f));
-}
+using test::boxInertia;
 
 TEST(Parts, MassCentreAndInertiaAreTheSumOfTheParts) {
   // Two unit cubes side by side along x, densities 1000 and 3000: 1 kg and 3 kg per litre... a 1 m

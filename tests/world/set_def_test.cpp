@@ -16,7 +16,7 @@ namespace {
 using test::kDt;
 
 // A small pile: a 3 x 4 x 3 lattice of boxes, slightly turned, dropped on the ground.
-std::vector<BodyId> buildPile(World& world) {
+std::vector<BodyId> buildBoxStack(World& world) {
   std::vector<BodyId> ids;
   ids.push_back(world.createBody(test::groundBox()));
   for (int y = 0; y < 4; ++y) {
@@ -53,7 +53,7 @@ TEST(WorldSetDef, GravityChangesFromTheNextStep) {
 
 TEST(WorldSetDef, ARefusedDefChangesNothing) {
   World world, twin;
-  const std::vector<BodyId> a = buildPile(world), b = buildPile(twin);
+  const std::vector<BodyId> a = buildBoxStack(world), b = buildBoxStack(twin);
   for (int i = 0; i < 30; ++i) {
     world.step(kDt);
     twin.step(kDt);
@@ -85,7 +85,7 @@ TEST(WorldSetDef, ARefusedDefChangesNothing) {
 // destroyed body first, so that the proxy table has a hole the switch must keep.
 TEST(WorldSetDef, SwitchingTheBroadPhaseChangesNoResult) {
   World switched, kept;
-  std::vector<BodyId> a = buildPile(switched), b = buildPile(kept);
+  std::vector<BodyId> a = buildBoxStack(switched), b = buildBoxStack(kept);
   switched.destroyBody(a[5]);
   kept.destroyBody(b[5]);
   const BroadPhaseType types[] = {BroadPhaseType::SweepAndPrune, BroadPhaseType::Grid,

@@ -24,7 +24,7 @@ std::size_t threadCount() {
 }
 
 // 6 x 6 x 6 boxes and spheres dropped in a loose lattice on a ground box, and a jointed chain.
-std::vector<BodyId> buildPile(World& world) {
+std::vector<BodyId> buildMixedPile(World& world) {
   world.createBody(test::groundBox());
   std::vector<BodyId> bodies;
   for (int x = 0; x < 6; ++x) {
@@ -68,7 +68,7 @@ std::vector<unsigned char> stateBytes(const World& world, const std::vector<Body
 
 std::vector<unsigned char> runPile(WorldDef def, int steps, int switchWorkersAt = -1, int switchTo = 1) {
   World world(def);
-  const std::vector<BodyId> bodies = buildPile(world);
+  const std::vector<BodyId> bodies = buildMixedPile(world);
   for (int step = 0; step < steps; ++step) {
     if (step == switchWorkersAt) {
       def.workerCount = switchTo;
@@ -102,7 +102,7 @@ TEST(Workers, OneWorkerStartsNoThreadAndFourStartThree) {
   const std::size_t before = threadCount();
   {
     World world;
-    buildPile(world);
+    buildMixedPile(world);
     for (int step = 0; step < 5; ++step) world.step(kDt);
     EXPECT_EQ(threadCount(), before);
   }

@@ -1,5 +1,6 @@
 // The World's API: ids, validation, counters, events, sensors, the pre-solve callback, determinism
 // and the penetration responses.
+#include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -15,14 +16,7 @@ namespace {
 
 using test::kDt;
 
-void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
-  try {
-    f();
-    FAIL() << "no Error thrown (expected one naming \"" << word << "\")";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
-  }
-}
+using test::expectErrorMentions;
 
 TEST(World, StaleBodyIdIsAnError) {
   World world;

@@ -1,0 +1,142 @@
+// The engine's hooks (collide/hooks.h): the allocator every Array goes through, the assertion
+// handler, the log handler and the profiler's zones.
+#include <collide/error.h>
+#include <collide/hooks.h>
+
+#include "base/assert.h"
+#include "base/log.h"
+#include "base/profile.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <new>
+#include <string>
+
+namespace collide {
+
+namespace {
+
+// Every allocator installed, kept for good: a block records the one that gave it in a header before
+// it and goes back to that one, even after another was installed (a thread's scratch outlives the
+// worlds that grew it). Entry 0 is the C++ heap.
+constexpr std::size_t kMaxAllocators = 64;
+void* heapAllocate(std::size_t bytes, std::size_t alignment, void*) {
+  return ::operator new(bytes, std::align_val_t(alignment), std::nothrow);
+}
+void heapFree(void* memory, std::size_t, std::size_t alignment, void*) {
+  ::operator delete(memory, std::align_val_t(alignment));
+}
+Allocator gAllocators[kMaxAllocators] = {{&heapAllocate, &heapFree, nullptr}};
+std::atomic<std::size_t> gInstalled{1};
+std::atomic<const Allocator*> gCurrent{&gAllocators[0]};
+std::mutex gInstallMutex;
+
+std::atomic<std::size_t> gLiveAllocations{0};
+std::atomic<std::size_t> gLiveBytes{0};
+
+// The header before each block: at least the block's alignment (so the block stays aligned) and
+// room for the pointer to its allocator, which sits just before the block.
+std::size_t headerBytes(std::size_t alignment) { return std::max(alignment, alignof(std::max_align_t)); }
+
+bool defaultAssertHandler(const char* condition, const char* file, int line) {
+  std::fprintf(stderr, "collide: assertion failed: %s (%s:%d)\n", condition, file, line);
+  return true;
+}
+std::atomic<AssertHandler> gAssertHandler{&defaultAssertHandler};
+
+std::atomic<LogHandler> gLogHandler{nullptr};
+std::atomic<void*> gLogContext{nullptr};
+
+ProfileHooks gProfileHooks;
+
+}  // namespace
+
+void setAllocator(const Allocator& allocator) {
+  if ((allocator.allocate == nullptr) != (allocator.free == nullptr))
+    throw Error("setAllocator: allocate and free must both be set, or both be null (the C++ heap)");
+  if (allocator.allocate == nullptr) {
+    gCurrent.store(&gAllocators[0]);
+    return;
+  }
+  const std::lock_guard lock(gInstallMutex);
+  const std::size_t count = gInstalled.load();
+  if (count == kMaxAllocators) {
+    throw Error("setAllocator: " + std::to_string(kMaxAllocators - 1) +
+                " allocators were installed already, the most one process can have");
+  }
+  gAllocators[count] = allocator;
+  gInstalled.store(count + 1);
+  gCurrent.store(&gAllocators[count]);
+}
+
+std::size_t liveAllocations() { return gLiveAllocations.load(); }
+std::size_t liveAllocatedBytes() { return gLiveBytes.load(); }
+
+namespace detail {
+
+void* allocateBytes(std::size_t bytes, std::size_t alignment) {
+  const Allocator* allocator = gCurrent.load(std::memory_order_acquire);
+  const std::size_t header = headerBytes(alignment);
+  auto* raw = static_cast<unsigned char*>(allocator->allocate(header + bytes, header, allocator->context));
+  if (!raw) throw std::bad_alloc();
+  unsigned char* block = raw + header;
+  std::memcpy(block - sizeof(allocator), &allocator, sizeof(allocator));
+  gLiveAllocations.fetch_add(1, std::memory_order_relaxed);
+  gLiveBytes.fetch_add(bytes, std::memory_order_relaxed);
+  return block;
+}
+
+void freeBytes(void* memory, std::size_t bytes, std::size_t alignment) noexcept {
+  if (!memory) return;
+  auto* block = static_cast<unsigned char*>(memory);
+  const Allocator* allocator = nullptr;
+  std::memcpy(&allocator, block - sizeof(allocator), sizeof(allocator));
+  const std::size_t header = headerBytes(alignment);
+  gLiveAllocations.fetch_sub(1, std::memory_order_relaxed);
+  gLiveBytes.fetch_sub(bytes, std::memory_order_relaxed);
+  allocator->free(block - header, header + bytes, header, allocator->context);
+}
+
+void assertFailed(const char* condition, const char* file, int line) {
+  const AssertHandler handler = gAssertHandler.load();
+  if (handler(condition, file, line)) std::abort();
+}
+
+bool logging() { return gLogHandler.load() != nullptr; }
+
+void logMessage(LogLevel level, const std::string& message) {
+  const LogHandler handler = gLogHandler.load();
+  if (handler) handler(level, message.c_str(), gLogContext.load());
+}
+
+void profileBegin(const char* name) {
+  if (gProfileHooks.beginZone) gProfileHooks.beginZone(name, gProfileHooks.context);
+}
+
+void profileEnd() {
+  if (gProfileHooks.endZone) gProfileHooks.endZone(gProfileHooks.context);
+}
+
+}  // namespace detail
+
+void setAssertHandler(AssertHandler handler) {
+  gAssertHandler.store(handler ? handler : &defaultAssertHandler);
+}
+
+bool assertionsEnabled() { return COLLIDE_ASSERTS_ENABLED != 0; }
+
+void setLogHandler(LogHandler handler, void* context) {
+  gLogContext.store(context);
+  gLogHandler.store(handler);
+}
+
+void setProfileHooks(const ProfileHooks& hooks) { gProfileHooks = hooks; }
+
+bool profileZonesEnabled() { return COLLIDE_PROFILE_ZONES != 0; }
+
+}  // namespace collide
