@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -143,6 +144,8 @@ class BroadPhase {
   // same ids (index and generation, so handles to them stay valid), boxes, layers and free slots.
   // Switches a running world to another broad-phase type or setting. Throws Error when not empty.
   void adoptProxies(const BroadPhase& source);
+  // The slots free for reuse, the last one taken first.
+  std::span<const std::uint32_t> freeSlots() const { return freeSlots_; }
 
   bool contains(ProxyId id) const;
   std::size_t proxyCount() const { return aliveCount_; }
@@ -218,6 +221,10 @@ class BroadPhase {
     bool alive = false;
   };
   const Array<ProxyRecord>& records() const { return proxies_; }
+  // adoptProxies from a list of records and free slots (a world snapshot): throws Error, and adopts
+  // nothing, when this broad phase has proxies already, or for an alive proxy whose box is not
+  // finite or has min > max, or a free slot out of range, alive or listed twice.
+  void adoptProxies(std::span<const ProxyRecord> records, std::span<const std::uint32_t> freeSlots);
 
  protected:
   explicit BroadPhase(const BroadPhaseSettings& settings) : settings_(settings) {}

@@ -371,6 +371,21 @@ class World {
   const StepStats& totalStats() const;
   // The heap memory the world holds now, by stage (WorldMemory).
   WorldMemory memoryUse() const;
+
+  // ---- Snapshots (rollback netcode, save games, replays; docs/snapshots.md) ----
+  // The world's whole state as bytes: its settings, bodies with their shapes, the broad phase's
+  // proxies and pairs, contacts with their warm-start impulses, friction anchors and manifold caches,
+  // joints with theirs, sleep timers, the last step's events and statistics. A world that loads it
+  // continues bit-identically to this one (the same build of collide; docs/determinism.md). The
+  // same state gives the same bytes. Not saved: the callbacks (pre-solve, pair filter, contact
+  // listener) and the task settings (workerCount, enqueueTask, finishTask, userTaskContext), which
+  // belong to the world that loads it.
+  std::vector<std::uint8_t> saveSnapshot() const;
+  // Replaces this world's state with a snapshot's, keeping this world's callbacks and task
+  // settings; ids from the saved world are valid here. Throws Error naming the fault, and changes
+  // nothing, for bytes that are not a snapshot, a snapshot of another format version or another
+  // build's layout, a corrupt or truncated one, or contents no world could hold.
+  void loadSnapshot(std::span<const std::uint8_t> snapshot);
   // Events of the last step, in a deterministic order.
   std::span<const ContactEvent> contactEvents() const;
   std::span<const SensorEvent> sensorEvents() const;

@@ -39,7 +39,8 @@ bool samePath(const fs::path& a, const fs::path& b) {
 
 }  // namespace
 
-void checkOutputPaths(const Scene& scene, const std::vector<OutputPath>& outputs) {
+void checkOutputPaths(const Scene& scene, const std::vector<OutputPath>& outputs,
+                      const std::vector<OutputPath>& otherInputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const OutputPath& out = outputs[i];
     if (out.path.empty()) continue;
@@ -59,6 +60,10 @@ void checkOutputPaths(const Scene& scene, const std::vector<OutputPath>& outputs
       if (samePath(out.path, obj))
         throw Error(who + ": is the OBJ file " + quoted(obj) +
                     " that the scene reads; refusing to overwrite it");
+    }
+    for (const OutputPath& input : otherInputs) {
+      if (!input.path.empty() && samePath(out.path, input.path))
+        throw Error(who + ": is the " + input.what + " file the run reads; refusing to overwrite it");
     }
     if (status.type() == fs::file_type::character) continue;  // /dev/null takes any number of outputs
     for (std::size_t j = 0; j < i; ++j) {

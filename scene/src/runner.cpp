@@ -1,7 +1,9 @@
 // The loop behind `collide run`: step the World, stream the recording and the contact events, apply
 // damage to breakable bodies from contact begin events, and gather the summary.
+#include "file_text.h"
 #include "json_output.h"
 
+#include <collide/scene/limits.h>
 #include <collide/scene/output_file.h>
 #include <collide/scene/runner.h>
 
@@ -116,11 +118,44 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   if (steps < 0) throw Error("run: steps must be >= 0, got " + std::to_string(steps));
   if (options.recordEvery < 1)
     throw Error("run: --every must be >= 1, got " + std::to_string(options.recordEvery));
-  checkOutputPaths(
-      scene,
-      {{"recording", options.recordPath}, {"events", options.eventsPath}, {"summary", options.summaryPath}});
+  if (!options.snapshotPath.empty() && (options.snapshotAt < 0 || options.snapshotAt > steps))
+    throw Error("run: --snapshot-at must be from 0 to the run's " + std::to_string(steps) + " steps, got " +
+                std::to_string(options.snapshotAt));
+  checkOutputPaths(scene,
+                   {{"recording", options.recordPath},
+                    {"events", options.eventsPath},
+                    {"summary", options.summaryPath},
+                    {"snapshot", options.snapshotPath}},
+                   {{"snapshot", options.fromSnapshotPath}});
 
   SceneWorld sw = buildWorld(scene);
+  if (!options.fromSnapshotPath.empty()) {
+    const std::string who = "snapshot file \"" + options.fromSnapshotPath + "\"";
+    const std::string bytes = readFileText(options.fromSnapshotPath, kMaxSnapshotBytes, who);
+    try {
+      sw.world.loadSnapshot({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
+    } catch (const Error& e) {
+      throw Error(who + ": " + e.what());
+    }
+    // Saved from this scene: its bodies are the snapshot's, with their names (a body broken before
+    // the snapshot is gone from it, and only that).
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const std::string& name = scene.bodies[i].def.name;
+      const BodyId id = sw.bodies[i];
+      if (sw.world.isValid(id) ? sw.world.name(id) != name : !scene.bodies[i].breakImpulse) {
+        throw Error(who + ": not saved from this scene (" + scene.source + "): its body " +
+                    std::to_string(id.index) + " is not the scene's body " + std::to_string(i) +
+                    (name.empty() ? "" : " (" + name + ")"));
+      }
+    }
+  }
+  std::optional<OutputFile> snapshotFile;
+  if (!options.snapshotPath.empty()) snapshotFile.emplace(options.snapshotPath, "snapshot");
+  const auto saveSnapshot = [&] {
+    const std::vector<std::uint8_t> bytes = sw.world.saveSnapshot();
+    snapshotFile->write({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+  };
+  if (snapshotFile && options.snapshotAt == 0) saveSnapshot();
   RunSummary summary;
   summary.scene = scene.source;
   summary.steps = steps;
@@ -224,6 +259,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
       sw.world.destroyBody(sw.bodies[body]);
       ++summary.brokenBodies;
     }
+    if (snapshotFile && step == options.snapshotAt) saveSnapshot();
     if (recorder && (step % options.recordEvery == 0 || step == steps))
       recorder->frame(step, step * double(scene.dt), sw);
     if (options.progress && (step % progressEvery == 0 || step == steps)) progressBar(step, steps);
@@ -244,12 +280,14 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   // Every output complete and closed before any replaces its target.
   if (recorder) recorder->close();
   if (events) events->close();
+  if (snapshotFile) snapshotFile->close();
   if (summaryFile) {
     summaryFile->write(summaryJson(summary));
     summaryFile->close();
   }
   if (recorder) recorder->commit();
   if (events) events->commit();
+  if (snapshotFile) snapshotFile->commit();
   if (summaryFile) summaryFile->commit();
   return summary;
 }

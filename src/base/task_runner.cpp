@@ -173,6 +173,8 @@ class ThreadPool {
 
 TaskRunner::TaskRunner() = default;
 TaskRunner::~TaskRunner() = default;
+TaskRunner::TaskRunner(TaskRunner&&) noexcept = default;
+TaskRunner& TaskRunner::operator=(TaskRunner&&) noexcept = default;
 
 void TaskRunner::configure(int workerCount, EnqueueTaskCallback* enqueue, FinishTaskCallback* finish,
                            void* userContext) {

@@ -19,6 +19,9 @@ class TaskRunner {
   ~TaskRunner();
   TaskRunner(const TaskRunner&) = delete;
   TaskRunner& operator=(const TaskRunner&) = delete;
+  // Moved whole, threads and all (a world that loads a snapshot keeps its own).
+  TaskRunner(TaskRunner&&) noexcept;
+  TaskRunner& operator=(TaskRunner&&) noexcept;
 
   // Joins the old threads and starts new ones when the pool's size changes; one worker or the
   // engine's callbacks start none.

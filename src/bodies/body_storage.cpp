@@ -1,6 +1,10 @@
 // The body storage's slots: allocation with generations, freeing, forces cleared (body_storage.h).
 #include "bodies/body_storage.h"
 
+#include <collide/error.h>
+
+#include <string>
+
 #include "memory/heap_bytes.h"
 
 namespace collide::detail {
@@ -45,6 +49,28 @@ std::size_t BodyStorage::memoryBytes() const {
   std::size_t bytes = heapBytes(records) + heapBytes(states) + heapBytes(freeSlots_);
   for (const BodyRecord& record : records) bytes += heapBytes(record.parts) + heapBytes(record.name);
   return bytes;
+}
+
+void BodyStorage::restore(Array<BodyRecord> restoredRecords, Array<BodyState> restoredStates,
+                          Array<std::uint32_t> restoredFreeSlots) {
+  if (restoredRecords.size() != restoredStates.size())
+    throw Error("bodies: " + std::to_string(restoredRecords.size()) + " records but " +
+                std::to_string(restoredStates.size()) + " states");
+  Array<std::uint8_t> free(restoredRecords.size(), 0);
+  for (const std::uint32_t slot : restoredFreeSlots) {
+    if (slot >= restoredRecords.size() || restoredRecords[slot].alive || free[slot])
+      throw Error("bodies: free slot " + std::to_string(slot) + " is out of range, alive or listed twice");
+    free[slot] = 1;
+  }
+  records = std::move(restoredRecords);
+  states = std::move(restoredStates);
+  freeSlots_ = std::move(restoredFreeSlots);
+  aliveCount = bouncyCount = rollingCount = sensorCount = 0;
+  for (const BodyRecord& record : records) {
+    if (!record.alive) continue;
+    ++aliveCount;
+    tally(record, +1);
+  }
 }
 
 }  // namespace collide::detail

@@ -146,6 +146,12 @@ class BodyStorage {
   std::size_t rollingCount = 0;
   std::size_t sensorCount = 0;
 
+  // The slots free for reuse, the last one taken first (a world snapshot keeps their order).
+  const Array<std::uint32_t>& freeSlots() const { return freeSlots_; }
+  // Takes records, states and free slots as a world snapshot had them; the counts follow. Throws
+  // Error for free slots that are out of range, alive, or listed twice.
+  void restore(Array<BodyRecord> records, Array<BodyState> states, Array<std::uint32_t> freeSlots);
+
  private:
   Array<std::uint32_t> freeSlots_;
 };

@@ -111,11 +111,27 @@ void BroadPhase::remove(ProxyId id) {
   freeSlots_.push_back(index);
 }
 
-void BroadPhase::adoptProxies(const BroadPhase& source) {
+void BroadPhase::adoptProxies(const BroadPhase& source) { adoptProxies(source.proxies_, source.freeSlots_); }
+
+void BroadPhase::adoptProxies(std::span<const ProxyRecord> records,
+                              std::span<const std::uint32_t> freeSlots) {
   if (!proxies_.empty()) throw Error("broad phase: adoptProxies: this broad phase already has proxies");
-  proxies_ = source.proxies_;
-  freeSlots_ = source.freeSlots_;
-  aliveCount_ = source.aliveCount_;
+  std::size_t alive = 0;
+  for (std::uint32_t index = 0; index < records.size(); ++index) {
+    if (!records[index].alive) continue;
+    validateBox(records[index].bounds, "adoptProxies");
+    ++alive;
+  }
+  Array<std::uint8_t> free(records.size(), 0);
+  for (const std::uint32_t slot : freeSlots) {
+    if (slot >= records.size() || records[slot].alive || free[slot])
+      throw Error("broad phase: adoptProxies: free slot " + std::to_string(slot) +
+                  " is out of range, alive or listed twice");
+    free[slot] = 1;
+  }
+  proxies_.assign(records.begin(), records.end());
+  freeSlots_.assign(freeSlots.begin(), freeSlots.end());
+  aliveCount_ = alive;
   for (std::uint32_t index = 0; index < proxies_.size(); ++index) {
     if (proxies_[index].alive) onAdd(index);
   }

@@ -309,8 +309,9 @@ std::unique_ptr<BroadPhase> makeTreeBroadPhase(const BroadPhaseSettings& setting
 
 // For tests: the trees' own invariants and heights.
 const DynamicTree* treeOfBroadPhase(const BroadPhase& broadPhase, MotionType motion) {
-  const auto* tree = dynamic_cast<const TreeBroadPhase*>(&broadPhase);
-  if (tree == nullptr) return nullptr;
+  // The type tells the class (createBroadPhase makes a TreeBroadPhase for Tree alone): no RTTI needed.
+  if (broadPhase.type() != BroadPhaseType::Tree) return nullptr;
+  const auto* tree = static_cast<const TreeBroadPhase*>(&broadPhase);
   return motion == MotionType::Static ? &tree->staticTree() : &tree->movableTree();
 }
 

@@ -302,6 +302,13 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
     if (twin == edgeByEndpoints.end()) throw Error("convex_hull: Qhull returned an edge with only one face");
     edge.twin = twin->second;
   }
+  finish(hull);
+  return hull;
+}
+
+// What a hull derives from its vertices, faces and half-edges: the edge list, the faces around each
+// vertex, the blocked coordinates, the bounds and the mass properties.
+void HullBuilder::finish(ConvexHull& hull) {
   for (std::uint32_t h = 0; h < hull.halfEdges_.size(); ++h) {
     const ConvexHull::HalfEdge& edge = hull.halfEdges_[h];
     if (edge.twin < h) continue;
@@ -328,6 +335,67 @@ ConvexHull HullBuilder::build(std::span<const Vec3> points) {
   integrals.finish(hull.volume_, hull.centroid_, hull.unitInertia_);
   hull.centroid_ += reference;
   if (!(hull.volume_ > 0.0f)) throw Error("convex_hull: the hull has no volume, got " + format(hull.volume_));
+}
+
+ConvexHull HullBuilder::restore(std::span<const Vec3> vertices, std::span<const ConvexHull::Face> faces,
+                                std::span<const ConvexHull::HalfEdge> halfEdges) {
+  const std::uint32_t vertexCount = static_cast<std::uint32_t>(vertices.size());
+  const std::uint32_t faceCount = static_cast<std::uint32_t>(faces.size());
+  const std::uint32_t edgeCount = static_cast<std::uint32_t>(halfEdges.size());
+  const auto fail = [](const std::string& what) { throw Error("convex_hull: " + what); };
+  if (vertexCount < 4 || faceCount < 4 || edgeCount < 12 || edgeCount % 2 != 0)
+    fail("a hull needs at least 4 vertices, 4 faces and 12 half-edges, got " + std::to_string(vertexCount) +
+         ", " + std::to_string(faceCount) + " and " + std::to_string(edgeCount));
+  for (std::uint32_t v = 0; v < vertexCount; ++v) {
+    if (!isFinite(vertices[v])) fail("vertex " + std::to_string(v) + " is not finite");
+  }
+  for (std::uint32_t h = 0; h < edgeCount; ++h) {
+    const ConvexHull::HalfEdge& e = halfEdges[h];
+    if (e.origin >= vertexCount || e.twin >= edgeCount || e.next >= edgeCount || e.face >= faceCount ||
+        e.twin == h)
+      fail("half-edge " + std::to_string(h) + " refers outside the hull");
+  }
+  for (std::uint32_t h = 0; h < edgeCount; ++h) {  // every index in range now
+    const ConvexHull::HalfEdge& e = halfEdges[h];
+    const ConvexHull::HalfEdge& twin = halfEdges[e.twin];
+    if (twin.twin != h || twin.origin != halfEdges[e.next].origin || halfEdges[twin.next].origin != e.origin)
+      fail("half-edge " + std::to_string(h) + " and its twin do not join the same two vertices");
+  }
+  // Each face a loop of its own half-edges: walking `next` from the first comes back after edgeCount,
+  // and every half-edge is walked once.
+  Array<std::uint8_t> walked(edgeCount, 0);
+  for (std::uint32_t f = 0; f < faceCount; ++f) {
+    const ConvexHull::Face& face = faces[f];
+    if (!isFinite(face.plane.normal) || !std::isfinite(face.plane.distance) ||
+        std::abs(glm::length(face.plane.normal) - 1.0f) > 1e-3f)
+      fail("face " + std::to_string(f) + " has no unit normal");
+    if (face.firstEdge >= edgeCount || face.edgeCount < 3 || face.edgeCount > edgeCount ||
+        face.firstVertex != halfEdges[face.firstEdge].origin)
+      fail("face " + std::to_string(f) + " refers outside the hull");
+    std::uint32_t h = face.firstEdge;
+    for (std::uint32_t i = 0; i < face.edgeCount; ++i) {
+      if (halfEdges[h].face != f || walked[h]) fail("face " + std::to_string(f) + "'s loop leaves the face");
+      walked[h] = 1;
+      h = halfEdges[h].next;
+    }
+    if (h != face.firstEdge) fail("face " + std::to_string(f) + "'s loop does not close");
+  }
+  if (std::find(walked.begin(), walked.end(), 0) != walked.end())
+    fail("a half-edge belongs to no face's loop");
+  ConvexHull hull;
+  static std::atomic<std::uint64_t> restoredHulls{0};
+  hull.serial_ = (std::uint64_t{1} << 63) | ++restoredHulls;  // apart from the serials of built hulls
+  hull.vertices_.assign(vertices.begin(), vertices.end());
+  hull.faces_.assign(faces.begin(), faces.end());
+  hull.halfEdges_.assign(halfEdges.begin(), halfEdges.end());
+  finish(hull);
+  for (const Vec3& v : hull.vertices_) {
+    for (const ConvexHull::Face& face : hull.faces_) {
+      if (face.plane.signedDistance(v) >
+          1e-3f * std::max(1.0f, glm::length(hull.bounds_.max - hull.bounds_.min)))
+        fail("a vertex lies outside a face's plane: not convex");
+    }
+  }
   return hull;
 }
 

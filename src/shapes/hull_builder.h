@@ -24,6 +24,17 @@ class HullBuilder {
   // The convex hull of the points: faces are the merged (coplanar) Qhull facets, counter-clockwise
   // from outside, with twin half-edges. Validates with requireSolidPointSet("convex_hull", points).
   static ConvexHull build(std::span<const Vec3> points);
+
+  // A hull from the vertices, faces and half-edges another hull had (a world snapshot): the
+  // topology checked (every index in range, twins that join the same vertices, each face a closed
+  // loop of its own half-edges, every vertex under every face's plane), then everything else
+  // derived as build derives it, so the hull is the one that was saved. Throws Error naming the
+  // first fault.
+  static ConvexHull restore(std::span<const Vec3> vertices, std::span<const ConvexHull::Face> faces,
+                            std::span<const ConvexHull::HalfEdge> halfEdges);
+
+ private:
+  static void finish(ConvexHull& hull);
 };
 
 }  // namespace collide

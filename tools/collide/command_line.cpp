@@ -63,6 +63,16 @@ int runCollide(int argc, const char* const* argv) try {
       ->add_option("--threads", run.threads,
                    "step with this many workers (default: the scene's settings.workers, 1)")
       ->check(wholeNumber(1, collide::kMaxWorkers));
+  CLI::Option* snapshot = runApp->add_option("--snapshot", run.snapshot,
+                                             "write a world snapshot to this file (after --snapshot-at)");
+  runApp
+      ->add_option("--snapshot-at", run.snapshotAt,
+                   "the step after which the snapshot is taken (0: before the first)")
+      ->check(wholeNumber(0, collide::scene::kMaxSteps))
+      ->needs(snapshot)
+      ->capture_default_str();
+  runApp->add_option("--from-snapshot", run.fromSnapshot,
+                     "start from this world snapshot of the same scene instead of its initial state");
 
   BenchArguments bench;
   CLI::App* benchApp =

@@ -23,6 +23,9 @@ struct RunArguments {
   std::string json;
   bool allowOutsidePaths = false;  // LoadOptions::allowOutsidePaths
   std::optional<int> threads;      // the world's workers, over the scene's settings.workers
+  std::string snapshot;            // RunOptions::snapshotPath
+  int snapshotAt = 0;
+  std::string fromSnapshot;  // RunOptions::fromSnapshotPath
 };
 // `collide run`: runs a scene and prints the summary. Returns 0, or kExitFaults when the world's
 // fault guard froze a body during the run (the summary and every output are written all the same).

@@ -31,6 +31,9 @@ int runCommand(const RunArguments& arguments) {
   options.recordEvery = arguments.every;
   options.eventsPath = arguments.events;
   options.summaryPath = arguments.json;
+  options.snapshotPath = arguments.snapshot;
+  options.snapshotAt = arguments.snapshotAt;
+  options.fromSnapshotPath = arguments.fromSnapshot;
   options.progress = isatty(STDERR_FILENO) != 0;
   const scene::RunSummary summary = scene::runScene(loaded, options);
   std::printf("%s", scene::formatSummary(summary).c_str());

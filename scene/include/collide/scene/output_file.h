@@ -24,7 +24,8 @@ struct OutputPath {
 // scene.objFiles), or is the path of another output. Paths are compared once normalised and with
 // symbolic links followed (std::filesystem::weakly_canonical), and existing files also by identity,
 // so a hard link or a "./" does not slip past. A device (/dev/null) may take more than one output.
-void checkOutputPaths(const Scene& scene, const std::vector<OutputPath>& outputs);
+void checkOutputPaths(const Scene& scene, const std::vector<OutputPath>& outputs,
+                      const std::vector<OutputPath>& otherInputs = {});
 
 // A file written through a temporary file beside it (".NAME.tmp-PID-N", with the target's
 // permissions when it exists) that replaces the target only on commit(); until then the target is

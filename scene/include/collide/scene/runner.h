@@ -23,6 +23,13 @@ struct RunOptions {
   std::string eventsPath;   // empty: no events file
   std::string summaryPath;  // empty: no summary file (summaryJson)
   bool progress = false;    // a progress bar on stderr
+  // A world snapshot (World::saveSnapshot) written to snapshotPath after step snapshotAt (0: before
+  // the first), and one read from fromSnapshotPath into the scene's world before the first step: the
+  // run goes on from the saved state, its steps counted from 1 again. The scene must be the one the
+  // snapshot was saved from (its bodies' names and ids); the breakable bodies' damage starts at zero.
+  std::string snapshotPath;  // empty: no snapshot written
+  int snapshotAt = 0;
+  std::string fromSnapshotPath;  // empty: the scene's own initial state
 };
 
 struct RunSummary {
