@@ -1,8 +1,10 @@
 // collide-viewer [SCENE]: the interactive testbed. Shows a scene (a built-in name or a scene file,
 // as `collide run` takes) stepping live, with a panel to pause, step, restart and switch scenes,
 // edit every world setting, draw the broad phase, and the step's timing and pair counters; the
-// mouse drags bodies and shoots spheres. `--screenshot FILE --frames N` renders N steps into a
-// hidden window and writes a PNG, which is how the viewer is tested headless (under xvfb-run).
+// mouse drags bodies and shoots spheres. `--replay FILE` plays a recording of the scene (`collide
+// run --record`) instead, with a timeline: play, pause, step, scrub, speed. `--screenshot FILE
+// --frames N` renders N steps (or the recording's frame of step N) into a hidden window and writes a
+// PNG, which is how the viewer is tested headless (under xvfb-run).
 #include "camera_report.h"
 #include "gl.h"
 #include "interaction.h"
@@ -13,6 +15,7 @@
 
 #include <collide/error.h>
 #include <collide/scene/builtin_scenes.h>
+#include <collide/scene/recording.h>
 
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -41,6 +44,7 @@ struct Options {
   std::string screenshot;  // empty: interactive
   std::string cameraJson;  // with --screenshot: the camera and the bodies, for the pixel test
   std::string broadPhase;  // empty: the scene's
+  std::string replay;      // a recording of the scene to play instead of stepping
   int frames = 120;
   int width = 1280;
   int height = 720;
@@ -75,6 +79,15 @@ struct App {
   WorldDef settings;
   float dt = 1.0f / 60.0f;
   bool settingsEdited = false;  // differ from the running World's (the World refused them)
+
+  // Replay: the recording, the frame shown, and the timeline's state. The clock counts recorded
+  // frames; at speed 1 one frame is shown per drawn frame, as live stepping takes one step.
+  std::optional<scene::Recording> recording;
+  int replayFrame = 0;
+  double replayClock = 0.0;
+  float replaySpeed = 1.0f;
+  bool replayLoop = true;
+  std::size_t replayUnknownBodies = 0;
 
   MouseSpring spring;
   SphereShot shot;
@@ -118,8 +131,87 @@ struct App {
   }
 
   void step() {
+    if (recording) {
+      advanceReplay(1.0);
+      return;
+    }
     lastStepMs = scene->step();
     stepMs = scene->stepCount() == 1 ? lastStepMs : 0.9 * stepMs + 0.1 * lastStepMs;
+  }
+
+  void startReplay(scene::Recording replay) {
+    if (replay.frames.empty()) throw Error("viewer: the recording has no frames");
+    recording = std::move(replay);
+    replayClock = 0.0;
+    showFrame(0);
+  }
+
+  void showFrame(int index) {
+    const int last = static_cast<int>(recording->frames.size()) - 1;
+    replayFrame = std::clamp(index, 0, last);
+    replayUnknownBodies = scene->showRecordedFrame(recording->frames[static_cast<std::size_t>(replayFrame)]);
+  }
+
+  // The frame whose step is the last one at or before `step` (the recording may skip steps: --every).
+  int frameOfStep(int step) const {
+    const auto& frames = recording->frames;
+    const auto after = std::upper_bound(frames.begin(), frames.end(), step,
+                                        [](int s, const scene::RecordedFrame& f) { return s < f.step; });
+    return after == frames.begin() ? 0 : static_cast<int>(after - frames.begin()) - 1;
+  }
+
+  // Playing: `frames` drawn frames' worth of the recording at the chosen speed.
+  void advanceReplay(double frames) {
+    replayClock += frames * replaySpeed;
+    int next = replayFrame;
+    while (replayClock >= 1.0) {
+      replayClock -= 1.0;
+      ++next;
+    }
+    const int count = static_cast<int>(recording->frames.size());
+    if (next >= count) {
+      if (replayLoop) {
+        next %= count;
+      } else {
+        next = count - 1;
+        playing = false;
+      }
+    }
+    if (next != replayFrame) showFrame(next);
+  }
+
+  void replayPanel() {
+    const scene::RecordedFrame& frame = recording->frames[static_cast<std::size_t>(replayFrame)];
+    ImGui::Separator();
+    ImGui::Text("replay: frame %d of %zu (step %d, t = %.2f s)", replayFrame + 1, recording->frames.size(),
+                frame.step, frame.time);
+    if (ImGui::Button(playing ? "Pause" : "Play")) playing = !playing;
+    ImGui::SameLine();
+    if (ImGui::Button("<")) {
+      playing = false;
+      showFrame(replayFrame - 1);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button(">")) {
+      playing = false;
+      showFrame(replayFrame + 1);
+    }
+    ImGui::SameLine();
+    ImGui::Checkbox("loop", &replayLoop);
+    ImGui::SetNextItemWidth(300.0f);
+    int scrub = replayFrame;
+    if (ImGui::SliderInt("frame", &scrub, 0, static_cast<int>(recording->frames.size()) - 1))
+      showFrame(scrub);
+    ImGui::SetNextItemWidth(300.0f);
+    ImGui::SliderFloat("speed", &replaySpeed, 0.125f, 8.0f, "%.3gx", ImGuiSliderFlags_Logarithmic);
+    if (replayUnknownBodies > 0) {
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%zu bodies of the recording are not in this scene",
+                         replayUnknownBodies);
+    }
+    if (ImGui::Button("Back to the live scene")) {
+      recording.reset();
+      tryLoad(sceneName, false, true);
+    }
   }
 
   Ray cursorRay() const {
@@ -137,27 +229,35 @@ struct App {
     if (ImGui::BeginCombo("scene", sceneName.c_str())) {
       for (const scene::BuiltinScene& builtin : scene::builtinScenes()) {
         const std::string name(builtin.name);
-        if (ImGui::Selectable(name.c_str(), name == sceneName)) tryLoad(name, true, false);
+        if (ImGui::Selectable(name.c_str(), name == sceneName)) {
+          recording.reset();  // a recording belongs to its scene
+          tryLoad(name, true, false);
+        }
         if (ImGui::IsItemHovered()) {
           ImGui::SetTooltip("%.*s", int(builtin.description.size()), builtin.description.data());
         }
       }
       ImGui::EndCombo();
     }
-    if (ImGui::Button(playing ? "Pause" : "Play")) playing = !playing;
-    ImGui::SameLine();
-    if (ImGui::Button("Step")) stepOnce = true;
-    ImGui::SameLine();
-    if (ImGui::Button("Restart")) tryLoad(sceneName, false, true);
+    if (recording) {
+      replayPanel();
+    } else {
+      if (ImGui::Button(playing ? "Pause" : "Play")) playing = !playing;
+      ImGui::SameLine();
+      if (ImGui::Button("Step")) stepOnce = true;
+      ImGui::SameLine();
+      if (ImGui::Button("Restart")) tryLoad(sceneName, false, true);
+    }
     if (!error.empty()) {
       ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
       ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
       ImGui::PopTextWrapPos();
     }
-    statistics();
+    if (!recording) statistics();
     if (ImGui::CollapsingHeader("Debug drawing", ImGuiTreeNodeFlags_DefaultOpen)) debugDrawing();
-    if (ImGui::CollapsingHeader("Mouse and shots", ImGuiTreeNodeFlags_DefaultOpen)) mouseAndShots();
-    if (ImGui::CollapsingHeader("World settings")) worldSettings();
+    if (!recording && ImGui::CollapsingHeader("Mouse and shots", ImGuiTreeNodeFlags_DefaultOpen))
+      mouseAndShots();
+    if (!recording && ImGui::CollapsingHeader("World settings")) worldSettings();
     ImGui::End();
   }
 
@@ -296,7 +396,9 @@ struct App {
 
     const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     if (left && !leftWasDown && !io.WantCaptureMouse) {
-      mouseMode = spring.grab(world, cursorRay(), camera.forward()) ? MouseMode::Drag : MouseMode::Orbit;
+      // A replay only shows: the mouse orbits, it does not pull bodies.
+      mouseMode = !recording && spring.grab(world, cursorRay(), camera.forward()) ? MouseMode::Drag
+                                                                                  : MouseMode::Orbit;
     }
     if (!left && leftWasDown) {
       if (mouseMode == MouseMode::Drag) spring.release(world);
@@ -313,7 +415,13 @@ struct App {
       camera.pan(dx, dy, float(height));
     }
 
-    for (; shotsRequested > 0; --shotsRequested) scene->shoot(cursorRay(), shot);
+    for (; shotsRequested > 0; --shotsRequested) {
+      if (recording) {
+        playing = !playing;  // space: play and pause the replay
+      } else {
+        scene->shoot(cursorRay(), shot);
+      }
+    }
   }
 
   void render(int width, int height, bool ui) {
@@ -372,9 +480,14 @@ void writeScreenshot(App& app) {
     throw Error("viewer: the offscreen framebuffer is incomplete");
   }
   // The panel needs a frame to measure itself before it is drawn in place.
-  for (int frame = 0; frame < app.options.frames; ++frame) {
-    app.step();
+  if (app.recording) {
+    app.showFrame(app.frameOfStep(app.options.frames));
     app.render(width, height, !app.options.noUi);
+  } else {
+    for (int frame = 0; frame < app.options.frames; ++frame) {
+      app.step();
+      app.render(width, height, !app.options.noUi);
+    }
   }
   if (app.options.frames == 0) app.render(width, height, !app.options.noUi);
   app.render(width, height, !app.options.noUi);
@@ -397,8 +510,10 @@ void writeScreenshot(App& app) {
 }
 
 int run(const Options& options) {
-  // The scene first: a bad name or file is reported without needing a display.
+  // The scene and the recording first: a bad name or file is reported without needing a display.
   (void)loadSceneArgument(options.scene);
+  std::optional<scene::Recording> replay;
+  if (!options.replay.empty()) replay = scene::loadRecording(options.replay);
   if (!options.broadPhase.empty()) (void)parseBroadPhaseType(options.broadPhase);
   glfwSetErrorCallback(
       [](int code, const char* text) { std::fprintf(stderr, "GLFW error %d: %s\n", code, text); });
@@ -441,6 +556,7 @@ int run(const Options& options) {
   try {
     app.renderer = std::make_unique<Renderer>();
     app.load(options.scene, true, false);
+    if (replay) app.startReplay(std::move(*replay));
     if (headless) {
       writeScreenshot(app);
     } else {
@@ -472,7 +588,10 @@ int main(int argc, char** argv) {
   cli.add_option("scene", options.scene, "a built-in scene (collide scenes lists them) or a scene file")
       ->capture_default_str();
   cli.add_option("--screenshot", options.screenshot, "render headless and write this PNG, then exit");
-  cli.add_option("--frames", options.frames, "steps before the screenshot")
+  cli.add_option(
+      "--replay", options.replay,
+      "play this recording of the scene (collide run --record) with a timeline instead of stepping");
+  cli.add_option("--frames", options.frames, "steps before the screenshot (with --replay: the step shown)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cli.add_option("--width", options.width, "window or image width")
@@ -494,7 +613,10 @@ int main(int argc, char** argv) {
   cli.add_option("--depths", depths, "with --tree: the first and last tree depth drawn (root 0)")
       ->check(CLI::NonNegativeNumber);
   cli.add_flag("--pairs", options.debug.pairs, "draw the pairs the broad phase kept");
+  bool noJoints = false;
+  cli.add_flag("--no-joints", noJoints, "start without the joints' anchors, axes and limits drawn");
   CLI11_PARSE(cli, argc, argv);
+  options.debug.joints = !noJoints;
   options.debug.firstDepth = depths.first;
   options.debug.lastDepth = depths.second;
   try {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 namespace collide::viewer {
 namespace {
@@ -149,6 +150,30 @@ double ViewerScene::step() {
   return std::chrono::duration<double, std::milli>(stop - start).count();
 }
 
+std::size_t ViewerScene::showRecordedFrame(const scene::RecordedFrame& frame) {
+  std::unordered_map<std::string_view, DrawnBody*> byName;
+  for (DrawnBody& body : bodies_) {
+    body.hidden = true;
+    if (world().isValid(body.id)) byName.emplace(world().name(body.id), &body);
+  }
+  std::size_t unknown = 0;
+  for (const scene::RecordedBody& recorded : frame.bodies) {
+    const auto found = byName.find(recorded.name);
+    if (found == byName.end()) {
+      ++unknown;
+      continue;
+    }
+    DrawnBody& body = *found->second;
+    body.hidden = false;
+    World& w = world();
+    w.setTransform(body.id, recorded.position, recorded.rotation, false);  // for the debug lines
+    body.replayPose = Transform{recorded.position, recorded.rotation, w.transform(body.id).scale};
+    body.replayAwake = recorded.awake;
+  }
+  steps_ = frame.step;
+  return unknown;
+}
+
 void ViewerScene::applySettings(const WorldDef& def, float dt) {
   if (!(dt > 0.0f) || !std::isfinite(dt)) throw Error("viewer: the time step must be finite and > 0");
   built_->world.setDef(def);
@@ -179,15 +204,16 @@ Aabb ViewerScene::bounds() const {
 
 glm::vec4 ViewerScene::drawnColour(const DrawnBody& body) const {
   // Resting bodies are drawn darker, so that sleeping islands show.
-  const bool dimmed = world().type(body.id) == BodyType::Dynamic && !world().isAwake(body.id);
+  const bool awake = body.replayAwake.value_or(world().isAwake(body.id));
+  const bool dimmed = world().type(body.id) == BodyType::Dynamic && !awake;
   return dimmed ? glm::vec4(glm::vec3(body.colour) * 0.6f, body.colour.a) : body.colour;
 }
 
 std::vector<std::vector<Instance>> ViewerScene::instances(int meshCount) const {
   std::vector<std::vector<Instance>> out(static_cast<std::size_t>(meshCount));
   for (const DrawnBody& body : bodies_) {
-    if (!world().isValid(body.id)) continue;
-    const glm::mat4 model = toMatrix(world().transform(body.id));
+    if (!world().isValid(body.id) || body.hidden) continue;
+    const glm::mat4 model = toMatrix(body.replayPose.value_or(world().transform(body.id)));
     const glm::vec4 colour = drawnColour(body);
     for (const DrawnBody::Part& part : body.parts) {
       if (part.mesh < meshCount)

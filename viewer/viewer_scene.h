@@ -5,10 +5,12 @@
 #include "interaction.h"
 #include "renderer.h"
 
+#include <collide/scene/recording.h>
 #include <collide/scene/scene.h>
 
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -46,6 +48,11 @@ class ViewerScene {
   void applySettings(const WorldDef& def, float dt);
   int stepCount() const { return steps_; }
 
+  // Replay (collide-viewer --replay): puts every recorded body where the frame has it (matched by
+  // name; World::setTransform, nothing stepped) and hides the bodies the frame lacks (broken before
+  // it). Returns how many of the frame's bodies the scene does not have (another scene's recording).
+  std::size_t showRecordedFrame(const scene::RecordedFrame& frame);
+
   // Shoots a sphere along the ray and draws it from now on. The oldest shot is removed once there
   // are kMaxShots, so that shooting for a while does not slow the world down without end.
   static constexpr std::size_t kMaxShots = 64;
@@ -64,6 +71,12 @@ class ViewerScene {
     BodyId id;
     std::vector<Part> parts;
     glm::vec4 colour{1.0f};  // rgb; alpha 0 for a checkerboard (static bodies and planes)
+    // Replay: hidden when not in the frame shown; otherwise drawn where the frame has it (exactly:
+    // the world's pose, kept from the centre of mass, could differ in the last bit) and dimmed as
+    // the frame says it slept.
+    bool hidden = false;
+    std::optional<Transform> replayPose;
+    std::optional<bool> replayAwake;
   };
   // The bodies drawn, in scene order and then the shots; some may have been destroyed since.
   const std::vector<DrawnBody>& drawnBodies() const { return bodies_; }

@@ -24,6 +24,11 @@ namespace collide::scene {
 
 using Json = nlohmann::json;
 
+// A JSON document from text, with the scene files' limits (depth, numbers within float range, no
+// NUL byte): Error "SOURCE: malformed JSON at line L, column C: ..." or "SOURCE: PATH: ..." for what
+// the limits refuse.
+Json parseDocument(std::string_view text, const std::string& source);
+
 class JsonNode {
  public:
   // The document's root (its path is empty); `source` prefixes every message and must outlive the

@@ -638,6 +638,8 @@ std::string parseExplanation(const std::string& what) {
   return out;
 }
 
+}  // namespace
+
 Json parseDocument(std::string_view text, const std::string& source) {
   // nlohmann's parser takes a NUL byte for the end of the input and would ignore what follows it.
   if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
@@ -661,8 +663,6 @@ Json parseDocument(std::string_view text, const std::string& source) {
   }
   throw Error(source + ": malformed JSON at " + where + ": " + parseExplanation(sax.what()));
 }
-
-}  // namespace
 
 Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir,
                  const LoadOptions& options) {

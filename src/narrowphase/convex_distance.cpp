@@ -126,10 +126,12 @@ DistanceResult mirrored(DistanceResult result) {
 
 }  // namespace
 
-DistanceResult distance(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
-                        const Transform& transformB) {
-  detail::requireValidTransform(transformA, "distance", "A");
-  detail::requireValidTransform(transformB, "distance", "B");
+DistanceResult distance(const Shape& shapeA, const Transform& givenA, const Shape& shapeB,
+                        const Transform& givenB) {
+  detail::requireValidTransform(givenA, "distance", "A");
+  detail::requireValidTransform(givenB, "distance", "B");
+  const Transform transformA = detail::withUnitRotation(givenA);
+  const Transform transformB = detail::withUnitRotation(givenB);
   const bool planeA = shapeA.type() == ShapeType::Plane;
   const bool planeB = shapeB.type() == ShapeType::Plane;
   if ((!planeA && !shapeA.isConvex()) || (!planeB && !shapeB.isConvex()) || (planeA && planeB)) {

@@ -137,6 +137,8 @@ bool collideChildrenAny(std::span<const Compound::Child> children, const Transfo
 
 // Throws Error naming the query and the shape ("A" or "B") for an invalid transform.
 void requireValidTransform(const Transform& transform, const char* query, const char* which);
+// The transform with its rotation normalised, for the public queries (dispatch.cpp).
+Transform withUnitRotation(const Transform& transform);
 
 // The plane of a plane shape in world space.
 Plane worldPlane(const Plane& plane, const Transform& transform);

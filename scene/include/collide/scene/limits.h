@@ -12,6 +12,8 @@ namespace collide::scene {
 // `collide fit`'s argument).
 inline constexpr std::uintmax_t kMaxSceneFileBytes = 64ull << 20;  // 64 MiB
 inline constexpr std::uintmax_t kMaxObjFileBytes = 256ull << 20;   // 256 MiB
+// A recording (`collide-viewer --replay`): JSON, some 200 bytes per body and frame, read whole.
+inline constexpr std::uintmax_t kMaxRecordingBytes = 1ull << 30;  // 1 GiB
 // A world snapshot (`collide run --from-snapshot`): large-pile's 100,000 cubes take about 60 MB.
 inline constexpr std::uintmax_t kMaxSnapshotBytes = 4ull << 30;  // 4 GiB
 
