@@ -4,6 +4,7 @@
 #include <collide/body.h>
 #include <collide/bounding.h>
 #include <collide/broadphase.h>
+#include <collide/character.h>
 #include <collide/debug_draw.h>
 #include <collide/error.h>
 #include <collide/events.h>

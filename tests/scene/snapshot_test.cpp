@@ -60,7 +60,7 @@ TEST_P(SnapshotOfEveryScene, ContinuesBitIdentically) {
   expectContinuesIdentically(GetParam(), steps, steps);
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, SnapshotOfEveryScene, testing::ValuesIn(builtinScenesSteppedHere()),
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, SnapshotOfEveryScene, testing::ValuesIn(snapshotScenesHere()),
                          sceneTestName);
 
 // The long run: saved at step 100, both to 400, in the scenes of joints, sleep, impacts and stacks.
