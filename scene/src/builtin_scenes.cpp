@@ -26,6 +26,7 @@ Json machine();
 Json jointGrid();
 Json ragdollPile();
 Json largePile();
+Json character();
 }  // namespace builtin
 
 namespace {
@@ -70,6 +71,8 @@ const std::vector<Entry>& registry() {
        builtin::jointGrid},
       {{"ragdoll-pile", "100 ragdolls (1,100 bodies, 1,000 joints) dropped into a pile"},
        builtin::ragdollPile},
+      {{"character", "a player walked up stairs, down a ramp, through crates, over a kerb, onto a turning disc"},
+       builtin::character},
       {{"large-pile", "100,000 unit cubes in a 100x10x100 lattice, the lowest layer on the ground"},
        builtin::largePile},
   };

@@ -190,6 +190,45 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
     names[sw.bodies[i].index] = scene.bodies[i].def.name;
   }
 
+  // The scene's characters (our extension): after each step, each walks towards its next waypoint.
+  struct Walker {
+    Character character;
+    const SceneCharacter* scene;
+    std::size_t next = 0;
+    bool jumped = false;
+  };
+  std::vector<Walker> walkers;
+  for (std::size_t i = 0; i < scene.characters.size(); ++i) {
+    try {
+      walkers.push_back({Character(scene.characters[i].def), &scene.characters[i]});
+    } catch (const Error& e) {
+      throw Error(scene.source + ": characters[" + std::to_string(i) + "]: " + e.what());
+    }
+  }
+  const auto walk = [&](Walker& w) {
+    const Vec3 up = w.character.def().up;
+    Vec3 velocity(0.0f);
+    while (w.next < w.scene->path.size()) {
+      const SceneCharacter::Waypoint& waypoint = w.scene->path[w.next];
+      Vec3 toward = waypoint.to - w.character.footPosition();
+      toward -= glm::dot(toward, up) * up;
+      const float distance = glm::length(toward);
+      // Reached when within a step's walk (or 5 cm): on to the next.
+      if (distance <= std::max(0.05f, waypoint.speed * scene.dt)) {
+        ++w.next;
+        w.jumped = false;
+        continue;
+      }
+      velocity = toward * (waypoint.speed / distance);
+      if (waypoint.jump > 0.0f && !w.jumped && w.character.isOnGround()) {
+        velocity += waypoint.jump * up;
+        w.jumped = true;
+      }
+      break;
+    }
+    w.character.update(sw.world, velocity, scene.dt);
+  };
+
   if (recorder) recorder->frame(0, 0.0, sw);
   const int progressEvery = std::max(1, steps / 100);
   const auto start = std::chrono::steady_clock::now();
@@ -259,6 +298,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
       sw.world.destroyBody(sw.bodies[body]);
       ++summary.brokenBodies;
     }
+    for (Walker& w : walkers) walk(w);
     if (snapshotFile && step == options.snapshotAt) saveSnapshot();
     if (recorder && (step % options.recordEvery == 0 || step == steps))
       recorder->frame(step, step * double(scene.dt), sw);
@@ -270,6 +310,19 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   summary.momentum = sw.world.linearMomentum();
   summary.kineticEnergy = sw.world.kineticEnergy();
   summary.stateHash = stateHash(sw);
+  for (const Walker& w : walkers) {
+    // The characters' feet join the hash (FNV-1a on, as stateHash mixes).
+    const Vec3 feet = w.character.footPosition();
+    for (const float value : {feet.x, feet.y, feet.z}) {
+      const auto bits = std::bit_cast<std::uint32_t>(value);
+      for (int i = 0; i < 4; ++i) {
+        summary.stateHash ^= (bits >> (8 * i)) & 0xFFu;
+        summary.stateHash *= 1099511628211ull;
+      }
+    }
+    summary.characters.push_back(
+        {w.scene->name, feet, w.character.groundState(), w.next, w.scene->path.size()});
+  }
   summary.worldMemory = sw.world.memoryUse();
   summary.sceneMemory = sceneMemoryBytes(scene, sw);
   summary.sleeping = scene.world.sleeping;

@@ -298,6 +298,45 @@ PartDef readPart(const JsonNode& node, const BodyDef& body, const Scene& scene, 
   return part;
 }
 
+// A character (our extension, docs/scene-format.md): the capsule, its limits and its path.
+SceneCharacter readCharacter(const JsonNode& node, const Scene& scene) {
+  node.expectObject({"name", "position", "up", "radius", "half_height", "max_slope", "max_step_height", "skin_width",
+                     "push_force", "mass", "gravity", "mask", "path"});
+  SceneCharacter character;
+  character.name = node.at("name").string();
+  if (character.name.empty()) node.at("name").fail("must not be empty");
+  CharacterDef& d = character.def;
+  d.position = node.at("position").vec3();
+  d.gravity = scene.world.gravity;
+  if (auto n = node.find("up")) {
+    d.up = n->vec3();
+    if (!(glm::length(d.up) > 1e-6f)) n->fail("must be a non-zero direction, got " + n->shown());
+    d.up = glm::normalize(d.up);
+  }
+  if (auto n = node.find("radius")) d.radius = n->positive();
+  if (auto n = node.find("half_height")) d.halfHeight = n->nonNegative();
+  if (auto n = node.find("max_slope")) {
+    d.maxSlope = n->positive();
+    if (!(d.maxSlope < 0.5f * kPi)) n->fail("must be in (0, pi/2) radians, got " + n->shown());
+  }
+  if (auto n = node.find("max_step_height")) d.maxStepHeight = n->nonNegative();
+  if (auto n = node.find("skin_width")) d.skinWidth = n->positive();
+  if (auto n = node.find("push_force")) d.pushForce = n->nonNegative();
+  if (auto n = node.find("mass")) d.mass = n->positive();
+  if (auto n = node.find("gravity")) d.gravity = n->vec3();
+  if (auto n = node.find("mask")) d.filter.mask = n->bits();
+  if (auto n = node.find("path")) {
+    for (const JsonNode& w : n->elements()) {
+      w.expectObject({"to", "speed", "jump"});
+      SceneCharacter::Waypoint& waypoint = character.path.emplace_back();
+      waypoint.to = w.at("to").vec3();
+      if (auto speed = w.find("speed")) waypoint.speed = speed->positive();
+      if (auto jump = w.find("jump")) waypoint.jump = jump->nonNegative();
+    }
+  }
+  return character;
+}
+
 Body readBody(const JsonNode& node, const Scene& scene, const LoadContext& context) {
   node.expectObject({"name",
                      "type",
@@ -672,7 +711,7 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   const JsonNode root(document, scene.source);
   const LoadContext context{baseDir, options, &scene.objFiles};
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
-  root.expectObject({"format", "settings", "materials", "bodies", "constraints"});
+  root.expectObject({"format", "settings", "materials", "bodies", "constraints", "characters"});
   const JsonNode format = root.at("format");
   if (format.string() != kFormat)
     format.fail("must be \"" + std::string(kFormat) + "\", got " + format.shown());
@@ -703,6 +742,16 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
   if (auto n = root.find("constraints")) {
     for (const JsonNode& c : n->elements())
       scene.constraints.push_back(readConstraint(c, names, scene.bodies));
+  }
+  if (auto n = root.find("characters")) {
+    std::map<std::string, std::size_t> characterNames;
+    for (const JsonNode& c : n->elements()) {
+      SceneCharacter character = readCharacter(c, scene);
+      const auto [it, inserted] = characterNames.emplace(character.name, scene.characters.size());
+      if (!inserted)
+        c.at("name").fail("duplicate name " + c.at("name").shown() + " (also characters[" + std::to_string(it->second) + "])");
+      scene.characters.push_back(std::move(character));
+    }
   }
   return scene;
 }

@@ -38,6 +38,18 @@ nlohmann::json memoryJson(const WorldMemory& m, std::size_t scene) {
   return json;
 }
 
+const char* groundName(GroundState state) {
+  switch (state) {
+    case GroundState::OnGround:
+      return "on ground";
+    case GroundState::Sliding:
+      return "sliding";
+    case GroundState::InAir:
+      return "in the air";
+  }
+  return "?";
+}
+
 }  // namespace
 
 std::string formatSummary(const RunSummary& s) {
@@ -109,11 +121,23 @@ std::string formatSummary(const RunSummary& s) {
   add("%-24s %14.3f\n", "scene", double(s.sceneMemory) / 1e6);
   add("\nmomentum        (%.6g, %.6g, %.6g) kg m/s\n", s.momentum.x, s.momentum.y, s.momentum.z);
   add("kinetic energy  %.6g J\n", s.kineticEnergy);
+  for (const RunSummary::CharacterEnd& c : s.characters) {
+    add("character       %s: feet at (%.3f, %.3f, %.3f), %s, %zu of %zu waypoints\n", c.name.c_str(), c.position.x,
+        c.position.y, c.position.z, groundName(c.ground), c.waypointsReached, c.waypoints);
+  }
   add("state hash      %s\n", hex(s.stateHash).c_str());
   return out;
 }
 
 std::string summaryJson(const RunSummary& s) {
+  nlohmann::json characters = nlohmann::json::array();
+  for (const RunSummary::CharacterEnd& c : s.characters) {
+    characters.push_back({{"name", c.name},
+                          {"feet", jsonVec3(c.position)},
+                          {"ground", groundName(c.ground)},
+                          {"waypoints_reached", c.waypointsReached},
+                          {"waypoints", c.waypoints}});
+  }
   nlohmann::json faults = nlohmann::json::array();
   for (const RunSummary::Fault& f : s.faults)
     faults.push_back({{"body", f.body}, {"step", f.step}, {"fields", faultFieldNames(f.fields)}});
@@ -136,6 +160,7 @@ std::string summaryJson(const RunSummary& s) {
       {"momentum", jsonVec3(s.momentum)},
       {"kinetic_energy", jsonNumber(s.kineticEnergy)},
       {"memory_bytes", memoryJson(s.worldMemory, s.sceneMemory)},
+      {"characters", characters},
       {"state_hash", hex(s.stateHash)}};
   return j.dump(2) + "\n";
 }

@@ -40,6 +40,7 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"bridge", 0x5daa6f27084de4d5},         {"ragdolls", 0x22d4568a93cf008b},
     {"machine", 0xdbae0c5ee18e8576},        {"joint-grid", 0x701524027f45688d},
     {"ragdoll-pile", 0xe1910f36c7139533},   {"large-pile", 0x01d5a781327adae6},
+    {"character", 0xcf582801b64f387e},
 };
 
 std::string hex(std::uint64_t value) {

@@ -63,6 +63,15 @@ struct RunSummary {
   // The heap the world holds at the end of the run (its arrays only grow), and the scene's.
   WorldMemory worldMemory{};
   std::size_t sceneMemory = 0;
+  // The scene's characters at the end: where they are, how they stand, how far along their paths.
+  struct CharacterEnd {
+    std::string name;
+    Vec3 position{0.0f};  // the capsule's feet
+    GroundState ground = GroundState::InAir;
+    std::size_t waypointsReached = 0;
+    std::size_t waypoints = 0;
+  };
+  std::vector<CharacterEnd> characters;
 };
 
 // Builds the scene's World and runs it. Throws collide::Error for a scene the World refuses, a

@@ -4,6 +4,7 @@
 // "bodies[3].shape.radius: must be > 0, got -1"); buildWorld turns a Scene into a World.
 #pragma once
 
+#include <collide/character.h>
 #include <collide/world.h>
 
 #include <filesystem>
@@ -63,6 +64,19 @@ struct Constraint {
   bool collideConnected = true;
 };
 
+// A character (collide/character.h) the runner walks along a path: to each waypoint in turn, across
+// the up direction, at its speed; a waypoint with a jump speed jumps on the way to it.
+struct SceneCharacter {
+  std::string name;
+  CharacterDef def;
+  struct Waypoint {
+    Vec3 to{0.0f};
+    float speed = 2.0f;  // m/s, > 0
+    float jump = 0.0f;   // m/s up when setting off towards it, >= 0
+  };
+  std::vector<Waypoint> path;
+};
+
 struct Scene {
   std::string source;  // the file name or "builtin:NAME", prefixed to error messages
   // The files the scene was read from: the scene file (empty for a built-in or a parsed text) and
@@ -76,6 +90,7 @@ struct Scene {
   std::map<std::string, Material> materials;
   std::vector<Body> bodies;
   std::vector<Constraint> constraints;
+  std::vector<SceneCharacter> characters;
 };
 
 struct LoadOptions {
