@@ -61,6 +61,18 @@ void writeCameraReport(const std::string& path, const OrbitCamera& camera, int w
         << "}";
     first = false;
   }
+  // The characters, drawn as their capsules (not bodies of the World: type "character").
+  for (std::size_t i = 0; scene.charactersShown() && i < scene.characters().size(); ++i) {
+    const Character& character = scene.characters()[i];
+    const Vec3 reach(character.def().radius + character.def().halfHeight);
+    const Vec3 centre = character.position();
+    out << (first ? "\n" : ",\n") << "    {\"name\": " << quoted(scene.scene().characters[i].name)
+        << ", \"type\": \"character\", \"shape\": \"capsule\", \"center\": " << vec(centre)
+        << ", \"min\": " << vec(centre - reach) << ", \"max\": " << vec(centre + reach)
+        << ", \"rotation\": [1, 0, 0, 0], \"colour\": " << vec(Vec3(ViewerScene::kCharacterColour))
+        << ", \"checker\": false}";
+    first = false;
+  }
   out << "\n  ]\n}\n";
   std::ofstream file(path);
   file << out.str();

@@ -95,6 +95,13 @@ struct App {
   MouseMode mouseMode = MouseMode::None;
   bool leftWasDown = false;
   int shotsRequested = 0;  // space presses since the last frame (a callback: a tap is shorter than a frame)
+
+  // Player: WASD walks the scene's first character relative to the camera, space jumps, and the
+  // camera follows it.
+  bool drivePlayer = false;
+  float walkSpeed = 4.0f;  // m/s
+  float jumpSpeed = 5.0f;  // m/s
+  bool jumpRequested = false;
   double lastX = 0.0, lastY = 0.0;
 
   // Loads the scene and builds its World (with the edited settings when `keepSettings`). Builds
@@ -257,6 +264,9 @@ struct App {
     if (ImGui::CollapsingHeader("Debug drawing", ImGuiTreeNodeFlags_DefaultOpen)) debugDrawing();
     if (!recording && ImGui::CollapsingHeader("Mouse and shots", ImGuiTreeNodeFlags_DefaultOpen))
       mouseAndShots();
+    if (!recording && !scene->characters().empty() &&
+        ImGui::CollapsingHeader("Player", ImGuiTreeNodeFlags_DefaultOpen))
+      playerPanel();
     if (!recording && ImGui::CollapsingHeader("World settings")) worldSettings();
     ImGui::End();
   }
@@ -358,6 +368,44 @@ struct App {
     ImGui::Text("%zu shots (at most %zu)", scene->shotCount(), ViewerScene::kMaxShots);
   }
 
+  void playerPanel() {
+    ImGui::Checkbox("drive the first character", &drivePlayer);
+    ImGui::TextDisabled(drivePlayer ? "WASD: walk (from the camera's view); space: jump"
+                                    : "the characters walk their paths");
+    ImGui::PushItemWidth(160.0f);
+    ImGui::SliderFloat("walk speed (m/s)", &walkSpeed, 0.5f, 12.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SliderFloat("jump speed (m/s)", &jumpSpeed, 0.0f, 15.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::PopItemWidth();
+    const Character& player = scene->characters().front();
+    const Vec3 feet = player.footPosition();
+    ImGui::Text("feet (%.2f, %.2f, %.2f)  %s", feet.x, feet.y, feet.z,
+                std::string(toString(player.groundState())).c_str());
+  }
+
+  // The walk the keys ask for: WASD in the camera's horizontal frame, space (this frame) a jump.
+  void drivePlayerInput() {
+    if (!drivePlayer || recording || scene->characters().empty()) {
+      scene->drive(std::nullopt);
+      jumpRequested = false;
+      return;
+    }
+    const Character& player = scene->characters().front();
+    const Vec3 up = player.def().up;
+    Vec3 ahead = camera.forward() - glm::dot(camera.forward(), up) * up;
+    ahead = glm::length(ahead) > 1e-4f ? glm::normalize(ahead) : Vec3(0.0f, 0.0f, -1.0f);
+    const Vec3 right = glm::cross(ahead, up);
+    Vec3 walk(0.0f);
+    if (!ImGui::GetIO().WantCaptureKeyboard) {
+      const auto held = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+      walk = (held(GLFW_KEY_W) - held(GLFW_KEY_S)) * ahead + (held(GLFW_KEY_D) - held(GLFW_KEY_A)) * right;
+      if (glm::length(walk) > 0.0f) walk = glm::normalize(walk) * walkSpeed;
+    }
+    if (jumpRequested && player.isOnGround()) walk += jumpSpeed * up;
+    jumpRequested = false;
+    scene->drive(walk);
+    camera.target = player.position();
+  }
+
   void worldSettings() {
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 340.0f);
     ImGui::TextDisabled(
@@ -418,6 +466,8 @@ struct App {
     for (; shotsRequested > 0; --shotsRequested) {
       if (recording) {
         playing = !playing;  // space: play and pause the replay
+      } else if (drivePlayer && !scene->characters().empty()) {
+        jumpRequested = true;  // space: the player jumps
       } else {
         scene->shoot(cursorRay(), shot);
       }
@@ -564,6 +614,7 @@ int run(const Options& options) {
       while (!glfwWindowShouldClose(app.window)) {
         glfwPollEvents();
         app.handleInput();
+        app.drivePlayerInput();
         if (app.playing || app.stepOnce) app.step();
         app.stepOnce = false;
         int width = 0, height = 0;

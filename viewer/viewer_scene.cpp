@@ -94,6 +94,13 @@ ViewerScene::ViewerScene(scene::Scene scene, scene::SceneWorld built, Renderer& 
     (built_->world.type(id) == BodyType::Static ? staticRadii : radii)
         .push_back(0.5f * glm::length(box.max - box.min));
   }
+  for (const scene::SceneCharacter& character : scene_.characters) {
+    characters_.emplace_back(character.def);
+    paths_.emplace_back(character);
+    std::vector<DrawnBody::Part> parts;
+    addParts(Shape(Capsule{character.def.radius, character.def.halfHeight}), glm::mat4(1.0f), parts);
+    characterParts_.push_back(parts.front());
+  }
   // The median moving body's bounding radius (a static one's if nothing moves).
   std::vector<float>& sizes = radii.empty() ? staticRadii : radii;
   if (!sizes.empty()) {
@@ -145,6 +152,10 @@ BodyId ViewerScene::shoot(const Ray& ray, const SphereShot& shot) {
 double ViewerScene::step() {
   const auto start = std::chrono::steady_clock::now();
   built_->world.step(scene_.dt);
+  for (std::size_t i = 0; i < characters_.size(); ++i) {
+    const Vec3 walk = i == 0 && drive_ ? *drive_ : paths_[i].nextVelocity(characters_[i], scene_.dt);
+    characters_[i].update(built_->world, walk, scene_.dt);
+  }
   const auto stop = std::chrono::steady_clock::now();
   ++steps_;
   return std::chrono::duration<double, std::milli>(stop - start).count();
@@ -171,6 +182,7 @@ std::size_t ViewerScene::showRecordedFrame(const scene::RecordedFrame& frame) {
     body.replayAwake = recorded.awake;
   }
   steps_ = frame.step;
+  showCharacters_ = false;
   return unknown;
 }
 
@@ -219,6 +231,18 @@ std::vector<std::vector<Instance>> ViewerScene::instances(int meshCount) const {
       if (part.mesh < meshCount)
         out[static_cast<std::size_t>(part.mesh)].push_back({model * part.local, colour});
     }
+  }
+  // The characters: upright capsules.
+  for (std::size_t i = 0; showCharacters_ && i < characters_.size(); ++i) {
+    const Character& character = characters_[i];
+    const DrawnBody::Part& part = characterParts_[i];
+    const Vec3 y(0.0f, 1.0f, 0.0f), up = character.def().up;
+    const Quat stand = glm::dot(y, up) < -0.999999f
+                           ? Quat(0.0f, 1.0f, 0.0f, 0.0f)
+                           : glm::normalize(Quat(1.0f + glm::dot(y, up), glm::cross(y, up)));
+    if (part.mesh < meshCount)
+      out[static_cast<std::size_t>(part.mesh)].push_back(
+          {toMatrix(Transform{character.position(), stand, 1.0f}) * part.local, kCharacterColour});
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include "interaction.h"
 #include "renderer.h"
 
+#include <collide/character.h>
 #include <collide/scene/recording.h>
 #include <collide/scene/scene.h>
 
@@ -47,6 +48,14 @@ class ViewerScene {
   // settings the World refuses, and then changes nothing.
   void applySettings(const WorldDef& def, float dt);
   int stepCount() const { return steps_; }
+
+  // The scene's characters (docs/character.md): each step walks them along their paths, or walks the
+  // first at `drive` when the player drives it (WASD).
+  const std::vector<Character>& characters() const { return characters_; }
+  static constexpr glm::vec4 kCharacterColour{0.96f, 0.94f, 0.86f, 1.0f};  // off-white: no body has it
+  bool charactersShown() const { return showCharacters_; }
+  void drive(std::optional<Vec3> velocity) { drive_ = velocity; }
+  bool driving() const { return drive_.has_value(); }
 
   // Replay (collide-viewer --replay): puts every recorded body where the frame has it (matched by
   // name; World::setTransform, nothing stepped) and hides the bodies the frame lacks (broken before
@@ -96,6 +105,11 @@ class ViewerScene {
 
   scene::Scene scene_;
   Renderer& renderer_;
+  std::vector<Character> characters_;
+  std::vector<scene::CharacterPath> paths_;
+  std::vector<DrawnBody::Part> characterParts_;  // one capsule mesh per character
+  std::optional<Vec3> drive_;
+  bool showCharacters_ = true;  // not in a replay, which has no record of them
   std::unique_ptr<scene::SceneWorld> built_;
   std::vector<DrawnBody> bodies_;
   std::deque<BodyId> shots_;

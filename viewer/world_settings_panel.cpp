@@ -83,8 +83,10 @@ bool editWorldSettings(WorldDef& def, float& dt) {
   changed |= positiveFloat("restitution threshold (m/s)", c.restitutionThreshold, 0.05f, 0.0f, 50.0f, "%.2f");
   changed |= positiveFloat("linear slop (m)", c.linearSlop, 0.0005f, 0.0f, 0.5f, "%.4f");
   changed |= positiveFloat("speculative distance (m)", c.speculativeDistance, 0.001f, 0.0f, 1.0f, "%.3f");
-  if (ImGui::SliderInt("relax passes", &c.relaxPasses, 0, 4, "%d", ImGuiSliderFlags_AlwaysClamp)) changed = true;
-  changed |= positiveFloat("friction anchor reach (m, 0 off)", c.frictionAnchorReach, 0.001f, 0.0f, 1.0f, "%.3f");
+  if (ImGui::SliderInt("relax passes", &c.relaxPasses, 0, 4, "%d", ImGuiSliderFlags_AlwaysClamp))
+    changed = true;
+  changed |=
+      positiveFloat("friction anchor reach (m, 0 off)", c.frictionAnchorReach, 0.001f, 0.0f, 1.0f, "%.3f");
   changed |= positiveFloat("manifold cache (m, 0 off)", c.manifoldCacheDistance, 0.0005f, 0.0f, 0.1f, "%.4f");
   changed |= ImGui::Checkbox("persist events", &def.persistEvents);
 

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace collide {
@@ -62,6 +63,8 @@ enum class GroundState : std::uint8_t {
   Sliding,   // touching only surfaces steeper than maxSlope below it: gravity slides it down them
   InAir,     // nothing below within the skin
 };
+// "on ground", "sliding", "in the air".
+std::string_view toString(GroundState state);
 
 // A surface the character touched during an update (the contact events of a character).
 struct CharacterContact {

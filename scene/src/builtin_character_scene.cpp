@@ -36,15 +36,17 @@ Json character() {
   bodies.push_back(wedge);
   // Crates in the player's way, light enough to push.
   for (int i = 0; i < 3; ++i) {
-    Json crate = body("crate_" + std::to_string(i), "dynamic", box(0.4, 0.4, 0.4), vec(11.0 + 0.9 * (i - 1), 0.4, 3.0));
+    Json crate = body("crate_" + std::to_string(i), "dynamic", box(0.4, 0.4, 0.4),
+                      vec(11.0 + 0.9 * (i - 1), 0.4, 3.0));
     crate["mass"] = num(15);
     bodies.push_back(crate);
   }
   // A low wall to jump over? A kerb of 0.5 m, higher than a step: the path jumps it.
   bodies.push_back(body("kerb", "static", box(0.2, 0.25, 3.0), vec(5.0, 0.25, 5.0)));
   // A disc turning at 0.5 rad/s, 0.2 m high (a step onto it), and a platform sliding along z.
-  Json disc = body("turntable", "kinematic", {{"type", "cylinder"}, {"radius", num(2.5)}, {"half_height", num(0.1)}},
-                   vec(-6.0, 0.1, 0.0));
+  Json disc =
+      body("turntable", "kinematic", {{"type", "cylinder"}, {"radius", num(2.5)}, {"half_height", num(0.1)}},
+           vec(-6.0, 0.1, 0.0));
   disc["angular_velocity"] = vec(0, 0.5, 0);
   bodies.push_back(disc);
   Json platform = body("sliding_platform", "kinematic", box(1.5, 0.15, 1.5), vec(-6.0, 0.15, -12.0));

@@ -194,39 +194,19 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   struct Walker {
     Character character;
     const SceneCharacter* scene;
-    std::size_t next = 0;
-    bool jumped = false;
+    CharacterPath path;
   };
   std::vector<Walker> walkers;
   for (std::size_t i = 0; i < scene.characters.size(); ++i) {
     try {
-      walkers.push_back({Character(scene.characters[i].def), &scene.characters[i]});
+      walkers.push_back(
+          {Character(scene.characters[i].def), &scene.characters[i], CharacterPath(scene.characters[i])});
     } catch (const Error& e) {
       throw Error(scene.source + ": characters[" + std::to_string(i) + "]: " + e.what());
     }
   }
   const auto walk = [&](Walker& w) {
-    const Vec3 up = w.character.def().up;
-    Vec3 velocity(0.0f);
-    while (w.next < w.scene->path.size()) {
-      const SceneCharacter::Waypoint& waypoint = w.scene->path[w.next];
-      Vec3 toward = waypoint.to - w.character.footPosition();
-      toward -= glm::dot(toward, up) * up;
-      const float distance = glm::length(toward);
-      // Reached when within a step's walk (or 5 cm): on to the next.
-      if (distance <= std::max(0.05f, waypoint.speed * scene.dt)) {
-        ++w.next;
-        w.jumped = false;
-        continue;
-      }
-      velocity = toward * (waypoint.speed / distance);
-      if (waypoint.jump > 0.0f && !w.jumped && w.character.isOnGround()) {
-        velocity += waypoint.jump * up;
-        w.jumped = true;
-      }
-      break;
-    }
-    w.character.update(sw.world, velocity, scene.dt);
+    w.character.update(sw.world, w.path.nextVelocity(w.character, scene.dt), scene.dt);
   };
 
   if (recorder) recorder->frame(0, 0.0, sw);
@@ -321,7 +301,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
       }
     }
     summary.characters.push_back(
-        {w.scene->name, feet, w.character.groundState(), w.next, w.scene->path.size()});
+        {w.scene->name, feet, w.character.groundState(), w.path.reached(), w.scene->path.size()});
   }
   summary.worldMemory = sw.world.memoryUse();
   summary.sceneMemory = sceneMemoryBytes(scene, sw);

@@ -300,8 +300,8 @@ PartDef readPart(const JsonNode& node, const BodyDef& body, const Scene& scene, 
 
 // A character (our extension, docs/scene-format.md): the capsule, its limits and its path.
 SceneCharacter readCharacter(const JsonNode& node, const Scene& scene) {
-  node.expectObject({"name", "position", "up", "radius", "half_height", "max_slope", "max_step_height", "skin_width",
-                     "push_force", "mass", "gravity", "mask", "path"});
+  node.expectObject({"name", "position", "up", "radius", "half_height", "max_slope", "max_step_height",
+                     "skin_width", "push_force", "mass", "gravity", "mask", "path"});
   SceneCharacter character;
   character.name = node.at("name").string();
   if (character.name.empty()) node.at("name").fail("must not be empty");
@@ -749,7 +749,8 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
       SceneCharacter character = readCharacter(c, scene);
       const auto [it, inserted] = characterNames.emplace(character.name, scene.characters.size());
       if (!inserted)
-        c.at("name").fail("duplicate name " + c.at("name").shown() + " (also characters[" + std::to_string(it->second) + "])");
+        c.at("name").fail("duplicate name " + c.at("name").shown() + " (also characters[" +
+                          std::to_string(it->second) + "])");
       scene.characters.push_back(std::move(character));
     }
   }

@@ -145,4 +145,27 @@ std::size_t sceneMemoryBytes(const Scene& scene, const SceneWorld& world) {
   return bytes;
 }
 
+Vec3 CharacterPath::nextVelocity(const Character& character, float dt) {
+  const Vec3 up = character.def().up;
+  while (next_ < character_->path.size()) {
+    const SceneCharacter::Waypoint& waypoint = character_->path[next_];
+    Vec3 toward = waypoint.to - character.footPosition();
+    toward -= glm::dot(toward, up) * up;
+    const float distance = glm::length(toward);
+    // Reached when within a step's walk (or 5 cm): on to the next.
+    if (distance <= std::max(0.05f, waypoint.speed * dt)) {
+      ++next_;
+      jumped_ = false;
+      continue;
+    }
+    Vec3 velocity = toward * (waypoint.speed / distance);
+    if (waypoint.jump > 0.0f && !jumped_ && character.isOnGround()) {
+      velocity += waypoint.jump * up;
+      jumped_ = true;
+    }
+    return velocity;
+  }
+  return Vec3(0.0f);
+}
+
 }  // namespace collide::scene

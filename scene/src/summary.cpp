@@ -38,18 +38,6 @@ nlohmann::json memoryJson(const WorldMemory& m, std::size_t scene) {
   return json;
 }
 
-const char* groundName(GroundState state) {
-  switch (state) {
-    case GroundState::OnGround:
-      return "on ground";
-    case GroundState::Sliding:
-      return "sliding";
-    case GroundState::InAir:
-      return "in the air";
-  }
-  return "?";
-}
-
 }  // namespace
 
 std::string formatSummary(const RunSummary& s) {
@@ -122,8 +110,9 @@ std::string formatSummary(const RunSummary& s) {
   add("\nmomentum        (%.6g, %.6g, %.6g) kg m/s\n", s.momentum.x, s.momentum.y, s.momentum.z);
   add("kinetic energy  %.6g J\n", s.kineticEnergy);
   for (const RunSummary::CharacterEnd& c : s.characters) {
-    add("character       %s: feet at (%.3f, %.3f, %.3f), %s, %zu of %zu waypoints\n", c.name.c_str(), c.position.x,
-        c.position.y, c.position.z, groundName(c.ground), c.waypointsReached, c.waypoints);
+    add("character       %s: feet at (%.3f, %.3f, %.3f), %s, %zu of %zu waypoints\n", c.name.c_str(),
+        c.position.x, c.position.y, c.position.z, std::string(toString(c.ground)).c_str(), c.waypointsReached,
+        c.waypoints);
   }
   add("state hash      %s\n", hex(s.stateHash).c_str());
   return out;
@@ -134,7 +123,7 @@ std::string summaryJson(const RunSummary& s) {
   for (const RunSummary::CharacterEnd& c : s.characters) {
     characters.push_back({{"name", c.name},
                           {"feet", jsonVec3(c.position)},
-                          {"ground", groundName(c.ground)},
+                          {"ground", toString(c.ground)},
                           {"waypoints_reached", c.waypointsReached},
                           {"waypoints", c.waypoints}});
   }

@@ -19,6 +19,18 @@
 
 namespace collide {
 
+std::string_view toString(GroundState state) {
+  switch (state) {
+    case GroundState::OnGround:
+      return "on ground";
+    case GroundState::Sliding:
+      return "sliding";
+    case GroundState::InAir:
+      return "in the air";
+  }
+  return "?";
+}
+
 namespace {
 
 // Gauss-Seidel passes over the planes of one move, and the moves of one update.
@@ -51,7 +63,8 @@ struct SegmentTriangle {
 
 // The closest points of segment [p, q] and triangle abc: an end of the segment against the face, an
 // edge against the segment, or the point where the segment crosses the triangle.
-SegmentTriangle closestSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+SegmentTriangle closestSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                                       const Vec3& c) {
   SegmentTriangle best;
   const auto consider = [&](const Vec3& onSegment, const Vec3& onTriangle) {
     const Vec3 d = onSegment - onTriangle;
@@ -83,7 +96,8 @@ Character::Character(const CharacterDef& def) : def_(def) {
   const float upLength = glm::length(def.up);
   if (!isFinite(def.up) || !(upLength > 1e-6f)) fail("up must be a finite, non-zero direction");
   def_.up = def.up / upLength;
-  if (!(def.radius > 0.0f) || !std::isfinite(def.radius)) fail("radius must be finite and > 0, got " + formatNumber(def.radius));
+  if (!(def.radius > 0.0f) || !std::isfinite(def.radius))
+    fail("radius must be finite and > 0, got " + formatNumber(def.radius));
   if (!(def.halfHeight >= 0.0f) || !std::isfinite(def.halfHeight))
     fail("halfHeight must be finite and >= 0, got " + formatNumber(def.halfHeight));
   if (!(def.maxSlope > 0.0f && def.maxSlope < 0.5f * kPi))
@@ -94,7 +108,8 @@ Character::Character(const CharacterDef& def) : def_(def) {
     fail("skinWidth must be finite and > 0, got " + formatNumber(def.skinWidth));
   if (!(def.pushForce >= 0.0f) || !std::isfinite(def.pushForce))
     fail("pushForce must be finite and >= 0, got " + formatNumber(def.pushForce));
-  if (!(def.mass > 0.0f) || !std::isfinite(def.mass)) fail("mass must be finite and > 0, got " + formatNumber(def.mass));
+  if (!(def.mass > 0.0f) || !std::isfinite(def.mass))
+    fail("mass must be finite and > 0, got " + formatNumber(def.mass));
   if (!isFinite(def.gravity)) fail("gravity must be finite");
   position_ = def.position;
 }
@@ -110,7 +125,8 @@ void Character::setPosition(const Vec3& position, bool stop) {
   groundBody_ = BodyId{};
 }
 
-std::vector<Character::Plane> Character::planesNear(const World& world, const Vec3& position, float margin) const {
+std::vector<Character::Plane> Character::planesNear(const World& world, const Vec3& position,
+                                                    float margin) const {
   const Vec3 up = def_.up;
   const float radius = def_.radius;
   const Vec3 p = position - def_.halfHeight * up;
@@ -121,23 +137,27 @@ std::vector<Character::Plane> Character::planesNear(const World& world, const Ve
   Aabb reachBox = worldBounds(reach, pose);
 
   std::vector<Plane> planes;
-  const auto add = [&](BodyId body, const Vec3& normal, const Vec3& point, float gap, const Vec3& surfaceNormal) {
+  const auto add = [&](BodyId body, const Vec3& normal, const Vec3& point, float gap,
+                       const Vec3& surfaceNormal) {
     if (!(gap <= margin) || !isFinite(normal) || !isFinite(point)) return;
     // A flat floor's triangles give the same plane many times over: keep one (the nearest).
     for (Plane& plane : planes) {
-      if (plane.body == body && glm::dot(plane.normal, normal) > 0.9999f && std::abs(plane.gap - gap) < 1e-4f) {
+      if (plane.body == body && glm::dot(plane.normal, normal) > 0.9999f &&
+          std::abs(plane.gap - gap) < 1e-4f) {
         if (gap < plane.gap) plane.point = point, plane.gap = gap;
         return;
       }
     }
     const Vec3 r = point - world.centerOfMass(body);
-    planes.push_back({body, normal, point, gap, world.linearVelocity(body) + glm::cross(world.angularVelocity(body), r),
+    planes.push_back({body, normal, point, gap,
+                      world.linearVelocity(body) + glm::cross(world.angularVelocity(body), r),
                       surfaceNormal});
   };
   // The surface's own normal under a contact point: a short ray down at it, from a little above and
   // a hair past the point away from the capsule (onto a step's top face, not off its edge). The
   // contact's normal when the ray finds nothing (a wall's point, which no ray from above reaches).
-  const auto surfaceNormalAt = [&](const Shape& shape, const Transform& at, const Vec3& point, const Vec3& normal) {
+  const auto surfaceNormalAt = [&](const Shape& shape, const Transform& at, const Vec3& point,
+                                   const Vec3& normal) {
     Vec3 away = -(normal - glm::dot(normal, up) * up);
     const float length = glm::length(away);
     away = length > 1e-4f ? away / length : Vec3(0.0f);
@@ -154,7 +174,8 @@ std::vector<Character::Plane> Character::planesNear(const World& world, const Ve
         const TriangleMesh& mesh = shape.mesh();
         Aabb local = Aabb::empty();
         for (int corner = 0; corner < 8; ++corner) {
-          const Vec3 c(corner & 1 ? reachBox.max.x : reachBox.min.x, corner & 2 ? reachBox.max.y : reachBox.min.y,
+          const Vec3 c(corner & 1 ? reachBox.max.x : reachBox.min.x,
+                       corner & 2 ? reachBox.max.y : reachBox.min.y,
                        corner & 4 ? reachBox.max.z : reachBox.min.z);
           local.grow(at.inverseApplyToPoint(c));
         }
@@ -185,8 +206,8 @@ std::vector<Character::Plane> Character::planesNear(const World& world, const Ve
       }
       case ShapeType::Compound:
         for (const Compound::Child& child : shape.compound().children()) {
-          const Transform childAt{at.applyToPoint(child.transform.position), at.rotation * child.transform.rotation,
-                                  at.scale * child.transform.scale};
+          const Transform childAt{at.applyToPoint(child.transform.position),
+                                  at.rotation * child.transform.rotation, at.scale * child.transform.scale};
           self(self, body, child.shape, childAt);
         }
         break;
@@ -208,8 +229,8 @@ std::vector<Character::Plane> Character::planesNear(const World& world, const Ve
         if (shape.type() == ShapeType::Compound && overlap.part < shape.compound().children().size() &&
             world.partCount(overlap.body) > 1) {
           const Compound::Child& child = shape.compound().children()[overlap.part];
-          const Transform childAt{at.applyToPoint(child.transform.position), at.rotation * child.transform.rotation,
-                                  at.scale * child.transform.scale};
+          const Transform childAt{at.applyToPoint(child.transform.position),
+                                  at.rotation * child.transform.rotation, at.scale * child.transform.scale};
           planesOf(planesOf, overlap.body, child.shape, childAt);
         } else {
           planesOf(planesOf, overlap.body, shape, at);
@@ -244,8 +265,8 @@ Character::MoveResult Character::move(World& world, const Vec3& from, const Vec3
   Vec3 remaining = displacement;
   // The first iteration runs even for no move: a surface that came into the capsule (a kinematic
   // body, a door) pushes it out.
-  for (int iteration = 0; iteration < kMoveIterations && (iteration == 0 || glm::length(remaining) > kMinMove);
-       ++iteration) {
+  for (int iteration = 0;
+       iteration < kMoveIterations && (iteration == 0 || glm::length(remaining) > kMinMove); ++iteration) {
     std::vector<Plane> planes = planesNear(world, result.position, skin + glm::length(remaining) + 0.01f);
     // A contact too steep to walk up is a wall for the walk as well: its horizontal normal keeps the
     // character from creeping up it by pushing into it (Jolt's steep-slope planes). That holds for a
@@ -299,11 +320,13 @@ Character::MoveResult Character::move(World& world, const Vec3& from, const Vec3
 // Jolt's stair walk: up by the step height (or what room there is), across as far as the walk asked,
 // down onto the step's edge (ground by its surface), if the step's top is no higher than the step
 // height and walkable.
-std::optional<Vec3> Character::stepUp(World& world, const Vec3& start, const Vec3& across, const Vec3& walked) {
+std::optional<Vec3> Character::stepUp(World& world, const Vec3& start, const Vec3& across,
+                                      const Vec3& walked) {
   const Vec3 up = def_.up;
   const float skin = def_.skinWidth;
   const float wanted = glm::length(across);
-  const float rise = std::max(0.0f, castFraction(world, start, up * def_.maxStepHeight) * def_.maxStepHeight - skin);
+  const float rise =
+      std::max(0.0f, castFraction(world, start, up * def_.maxStepHeight) * def_.maxStepHeight - skin);
   if (!(wanted > kMinMove) || !(rise > skin)) return std::nullopt;
   const Vec3 raised = start + rise * up;
   const auto dropOnto = [&](Vec3 position) -> std::optional<Vec3> {
@@ -363,7 +386,8 @@ void Character::findGround(const World& world) {
     const float rise = glm::dot(plane.normal, up);
     // Under the capsule's lower half-sphere, facing up, within the skin (and a little); walkable by
     // the surface's own slope (a step's edge under the capsule is its top face).
-    if (rise <= 1e-3f || glm::dot(plane.point, up) > bottom + 1e-4f || plane.gap > 1.5f * def_.skinWidth) continue;
+    if (rise <= 1e-3f || glm::dot(plane.point, up) > bottom + 1e-4f || plane.gap > 1.5f * def_.skinWidth)
+      continue;
     const bool walkable = glm::dot(plane.surfaceNormal, up) >= cosMaxSlope;
     if (walkable && (groundState_ != GroundState::OnGround || rise > bestRise)) {
       groundState_ = GroundState::OnGround;
@@ -385,7 +409,8 @@ void Character::pushBodies(World& world, const Vec3& velocity, float dt) {
     if (!world.isValid(contact.body) || world.type(contact.body) != BodyType::Dynamic) continue;
     const Vec3 into = -contact.normal;  // from the character into the body
     const Vec3 r = contact.point - world.centerOfMass(contact.body);
-    const Vec3 bodyVelocity = world.linearVelocity(contact.body) + glm::cross(world.angularVelocity(contact.body), r);
+    const Vec3 bodyVelocity =
+        world.linearVelocity(contact.body) + glm::cross(world.angularVelocity(contact.body), r);
     const float approach = glm::dot(velocity - bodyVelocity, into);
     if (contact.body == groundBody_) {
       // Standing on it: the character's weight.
@@ -408,7 +433,8 @@ void Character::pushBodies(World& world, const Vec3& velocity, float dt) {
 }
 
 void Character::update(World& world, const Vec3& walkVelocity, float dt) {
-  if (!(dt > 0.0f) || !std::isfinite(dt)) throw Error("character: update: dt must be finite and > 0, got " + formatNumber(dt));
+  if (!(dt > 0.0f) || !std::isfinite(dt))
+    throw Error("character: update: dt must be finite and > 0, got " + formatNumber(dt));
   if (!isFinite(walkVelocity)) throw Error("character: update: walkVelocity must be finite");
   const Vec3 up = def_.up;
   touched_.clear();
@@ -450,7 +476,8 @@ void Character::update(World& world, const Vec3& walkVelocity, float dt) {
   // Stairs: a walk on the ground stopped by a wall tries up by the step height, across, and down.
   if (wasOnGround && jump <= 0.0f && moved.blockedByWall && def_.maxStepHeight > 0.0f) {
     const Vec3 across = walk * dt + carry - glm::dot(carry, up) * up;
-    if (const std::optional<Vec3> stepped = stepUp(world, start, across, moved.position)) moved.position = *stepped;
+    if (const std::optional<Vec3> stepped = stepUp(world, start, across, moved.position))
+      moved.position = *stepped;
   }
   position_ = moved.position;
   findGround(world);
@@ -486,7 +513,8 @@ void Character::update(World& world, const Vec3& walkVelocity, float dt) {
     }
   }
   if (groundState_ == GroundState::OnGround && world.isValid(groundBody_) &&
-      std::none_of(contacts_.begin(), contacts_.end(), [&](const CharacterContact& c) { return c.body == groundBody_; })) {
+      std::none_of(contacts_.begin(), contacts_.end(),
+                   [&](const CharacterContact& c) { return c.body == groundBody_; })) {
     contacts_.push_back({groundBody_, footPosition(), groundNormal_, false});
   }
   // Bodies are pushed by the walk the character meant (the move they blocked would read as none).
@@ -495,7 +523,8 @@ void Character::update(World& world, const Vec3& walkVelocity, float dt) {
 
 bool Character::setHalfHeight(World& world, float halfHeight) {
   if (!(halfHeight >= 0.0f) || !std::isfinite(halfHeight))
-    throw Error("character: setHalfHeight: halfHeight must be finite and >= 0, got " + formatNumber(halfHeight));
+    throw Error("character: setHalfHeight: halfHeight must be finite and >= 0, got " +
+                formatNumber(halfHeight));
   const Vec3 feet = footPosition();
   const Vec3 centre = feet + (halfHeight + def_.radius) * def_.up;
   if (halfHeight > def_.halfHeight && overlapsAt(world, centre, halfHeight)) return false;

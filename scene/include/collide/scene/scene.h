@@ -77,6 +77,22 @@ struct SceneCharacter {
   std::vector<Waypoint> path;
 };
 
+// Walks a scene character along its path: the velocity towards the next waypoint (a jump added once,
+// from the ground), moving on as each is reached. `collide run` and the viewer share it.
+class CharacterPath {
+ public:
+  explicit CharacterPath(const SceneCharacter& character) : character_(&character) {}
+  // The walk velocity for this update (zero once the path is done).
+  Vec3 nextVelocity(const Character& character, float dt);
+  std::size_t reached() const { return next_; }
+  bool done() const { return next_ >= character_->path.size(); }
+
+ private:
+  const SceneCharacter* character_;
+  std::size_t next_ = 0;
+  bool jumped_ = false;
+};
+
 struct Scene {
   std::string source;  // the file name or "builtin:NAME", prefixed to error messages
   // The files the scene was read from: the scene file (empty for a built-in or a parsed text) and
