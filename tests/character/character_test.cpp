@@ -21,7 +21,8 @@ namespace {
 
 using test::kDt;
 
-BodyId staticBox(World& world, const Vec3& center, const Vec3& half, const Quat& rotation = Quat(1, 0, 0, 0)) {
+BodyId staticBox(World& world, const Vec3& center, const Vec3& half,
+                 const Quat& rotation = Quat(1, 0, 0, 0)) {
   BodyDef def;
   def.type = BodyType::Static;
   def.shape = Shape(Box{half});
@@ -65,7 +66,8 @@ TEST(Character, WalksFlatGroundAtTheSpeedAskedWithoutRisingOrSinking) {
 void buildStairs(World& world, float rise) {
   for (int step = 0; step < 5; ++step) {
     const float top = rise * float(step + 1);
-    staticBox(world, Vec3(2.0f + 0.5f * float(step) + 0.25f + 2.5f, 0.5f * top, 0.0f), Vec3(0.25f + 2.5f, 0.5f * top, 2.0f));
+    staticBox(world, Vec3(2.0f + 0.5f * float(step) + 0.25f + 2.5f, 0.5f * top, 0.0f),
+              Vec3(0.25f + 2.5f, 0.5f * top, 2.0f));
   }
 }
 
@@ -214,6 +216,22 @@ Shape sineTerrain(int n) {
   return Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)));
 }
 
+// The twelve triangles of a box's surface, facing out.
+void addBoxTriangles(std::vector<Vec3>& vertices, std::vector<MeshTriangle>& triangles, const Vec3& center,
+                     const Vec3& half) {
+  const auto base = static_cast<std::uint32_t>(vertices.size());
+  for (int i = 0; i < 8; ++i)
+    vertices.push_back(center +
+                       Vec3(i & 1 ? half.x : -half.x, i & 2 ? half.y : -half.y, i & 4 ? half.z : -half.z));
+  // Corners by bits (x, y, z); each face's quad counter-clockwise seen from outside.
+  const std::uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& f : faces) {
+    triangles.push_back({{base + f[0], base + f[1], base + f[2]}});
+    triangles.push_back({{base + f[0], base + f[2], base + f[3]}});
+  }
+}
+
 // How deep the character overlaps static geometry (0 when clear).
 float worstOverlap(const World& world, const Character& character) {
   float worst = 0.0f;
@@ -228,27 +246,42 @@ TEST(Character, RandomMovesThroughTerrainAndAMeshLevelNeverEndInsideGeometry) {
   terrain.type = BodyType::Static;
   terrain.shape = sineTerrain(40);
   world.createBody(terrain);
-  // A room of walls around the terrain, a pillar, a step and a low beam, all static.
+  // The level: one static triangle mesh of a room's walls around the terrain, a pillar, a step and
+  // a low beam (a level as a game's editor exports it), and the same pillar, step and beam mirrored
+  // as static boxes.
+  std::vector<Vec3> vertices;
+  std::vector<MeshTriangle> triangles;
   for (const float side : {-1.0f, 1.0f}) {
-    staticBox(world, Vec3(side * 20.5f, 2.0f, 0.0f), Vec3(0.5f, 3.0f, 21.0f));
-    staticBox(world, Vec3(0.0f, 2.0f, side * 20.5f), Vec3(21.0f, 3.0f, 0.5f));
+    addBoxTriangles(vertices, triangles, Vec3(side * 20.5f, 2.0f, 0.0f), Vec3(0.5f, 3.0f, 21.0f));
+    addBoxTriangles(vertices, triangles, Vec3(0.0f, 2.0f, side * 20.5f), Vec3(21.0f, 3.0f, 0.5f));
   }
-  staticBox(world, Vec3(3.0f, 1.0f, 3.0f), Vec3(0.5f, 2.0f, 0.5f));
-  staticBox(world, Vec3(-4.0f, 0.5f, 2.0f), Vec3(2.0f, 0.3f, 2.0f));
-  staticBox(world, Vec3(0.0f, 2.3f, -5.0f), Vec3(3.0f, 0.2f, 1.0f));
+  addBoxTriangles(vertices, triangles, Vec3(3.0f, 1.0f, 3.0f), Vec3(0.5f, 2.0f, 0.5f));
+  addBoxTriangles(vertices, triangles, Vec3(-4.0f, 0.5f, 2.0f), Vec3(2.0f, 0.3f, 2.0f));
+  addBoxTriangles(vertices, triangles, Vec3(0.0f, 2.3f, -5.0f), Vec3(3.0f, 0.2f, 1.0f));
+  BodyDef level;
+  level.type = BodyType::Static;
+  level.shape = Shape(TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)));
+  const BodyId levelBody = world.createBody(level);
+  staticBox(world, Vec3(-3.0f, 1.0f, -3.0f), Vec3(0.5f, 2.0f, 0.5f));
+  staticBox(world, Vec3(4.0f, 0.5f, -2.0f), Vec3(2.0f, 0.3f, 2.0f));
+  staticBox(world, Vec3(0.0f, 2.3f, 5.0f), Vec3(3.0f, 0.2f, 1.0f));
   Character character(standingAt(0.0f, 0.0f, 1.0f));
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> speed(-6.0f, 6.0f);
   std::uniform_int_distribution<int> dice(0, 19);
   Vec3 walk(0.0f);
   float worst = 0.0f;
+  int framesTouchingLevel = 0;
   for (int i = 0; i < 1000; ++i) {
     if (i % 15 == 0) walk = Vec3(speed(rng), 0.0f, speed(rng));
     const Vec3 jump = dice(rng) == 0 && character.isOnGround() ? Vec3(0.0f, 5.0f, 0.0f) : Vec3(0.0f);
     frame(world, character, walk + jump);
     worst = std::max(worst, worstOverlap(world, character));
     ASSERT_TRUE(isFinite(character.position()));
+    for (const CharacterContact& contact : character.contacts())
+      framesTouchingLevel += contact.body == levelBody;
   }
+  EXPECT_GT(framesTouchingLevel, 20) << "the walk meets the mesh level's walls and blocks";
   EXPECT_LT(worst, 2e-3f) << "the deepest the character ever sank into the level (m)";
   EXPECT_LT(std::abs(character.position().x), 20.0f);
   EXPECT_LT(std::abs(character.position().z), 20.0f);
@@ -333,7 +366,8 @@ TEST(Character, ReportsTheWallItWalksInto) {
 
 TEST(Character, BadDefinitionsAreRefusedNamingTheField) {
   const auto refused = [](CharacterDef def, const char* field) {
-    EXPECT_THAT([&] { Character c(def); }, ::testing::ThrowsMessage<Error>(::testing::HasSubstr(field))) << field;
+    EXPECT_THAT([&] { Character c(def); }, ::testing::ThrowsMessage<Error>(::testing::HasSubstr(field)))
+        << field;
   };
   CharacterDef def;
   def.radius = 0.0f;
