@@ -97,4 +97,19 @@ void setProfileHooks(const ProfileHooks& hooks);
 // Whether this build of the library calls the profile hooks.
 bool profileZonesEnabled();
 
+// ---- Hull building ---------------------------------------------------------------------------------
+// collide builds convex hulls (ConvexHull::fromPoints, k-DOPs, the box's polytope) with Qhull. A
+// build without Qhull (the CMake option COLLIDE_WITH_QHULL=OFF: the WebAssembly build, for which
+// Debian has no Qhull; collide.js installs three.js's ConvexHull) takes the hull's triangles from a
+// finder the host installs: given `count` points as 3 * count floats (x, y, z), it appends the
+// hull's triangles to `triangles` as three indices into the points each, in any orientation, and
+// returns false if it found no hull. collide checks that they close a surface and merges coplanar
+// neighbours into faces, as Qhull's merging does. An installed finder is used in every build.
+using HullTriangleFinder = bool (*)(const float* xyz, std::size_t count,
+                                    std::vector<std::uint32_t>& triangles, void* context);
+// nullptr restores the default: Qhull, or in a build without it, hulls refused with an Error.
+void setHullTriangleFinder(HullTriangleFinder finder, void* context = nullptr);
+// Whether this build can build hulls now: Qhull compiled in, or a finder installed.
+bool canBuildHulls();
+
 }  // namespace collide

@@ -8,6 +8,7 @@
 
 #include "file_text.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -44,6 +45,7 @@ bool parseNumber(std::string_view token, double& value) {
   std::string_view digits = token;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
   if (digits.empty() || digits.front() == '+') return false;
+#if defined(__cpp_lib_to_chars)
   const char* end = digits.data() + digits.size();
   const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
   if (ptr != end) return false;
@@ -53,6 +55,17 @@ bool parseNumber(std::string_view token, double& value) {
     return true;
   }
   return ec == std::errc();
+#else
+  // A standard library without from_chars for doubles (emscripten's libc++ 14): strtod, held to
+  // what from_chars reads (no leading space, no hexadecimal).
+  if (std::isspace(static_cast<unsigned char>(digits.front())) ||
+      digits.find_first_of("xX") != std::string_view::npos)
+    return false;
+  const std::string text(digits);
+  char* stop = nullptr;
+  value = std::strtod(text.c_str(), &stop);
+  return stop == text.c_str() + text.size();
+#endif
 }
 
 bool parseIndex(std::string_view token, long long& value) {

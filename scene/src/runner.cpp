@@ -12,6 +12,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <map>
 
 namespace collide::scene {
@@ -66,10 +67,19 @@ void progressBar(int step, int steps) {
 
 }  // namespace
 
+namespace {
+// A float's bit pattern (std::bit_cast, which emscripten's libc++ 14 lacks).
+std::uint32_t floatBits(float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+}  // namespace
+
 std::uint64_t stateHash(const SceneWorld& sw) {
   std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bit
   const auto mix = [&](float value) {
-    const auto bits = std::bit_cast<std::uint32_t>(value);
+    const auto bits = floatBits(value);
     for (int i = 0; i < 4; ++i) {
       hash ^= (bits >> (8 * i)) & 0xFFu;
       hash *= 1099511628211ull;
@@ -294,7 +304,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
     // The characters' feet join the hash (FNV-1a on, as stateHash mixes).
     const Vec3 feet = w.character.footPosition();
     for (const float value : {feet.x, feet.y, feet.z}) {
-      const auto bits = std::bit_cast<std::uint32_t>(value);
+      const auto bits = floatBits(value);
       for (int i = 0; i < 4; ++i) {
         summary.stateHash ^= (bits >> (8 * i)) & 0xFFu;
         summary.stateHash *= 1099511628211ull;

@@ -7,9 +7,11 @@
 
 #include "shapes/shape_functions.h"
 
+#if COLLIDE_WITH_QHULL
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
+#endif
 
 #include <algorithm>
 #include <atomic>
@@ -19,6 +21,7 @@ extern "C" {
 #include <sstream>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace collide {
@@ -26,6 +29,10 @@ namespace collide {
 namespace {
 
 using DVec3 = glm::dvec3;
+
+// The half-edges by their directed endpoints: a half-edge's twin is the one from its end to its origin.
+using EdgeMap = std::unordered_map<std::uint64_t, std::uint32_t>;
+std::uint64_t edgeKey(std::uint32_t from, std::uint32_t to) { return (std::uint64_t(from) << 32) | to; }
 
 std::string format(double v) {
   std::ostringstream out;
@@ -39,6 +46,12 @@ std::string format(const Vec3& v) {
   return out.str();
 }
 
+struct RawFace {
+  Array<std::uint32_t> inputIndices;  // Qhull's order, oriented below
+  DVec3 qhullNormal{0.0};
+};
+
+#if COLLIDE_WITH_QHULL
 // Qhull reports through a FILE*: a stream in memory (POSIX's open_memstream) keeps it silent and
 // lets us quote its error in ours without touching the file system for every hull. Where there is
 // none, a temporary file does, and the null device is the last resort.
@@ -100,31 +113,20 @@ class QhullSession {
   qhT qh_;
 };
 
-struct RawFace {
-  Array<std::uint32_t> inputIndices;  // Qhull's order, oriented below
-  DVec3 qhullNormal{0.0};
-};
-
 // Runs Qhull and reads each (merged) facet's vertices in order around it.
-Array<RawFace> runQhull(std::span<const Vec3> points, double size) {
+Array<RawFace> runQhull(std::span<const Vec3> points, double mergeDistance) {
   Array<coordT> coordinates;
   coordinates.reserve(points.size() * 3);
-  double largestCoordinate = 0.0;
   for (const Vec3& p : points) {
     coordinates.push_back(p.x);
     coordinates.push_back(p.y);
     coordinates.push_back(p.z);
-    largestCoordinate =
-        std::max({largestCoordinate, std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
   }
   QhullErrorStream errors;
   QhullSession session(errors.file());
   qhT* qh = session.get();  // the FORALL/FOREACH macros expect this name
   // C-n: merge facets whose centrums are within n of each other's planes, so that a cube has 6 quads
-  // rather than 12 triangles. Qhull's own round-off is that of doubles; ours is that of the float
-  // coordinates (a k-DOP's corners are rounded to float), so n is a few float ulps of the largest
-  // coordinate plus the flatness tolerance of the set's size. No output file: Qhull prints nothing.
-  const double mergeDistance = HullBuilder::kFlatness * size + 5e-7 * largestCoordinate;
+  // rather than 12 triangles. No output file: Qhull prints nothing.
   char options[64];
   std::snprintf(options, sizeof options, "qhull C-%.6g", mergeDistance);
   const int exitCode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False,
@@ -149,6 +151,159 @@ Array<RawFace> runQhull(std::span<const Vec3> points, double size) {
   }
   return faces;
 }
+#endif  // COLLIDE_WITH_QHULL
+
+// The host's hull triangle finder (collide/hooks.h), if one is installed.
+std::atomic<HullTriangleFinder> gHullTriangleFinder{nullptr};
+std::atomic<void*> gHullTriangleFinderContext{nullptr};
+
+// A finder's triangles as faces: each triangle turned outward (away from the points' centroid, which
+// is inside a solid hull), then grown from a seed across shared edges into every neighbour whose
+// corners lie within `mergeDistance` of the seed's plane, and each such patch walked around its
+// boundary into one polygon, as Qhull's C-n merge makes them. A patch whose boundary is not one
+// loop stays as its triangles. Throws Error unless the triangles close a surface.
+Array<RawFace> mergeHullTriangles(std::span<const Vec3> points, std::span<const std::uint32_t> indices,
+                                  double mergeDistance) {
+  if (indices.size() < 12 || indices.size() % 3 != 0)
+    throw Error("convex_hull: the hull triangle finder returned " + std::to_string(indices.size()) +
+                " indices, not 3 per triangle for at least 4 triangles");
+  for (std::uint32_t index : indices) {
+    if (index >= points.size())
+      throw Error("convex_hull: the hull triangle finder returned the index " + std::to_string(index) +
+                  " for " + std::to_string(points.size()) + " points");
+  }
+  DVec3 centroid(0.0);
+  for (std::uint32_t index : indices) centroid += DVec3(points[index]);
+  centroid /= double(indices.size());
+
+  struct Triangle {
+    std::array<std::uint32_t, 3> v;
+    DVec3 normal;
+    double offset;
+  };
+  const std::size_t count = indices.size() / 3;
+  Array<Triangle> triangles(count);
+  EdgeMap triangleByEdge;  // directed edge -> the triangle walking it
+  for (std::size_t t = 0; t < count; ++t) {
+    Triangle& tri = triangles[t];
+    tri.v = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+    const DVec3 a(points[tri.v[0]]), b(points[tri.v[1]]), c(points[tri.v[2]]);
+    DVec3 normal = glm::cross(b - a, c - a);
+    const double length = glm::length(normal);
+    if (!(length > 0.0))
+      throw Error("convex_hull: the hull triangle finder returned a triangle of zero area");
+    normal /= length;
+    if (glm::dot(normal, centroid - a) > 0.0) {
+      std::swap(tri.v[1], tri.v[2]);
+      normal = -normal;
+    }
+    tri.normal = normal;
+    tri.offset = glm::dot(normal, a);
+    for (int i = 0; i < 3; ++i) {
+      if (!triangleByEdge.try_emplace(edgeKey(tri.v[i], tri.v[(i + 1) % 3]), static_cast<std::uint32_t>(t))
+               .second)
+        throw Error(
+            "convex_hull: the hull triangle finder returned an edge shared by more than two triangles");
+    }
+  }
+  const auto neighbour = [&](std::uint32_t from, std::uint32_t to) {
+    const auto it = triangleByEdge.find(edgeKey(to, from));
+    if (it == triangleByEdge.end())
+      throw Error(
+          "convex_hull: the hull triangle finder returned an open surface (an edge with one triangle)");
+    return it->second;
+  };
+
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  Array<std::uint32_t> patchOf(count, kNone);
+  Array<RawFace> faces;
+  Array<std::uint32_t> patch, queue;
+  for (std::uint32_t seed = 0; seed < count; ++seed) {
+    if (patchOf[seed] != kNone) continue;
+    const Triangle& plane = triangles[seed];
+    patch.assign(1, seed);
+    queue.assign(1, seed);
+    patchOf[seed] = seed;
+    while (!queue.empty()) {
+      const Triangle& tri = triangles[queue.back()];
+      queue.pop_back();
+      for (int i = 0; i < 3; ++i) {
+        const std::uint32_t next = neighbour(tri.v[i], tri.v[(i + 1) % 3]);
+        if (patchOf[next] != kNone || glm::dot(triangles[next].normal, plane.normal) <= 0.0) continue;
+        bool flat = true;
+        for (std::uint32_t corner : triangles[next].v)
+          flat =
+              flat && std::abs(glm::dot(plane.normal, DVec3(points[corner])) - plane.offset) <= mergeDistance;
+        if (!flat) continue;
+        patchOf[next] = seed;
+        patch.push_back(next);
+        queue.push_back(next);
+      }
+    }
+    // The patch's boundary: the edges whose other triangle is outside it, chained end to origin.
+    std::unordered_map<std::uint32_t, std::uint32_t> nextAlongBoundary;
+    bool simple = true;
+    for (std::uint32_t t : patch) {
+      for (int i = 0; i < 3; ++i) {
+        const std::uint32_t from = triangles[t].v[i], to = triangles[t].v[(i + 1) % 3];
+        if (patchOf[neighbour(from, to)] == seed) continue;
+        simple = simple && nextAlongBoundary.try_emplace(from, to).second;
+      }
+    }
+    RawFace face;
+    face.qhullNormal = plane.normal;
+    if (simple && !nextAlongBoundary.empty()) {
+      std::uint32_t at = nextAlongBoundary.begin()->first;
+      for (std::size_t walked = 0; walked < nextAlongBoundary.size(); ++walked) {
+        face.inputIndices.push_back(at);
+        at = nextAlongBoundary[at];
+      }
+      simple = at == face.inputIndices.front() &&
+               std::unordered_set<std::uint32_t>(face.inputIndices.begin(), face.inputIndices.end()).size() ==
+                   face.inputIndices.size();
+    }
+    if (simple) {
+      faces.push_back(std::move(face));
+      continue;
+    }
+    for (std::uint32_t t : patch) {
+      RawFace single;
+      single.qhullNormal = triangles[t].normal;
+      single.inputIndices.assign(triangles[t].v.begin(), triangles[t].v.end());
+      faces.push_back(std::move(single));
+    }
+  }
+  return faces;
+}
+
+// The hull's faces: from the installed finder, else from Qhull.
+Array<RawFace> findFaces(std::span<const Vec3> points, double size) {
+  double largestCoordinate = 0.0;
+  for (const Vec3& p : points)
+    largestCoordinate =
+        std::max({largestCoordinate, std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
+  // Qhull's own round-off is that of doubles; ours is that of the float coordinates (a k-DOP's
+  // corners are rounded to float), so faces merge within a few float ulps of the largest coordinate
+  // plus the flatness tolerance of the set's size.
+  const double mergeDistance = HullBuilder::kFlatness * size + 5e-7 * largestCoordinate;
+  if (const HullTriangleFinder finder = gHullTriangleFinder.load()) {
+    std::vector<float> xyz;
+    xyz.reserve(3 * points.size());
+    for (const Vec3& p : points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    std::vector<std::uint32_t> indices;
+    if (!finder(xyz.data(), points.size(), indices, gHullTriangleFinderContext.load()))
+      throw Error("convex_hull: the hull triangle finder found no hull for " + std::to_string(points.size()) +
+                  " points");
+    return mergeHullTriangles(points, indices, mergeDistance);
+  }
+#if COLLIDE_WITH_QHULL
+  return runQhull(points, mergeDistance);
+#else
+  throw Error(
+      "convex_hull: this build of collide has no Qhull (COLLIDE_WITH_QHULL=OFF) and no hull triangle "
+      "finder is installed (setHullTriangleFinder)");
+#endif
+}
 
 // Newell's method: the area-weighted normal of a polygon, robust for nearly degenerate ones.
 DVec3 newellNormal(const Array<DVec3>& polygon) {
@@ -162,10 +317,6 @@ DVec3 newellNormal(const Array<DVec3>& polygon) {
   }
   return normal;
 }
-
-// The half-edges by their directed endpoints: a half-edge's twin is the one from its end to its origin.
-using EdgeMap = std::unordered_map<std::uint64_t, std::uint32_t>;
-std::uint64_t edgeKey(std::uint32_t from, std::uint32_t to) { return (std::uint64_t(from) << 32) | to; }
 
 // Qhull's facets as faces and half-edge loops, each counter-clockwise seen from outside with its
 // plane; only the points Qhull made vertices are kept, numbered in order of first use. Every
@@ -286,9 +437,16 @@ double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) 
   return diameter;
 }
 
+void setHullTriangleFinder(HullTriangleFinder finder, void* context) {
+  gHullTriangleFinderContext.store(context);
+  gHullTriangleFinder.store(finder);
+}
+
+bool canBuildHulls() { return COLLIDE_WITH_QHULL != 0 || gHullTriangleFinder.load() != nullptr; }
+
 ConvexHull HullBuilder::build(std::span<const Vec3> points) {
   const double size = requireSolidPointSet("convex_hull", points);
-  const Array<RawFace> rawFaces = runQhull(points, size);
+  const Array<RawFace> rawFaces = findFaces(points, size);
 
   ConvexHull hull;
   static std::atomic<std::uint64_t> builtHulls{0};
