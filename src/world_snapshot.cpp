@@ -77,8 +77,6 @@ template <>
 constexpr std::uint32_t kEnumValues<ContactEvent::Type> = 3;
 template <>
 constexpr std::uint32_t kEnumValues<SensorEvent::Type> = 2;
-template <>
-constexpr std::uint32_t kEnumValues<TriangleMesh::EdgeKind> = 4;
 
 // ---- The fields of each struct, in the order they are written. ----
 // A struct that gains a field must gain it here too: the size checks below fail to compile until
