@@ -107,6 +107,15 @@ std::vector<Vec3> pointsFrom(const py::array_t<float, py::array::c_style | py::a
 
 Transform poseOf(const Vec3& position, const Quat& rotation) { return Transform{position, rotation, 1.0f}; }
 
+JointLimits limitsOf(const py::tuple& t) {
+  if (t.size() != 2) throw Error("limits: must be (lower, upper)");
+  return JointLimits{true, t[0].cast<float>(), t[1].cast<float>()};
+}
+JointMotor motorOf(const py::tuple& t) {
+  if (t.size() != 2) throw Error("motor: must be (speed, max_force)");
+  return JointMotor{true, t[0].cast<float>(), t[1].cast<float>()};
+}
+
 // The contact events of the last step, as dictionaries a script reads without knowing the types.
 py::list contactEventsOf(const World& world) {
   py::list out;
@@ -458,23 +467,95 @@ PYBIND11_MODULE(_collide, m) {
       .def(
           "create_hinge_joint",
           [](World& w, BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis,
-             std::optional<py::tuple> limits, std::optional<py::tuple> motor, bool collideConnected) {
+             std::optional<py::tuple> limits, std::optional<py::tuple> motor, bool collideConnected,
+             float breakForce) {
             HingeJointDef def;
             def.a = a;
             def.b = b;
             def.anchor = anchor;
             def.axis = axis;
-            if (limits)
-              def.limits = JointLimits{true, (*limits)[0].cast<float>(), (*limits)[1].cast<float>()};
-            if (motor) def.motor = JointMotor{true, (*motor)[0].cast<float>(), (*motor)[1].cast<float>()};
+            if (limits) def.limits = limitsOf(*limits);
+            if (motor) def.motor = motorOf(*motor);
             def.collideConnected = collideConnected;
+            def.breakForce = breakForce;
             return w.createHingeJoint(def);
           },
           py::arg("a"), py::arg("b"), py::arg("anchor"), py::arg("axis"), py::kw_only(),
           py::arg("limits") = std::nullopt, py::arg("motor") = std::nullopt,
-          py::arg("collide_connected") = false,
+          py::arg("collide_connected") = false, py::arg("break_force") = kUnbreakable,
           "A hinge about axis through anchor (world frame); limits = (lower, upper) radians, motor = (speed, "
           "max_torque).")
+      .def(
+          "create_slider_joint",
+          [](World& w, BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis,
+             std::optional<py::tuple> limits, std::optional<py::tuple> motor, bool collideConnected,
+             float breakForce) {
+            SliderJointDef def;
+            def.a = a;
+            def.b = b;
+            def.anchor = anchor;
+            def.axis = axis;
+            if (limits) def.limits = limitsOf(*limits);
+            if (motor) def.motor = motorOf(*motor);
+            def.collideConnected = collideConnected;
+            def.breakForce = breakForce;
+            return w.createSliderJoint(def);
+          },
+          py::arg("a"), py::arg("b"), py::arg("anchor"), py::arg("axis"), py::kw_only(),
+          py::arg("limits") = std::nullopt, py::arg("motor") = std::nullopt,
+          py::arg("collide_connected") = false, py::arg("break_force") = kUnbreakable,
+          "A slider along axis (world frame); limits = (lower, upper) metres, motor = (speed, max_force).")
+      .def(
+          "create_fixed_joint",
+          [](World& w, BodyId a, BodyId b, std::optional<Vec3> anchor, bool collideConnected,
+             float breakForce) {
+            FixedJointDef def;
+            def.a = a;
+            def.b = b;
+            def.anchor = anchor;
+            def.collideConnected = collideConnected;
+            def.breakForce = breakForce;
+            return w.createFixedJoint(def);
+          },
+          py::arg("a"), py::arg("b"), py::kw_only(), py::arg("anchor") = std::nullopt,
+          py::arg("collide_connected") = false, py::arg("break_force") = kUnbreakable,
+          "A weld: the bodies keep their relative pose.")
+      .def(
+          "create_cone_joint",
+          [](World& w, BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis, float swingLimit,
+             std::optional<py::tuple> twistLimits, bool collideConnected, float breakForce) {
+            ConeJointDef def;
+            def.a = a;
+            def.b = b;
+            def.anchor = anchor;
+            def.axis = axis;
+            def.swingLimit = swingLimit;
+            if (twistLimits) def.twistLimits = limitsOf(*twistLimits);
+            def.collideConnected = collideConnected;
+            def.breakForce = breakForce;
+            return w.createConeJoint(def);
+          },
+          py::arg("a"), py::arg("b"), py::arg("anchor"), py::arg("axis"), py::kw_only(),
+          py::arg("swing_limit") = kPi, py::arg("twist_limits") = std::nullopt,
+          py::arg("collide_connected") = false, py::arg("break_force") = kUnbreakable,
+          "A ball joint whose axis stays within swing_limit radians of axis (ragdoll shoulders, hips).")
+      .def(
+          "set_joint_motor",
+          [](World& w, JointId joint, float speed, float maxForce) {
+            w.setJointMotor(joint, JointMotor{true, speed, maxForce});
+          },
+          py::arg("joint"), py::arg("speed"), py::arg("max_force"))
+      .def(
+          "set_joint_limits",
+          [](World& w, JointId joint, float lower, float upper) {
+            w.setJointLimits(joint, JointLimits{true, lower, upper});
+          },
+          py::arg("joint"), py::arg("lower"), py::arg("upper"))
+      .def_property_readonly("joint_count", &World::constraintCount)
+      .def(
+          "joint_type",
+          [](const World& w, JointId joint) { return std::string(toString(w.jointType(joint))); },
+          py::arg("joint"))
       .def("destroy_joint", &World::destroyConstraint, py::arg("joint"))
       .def("joint_position", &World::jointPosition, py::arg("joint"))
       .def("joint_speed", &World::jointSpeed, py::arg("joint"))

@@ -120,3 +120,47 @@ def test_shapes_give_mass_properties_at_uniform_density():
     mesh = collide.TriangleMesh(np.array([[0, 0, 0], [1, 0, 0], [0, 0, 1]]), np.array([[0, 2, 1]]))
     assert mesh.type == "mesh"
     assert collide.load_shape('{"type": "capsule", "radius": 0.5, "half_height": 1}').type == "capsule"
+
+
+def test_a_slider_keeps_its_body_on_the_axis_and_a_limit_stops_it():
+    # Gravity pulls the body down and sideways; the slider lets it move along x only, up to 1 m.
+    world = collide.World(gravity=(-3, -9.81, 2))
+    rail = world.create_body(collide.Box((0.1, 0.1, 0.1)), type="static", position=(0, 2, 0))
+    cart = world.create_body(collide.Box((0.2, 0.2, 0.2)), position=(0, 2, 0), mass=5)
+    slider = world.create_slider_joint(rail, cart, (0, 2, 0), (1, 0, 0), limits=(-1.0, 1.0))
+    world.steps(DT, 180)
+    x, y, z = world.position(cart)
+    assert abs(y - 2) < 1e-3 and abs(z) < 1e-3
+    assert x == pytest.approx(-1.0, abs=0.01)
+    assert world.joint_position(slider) == pytest.approx(-1.0, abs=0.01)
+    assert world.joint_type(slider) == "slider"
+
+
+def test_a_fixed_joint_holds_and_a_break_force_lets_go_with_an_event():
+    world = collide.World()
+    post = world.create_body(collide.Box((0.1, 0.1, 0.1)), type="static", position=(0, 5, 0))
+    light = world.create_body(collide.Box((0.2, 0.2, 0.2)), position=(0.5, 5, 0), mass=1)
+    heavy = world.create_body(collide.Box((0.2, 0.2, 0.2)), position=(-0.5, 5, 0), mass=100)
+    world.create_fixed_joint(post, light)
+    weak = world.create_fixed_joint(post, heavy, break_force=200.0)  # 100 kg weighs 981 N
+    breaks = []
+    for _ in range(60):
+        world.step(DT)
+        breaks += world.joint_break_events()
+    assert math.dist(world.position(light), (0.5, 5, 0)) < 1e-3
+    assert [b["joint"] for b in breaks] == [weak]
+    assert world.position(heavy)[1] < 4.0
+    assert world.joint_count == 1
+
+
+def test_a_cone_joint_keeps_its_swing_within_the_limit():
+    world = collide.World()
+    anchor = world.create_body(collide.Sphere(0.1), type="static", position=(0, 5, 0))
+    limb = world.create_body(collide.Capsule(0.1, 0.5), position=(0, 4.4, 0), velocity=(3, 0, 0))
+    world.create_cone_joint(anchor, limb, (0, 5, 0), (0, -1, 0), swing_limit=0.5)
+    worst = 0.0
+    for _ in range(120):
+        world.step(DT)
+        x, y, z = np.subtract(world.position(limb), (0, 5, 0))
+        worst = max(worst, math.atan2(math.hypot(x, z), -y))
+    assert 0.45 < worst < 0.5 + 0.02

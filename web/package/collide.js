@@ -50,5 +50,14 @@ export default async function createCollide(options = {}) {
   }
   const module = await createCollideModule(settings);
   module.installHullFinder();
+  // embind checks argument counts: the joints' trailing options object may be left out.
+  const optional = { createHingeJoint: 5, createSliderJoint: 5, createConeJoint: 5, createFixedJoint: 3 };
+  for (const [name, count] of Object.entries(optional)) {
+    const create = module.World.prototype[name];
+    module.World.prototype[name] = function (...args) {
+      while (args.length < count) args.push({});
+      return create.apply(this, args);
+    };
+  }
   return module;
 }

@@ -68,6 +68,7 @@ Quat quat(const val& v, const char* what) {
 
 template <typename T>
 T field(const val& object, const char* name, T fallback) {
+  if (object.isUndefined() || object.isNull()) return fallback;
   const val v = object[name];
   return v.isUndefined() || v.isNull() ? fallback : v.as<T>();
 }
@@ -469,15 +470,85 @@ class JsWorld {
       return jointValue(scene_.world.createBallJoint(def));
     });
   }
-  val createHingeJoint(const val& a, const val& b, const val& anchor, const val& axis) {
+  // options: { limits: [lower, upper], motor: [speed, maxForce], collideConnected, breakForce }.
+  val createHingeJoint(const val& a, const val& b, const val& anchor, const val& axis, const val& options) {
     return guarded([&] {
       HingeJointDef def;
       def.a = bodyId(a);
       def.b = bodyId(b);
       def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
       def.axis = vec3(axis, Vec3(0, 0, 1), "axis");
+      def.limits = limitsOf(options, "limits");
+      def.motor = motorOf(options);
+      def.collideConnected = field<bool>(options, "collideConnected", false);
+      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
       return jointValue(scene_.world.createHingeJoint(def));
     });
+  }
+  val createSliderJoint(const val& a, const val& b, const val& anchor, const val& axis, const val& options) {
+    return guarded([&] {
+      SliderJointDef def;
+      def.a = bodyId(a);
+      def.b = bodyId(b);
+      def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
+      def.axis = vec3(axis, Vec3(1, 0, 0), "axis");
+      def.limits = limitsOf(options, "limits");
+      def.motor = motorOf(options);
+      def.collideConnected = field<bool>(options, "collideConnected", false);
+      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
+      return jointValue(scene_.world.createSliderJoint(def));
+    });
+  }
+  val createFixedJoint(const val& a, const val& b, const val& options) {
+    return guarded([&] {
+      FixedJointDef def;
+      def.a = bodyId(a);
+      def.b = bodyId(b);
+      def.collideConnected = field<bool>(options, "collideConnected", false);
+      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
+      return jointValue(scene_.world.createFixedJoint(def));
+    });
+  }
+  // options: { swingLimit (radians), twistLimits: [lower, upper], collideConnected, breakForce }.
+  val createConeJoint(const val& a, const val& b, const val& anchor, const val& axis, const val& options) {
+    return guarded([&] {
+      ConeJointDef def;
+      def.a = bodyId(a);
+      def.b = bodyId(b);
+      def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
+      def.axis = vec3(axis, Vec3(1, 0, 0), "axis");
+      def.swingLimit = field<float>(options, "swingLimit", kPi);
+      def.twistLimits = limitsOf(options, "twistLimits");
+      def.collideConnected = field<bool>(options, "collideConnected", false);
+      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
+      return jointValue(scene_.world.createConeJoint(def));
+    });
+  }
+  float jointPosition(const val& joint) {
+    return guarded([&] { return scene_.world.jointPosition(jointId(joint)); });
+  }
+  float jointSpeed(const val& joint) {
+    return guarded([&] { return scene_.world.jointSpeed(jointId(joint)); });
+  }
+  void destroyJoint(const val& joint) {
+    guarded([&] {
+      scene_.world.destroyConstraint(jointId(joint));
+      return 0;
+    });
+  }
+  val jointBreakEvents() const {
+    val out = val::array();
+    int i = 0;
+    for (const JointBreakEvent& e : scene_.world.jointBreakEvents()) {
+      val event = val::object();
+      event.set("joint", jointValue(e.joint));
+      event.set("a", bodyIdValue(e.a));
+      event.set("b", bodyIdValue(e.b));
+      event.set("force", e.force);
+      event.set("torque", e.torque);
+      out.set(i++, event);
+    }
+    return out;
   }
   int jointCount() const { return static_cast<int>(scene_.world.constraintCount()); }
 
@@ -560,6 +631,24 @@ class JsWorld {
   }
 
  private:
+  static JointId jointId(const val& v) {
+    if (v.isUndefined() || v.isNull() || !v.hasOwnProperty("index"))
+      throw Error("joint: must be a joint id {index, generation}");
+    return JointId{v["index"].as<std::uint32_t>(), v["generation"].as<std::uint32_t>()};
+  }
+  static JointLimits limitsOf(const val& options, const char* name) {
+    if (options.isUndefined() || options.isNull() || !options.hasOwnProperty(name)) return {};
+    const val pair = options[name];
+    if (!pair.isArray() || pair["length"].as<int>() != 2)
+      throw Error(std::string(name) + ": must be [lower, upper]");
+    return JointLimits{true, pair[0].as<float>(), pair[1].as<float>()};
+  }
+  static JointMotor motorOf(const val& options) {
+    if (options.isUndefined() || options.isNull() || !options.hasOwnProperty("motor")) return {};
+    const val pair = options["motor"];
+    if (!pair.isArray() || pair["length"].as<int>() != 2) throw Error("motor: must be [speed, maxForce]");
+    return JointMotor{true, pair[0].as<float>(), pair[1].as<float>()};
+  }
   static val jointValue(JointId id) {
     val out = val::object();
     out.set("index", id.index);
@@ -683,6 +772,13 @@ EMSCRIPTEN_BINDINGS(collide) {
       .function("createDistanceJoint", &JsWorld::createDistanceJoint)
       .function("createBallJoint", &JsWorld::createBallJoint)
       .function("createHingeJoint", &JsWorld::createHingeJoint)
+      .function("createSliderJoint", &JsWorld::createSliderJoint)
+      .function("createFixedJoint", &JsWorld::createFixedJoint)
+      .function("createConeJoint", &JsWorld::createConeJoint)
+      .function("jointPosition", &JsWorld::jointPosition)
+      .function("jointSpeed", &JsWorld::jointSpeed)
+      .function("destroyJoint", &JsWorld::destroyJoint)
+      .function("jointBreakEvents", &JsWorld::jointBreakEvents)
       .function("jointCount", &JsWorld::jointCount)
       .function("contactEvents", &JsWorld::contactEvents)
       .function("castRay", &JsWorld::castRay)

@@ -122,3 +122,28 @@ test("hulls from three.js's ConvexHull: a cube's faces merge, a hull rests on th
   world.delete();
   cube.delete();
 });
+
+test('joints: a slider keeps to its axis up to its limit, a fixed joint breaks past its force', () => {
+  const world = new collide.World({ gravity: [-3, -9.81, 2] });
+  const small = collide.Shape.box([0.2, 0.2, 0.2]);
+  const rail = world.createBody({ shape: small, type: 'static', position: [0, 2, 0] });
+  const cart = world.createBody({ shape: small, position: [0, 2, 0], mass: 5 });
+  const slider = world.createSliderJoint(rail, cart, [0, 2, 0], [1, 0, 0], { limits: [-1, 1] });
+  const heavy = world.createBody({ shape: small, position: [0, 5, 3], mass: 100 });
+  const post = world.createBody({ shape: small, type: 'static', position: [0, 5, 2.5] });
+  const weld = world.createFixedJoint(post, heavy, { breakForce: 200 });
+  const breaks = [];
+  for (let i = 0; i < 180; ++i) {
+    world.step(1 / 60, 1);
+    breaks.push(...world.jointBreakEvents());
+  }
+  const [x, y, z] = world.position(cart);
+  assert.ok(Math.abs(y - 2) < 1e-3 && Math.abs(z) < 1e-3, `${x} ${y} ${z}`);
+  assert.ok(Math.abs(x + 1) < 0.01 && Math.abs(world.jointPosition(slider) + 1) < 0.01, `${x}`);
+  assert.equal(breaks.length, 1);
+  assert.deepEqual(breaks[0].joint, weld);
+  assert.equal(world.jointCount(), 1);
+  assert.throws(() => world.createHingeJoint(rail, cart, [0, 0, 0], [0, 0, 1], { limits: [1] }), /limits: must be/);
+  world.delete();
+  small.delete();
+});
