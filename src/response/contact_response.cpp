@@ -33,14 +33,12 @@ void applyProlongedFriction(BodyStorage& bodies, Array<Contact>& contacts, const
     ImpactBody a = impactBodyOf(sa);
     ImpactBody b = impactBodyOf(sb);
     const Vec3 point = averagePoint(c.manifold, -std::numeric_limits<float>::infinity());
-    try {
-      if (model == FrictionModel::Viscous) {
-        applyViscousFriction(a, b, point, c.manifold.normal, c.friction, dt);
-      } else {
-        applyDampingFriction(a, b, point, c.manifold.normal, std::clamp(c.friction, 0.0f, 1.0f));
-      }
-    } catch (const Error&) {
-      continue;  // a fault earlier in this step: the guard freezes its bodies at the step's end
+    // A fault earlier in this step: the guard freezes its bodies at the step's end.
+    if (!canApplyImpact(a, b, point, c.manifold.normal)) continue;
+    if (model == FrictionModel::Viscous) {
+      applyViscousFriction(a, b, point, c.manifold.normal, c.friction, dt);
+    } else {
+      applyDampingFriction(a, b, point, c.manifold.normal, std::clamp(c.friction, 0.0f, 1.0f));
     }
     writeBack(bodies.records[c.bodyA], sa, a);
     writeBack(bodies.records[c.bodyB], sb, b);

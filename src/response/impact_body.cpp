@@ -53,6 +53,32 @@ Mat3 contactInverseMassMatrix(const ImpactBody& a, const ImpactBody& b, const Ve
          glm::transpose(rb) * b.inverseInertia * rb;
 }
 
+namespace {
+
+bool isValidImpactBody(const ImpactBody& body) {
+  return std::isfinite(body.inverseMass) && body.inverseMass >= 0.0f && isFiniteMatrix(body.inverseInertia) &&
+         (!hasInfiniteMass(body) || isZeroMatrix(body.inverseInertia)) && isFinite(body.linearVelocity) &&
+         isFinite(body.angularVelocity) && isFinite(body.centerOfMass);
+}
+
+bool isValidContact(const Vec3& point, const Vec3& normal) {
+  return isFinite(point) && isFinite(normal) && std::abs(glm::length(normal) - 1.0f) <= 1e-3f;
+}
+
+bool hasUsableInertia(const ImpactBody& body) {
+  if (isZeroMatrix(body.inverseInertia)) return true;
+  const double det = glm::determinant(glm::dmat3(body.inverseInertia));
+  return det != 0.0 && std::isfinite(det);
+}
+
+}  // namespace
+
+bool canApplyImpact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal) {
+  if (!isValidImpactBody(a) || !isValidImpactBody(b) || !isValidContact(point, normal)) return false;
+  // Only two finite masses are glued into one body, whose inertia adds theirs.
+  return hasInfiniteMass(a) || hasInfiniteMass(b) || (hasUsableInertia(a) && hasUsableInertia(b));
+}
+
 void validateImpactBody(const ImpactBody& body, const char* context, const char* name) {
   const std::string prefix = std::string(context) + ": body " + name + " ";
   if (!std::isfinite(body.inverseMass) || body.inverseMass < 0.0f) {

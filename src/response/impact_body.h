@@ -39,4 +39,12 @@ Mat3 contactInverseMassMatrix(const ImpactBody& a, const ImpactBody& b, const Ve
 void validateImpactBody(const ImpactBody& body, const char* context, const char* name);
 void validateContact(const Vec3& point, const Vec3& normal, const char* context);
 
+// Whether the impact and friction laws accept these bodies and contact, without throwing: what
+// validateImpactBody and validateContact require, and, for two finite masses, inverse inertias that
+// are zero (a particle) or invertible (the interpolated impact glues them into one body, whose
+// inertia adds theirs). The
+// step asks before it applies the laws, for a fault earlier in the step (an overflowing force) may
+// have left a body non-finite; the fault guard freezes it at the step's end.
+bool canApplyImpact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal);
+
 }  // namespace collide::detail

@@ -125,17 +125,13 @@ bool ImpactStage::resolve(BodyStorage& bodies, Contact& c, const Entry& entry, I
   const Vec3 gravityB = bodies.records[c.bodyB].gravityScale * gravity;
   if (dynamicA) a.linearVelocity += t * gravityA;
   if (dynamicB) b.linearVelocity += t * gravityB;
-  float impulse = 0.0f;
-  try {
-    if (model == ImpactModel::Newton) {
-      impulse = newtonImpact(a, b, entry.point, n, c.restitution, c.friction);
-    } else {
-      impulse = glm::dot(resolveImpactInterpolated(a, b, entry.point, n, c.impactBounciness), n);
-    }
-  } catch (const Error&) {
-    // Refused: a non-finite velocity (a body the fault guard will stop this step). The step goes on.
-    return false;
-  }
+  // A body left non-finite by a fault earlier in the step takes no impact (the fault guard stops it
+  // at the step's end); the step goes on.
+  if (!canApplyImpact(a, b, entry.point, n)) return false;
+  const float impulse =
+      model == ImpactModel::Newton
+          ? newtonImpact(a, b, entry.point, n, c.restitution, c.friction)
+          : glm::dot(resolveImpactInterpolated(a, b, entry.point, n, c.impactBounciness), n);
   if (!std::isfinite(impulse)) return false;
   if (dynamicA) a.linearVelocity -= t * gravityA;
   if (dynamicB) b.linearVelocity -= t * gravityB;

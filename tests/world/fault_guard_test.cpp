@@ -77,6 +77,38 @@ TEST(FaultGuard, OverflowingForceIsFrozenAndReportedAndDoesNotInfectItsNeighbour
   EXPECT_EQ(s.world.transform(s.a).position, before.position);
 }
 
+// A fault in a step that has an impact and prolonged contacts to resolve, under every impact and
+// friction model: no error leaves the step, and the guard freezes the faulted body.
+TEST(FaultGuard, AFaultMidStepPassesEveryImpactAndFrictionModelWithoutAnError) {
+  for (const ImpactModel impact : {ImpactModel::Newton, ImpactModel::Interpolated}) {
+    for (const FrictionModel friction :
+         {FrictionModel::Coulomb, FrictionModel::Viscous, FrictionModel::Damping}) {
+      SCOPED_TRACE(std::string(toString(impact)) + ", " + std::string(toString(friction)));
+      WorldDef def;
+      def.impactModel = impact;
+      def.frictionModel = friction;
+      World world(def);
+      world.createBody(test::groundBox());
+      BodyDef left = test::boxBody(Vec3(-0.5f, 0.5f, 0.0f), Vec3(0.5f), 1.0f);
+      BodyDef right = test::boxBody(Vec3(0.5f, 0.5f, 0.0f), Vec3(0.5f), 1.0f);
+      left.bounciness = right.bounciness = 0.5f;
+      const BodyId a = world.createBody(left);
+      const BodyId b = world.createBody(right);
+      for (int i = 0; i < 30; ++i) world.step(1.0f / 60.0f);
+      world.setLinearVelocity(b, Vec3(-4.0f, 0.0f, 0.0f));  // an impact on a this step
+      world.applyForce(a, Vec3(kHuge, 0.0f, 0.0f), world.centerOfMass(a));
+      world.applyForce(a, Vec3(kHuge, 0.0f, 0.0f), world.centerOfMass(a));
+      EXPECT_NO_THROW(world.step(1.0f / 60.0f));
+      ASSERT_EQ(world.faultEvents().size(), 1u);
+      EXPECT_EQ(world.faultEvents()[0].body, a);
+      for (int i = 0; i < 30; ++i) {
+        EXPECT_NO_THROW(world.step(1.0f / 60.0f));
+        ASSERT_TRUE(finiteState(world, b)) << "step " << i;
+      }
+    }
+  }
+}
+
 // A frozen body is an immovable obstacle until the user gives it a state: then it falls again.
 TEST(FaultGuard, FrozenBodyStaysUntilTheUserSetsItsState) {
   World world;
