@@ -2,6 +2,7 @@
 // scene files, with the state of many bodies as NumPy arrays filled in C++ (no per-body Python
 // loop). Vectors are any sequence of three numbers in, tuples out; rotations are quaternions
 // (w, x, y, z). collide::Error becomes collide.Error (a ValueError) with the library's message.
+#include <collide/character.h>
 #include <collide/collide.h>
 #include <collide/scene/builtin_scenes.h>
 #include <collide/scene/runner.h>
@@ -656,6 +657,64 @@ PYBIND11_MODULE(_collide, m) {
             w.loadSnapshot(std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
           },
           py::arg("snapshot"));
+
+  // ---- The character mover (docs/character.md) ----
+  py::class_<Character>(m, "Character", "A kinematic capsule walked through a world (docs/character.md).")
+      .def(py::init([](const Vec3& position, float radius, float halfHeight, float maxSlope,
+                       float maxStepHeight, float skinWidth, float pushForce, float mass, const Vec3& gravity,
+                       const Vec3& up) {
+             CharacterDef def;
+             def.position = position;
+             def.radius = radius;
+             def.halfHeight = halfHeight;
+             def.maxSlope = maxSlope;
+             def.maxStepHeight = maxStepHeight;
+             def.skinWidth = skinWidth;
+             def.pushForce = pushForce;
+             def.mass = mass;
+             def.gravity = gravity;
+             def.up = up;
+             return Character(def);
+           }),
+           py::arg("position"), py::kw_only(), py::arg("radius") = 0.3f, py::arg("half_height") = 0.6f,
+           py::arg("max_slope") = 45.0f * kPi / 180.0f, py::arg("max_step_height") = 0.35f,
+           py::arg("skin_width") = 0.02f, py::arg("push_force") = 500.0f, py::arg("mass") = 80.0f,
+           py::arg("gravity") = Vec3(0.0f, -9.81f, 0.0f), py::arg("up") = Vec3(0.0f, 1.0f, 0.0f))
+      .def("update", &Character::update, py::arg("world"), py::arg("walk_velocity"), py::arg("dt"),
+           "One update after World.step: walks at walk_velocity across up; its part along up is a jump.")
+      .def_property_readonly("position", &Character::position)
+      .def_property_readonly("foot_position", &Character::footPosition)
+      .def_property_readonly("velocity", &Character::velocity)
+      .def_property_readonly("ground_state",
+                             [](const Character& c) { return std::string(toString(c.groundState())); })
+      .def_property_readonly("is_on_ground", &Character::isOnGround)
+      .def_property_readonly("ground_body",
+                             [](const Character& c) -> py::object {
+                               if (c.groundBody().isNull()) return py::none();
+                               return py::cast(c.groundBody());
+                             })
+      .def_property_readonly("ground_normal", &Character::groundNormal)
+      .def_property_readonly("ground_velocity", &Character::groundVelocity)
+      .def_property_readonly("half_height", &Character::halfHeight)
+      .def_property_readonly("radius", &Character::radius)
+      .def("set_position", &Character::setPosition, py::arg("position"), py::arg("stop") = true)
+      .def("set_half_height", &Character::setHalfHeight, py::arg("world"), py::arg("half_height"),
+           "Crouch or stand, feet kept; False (nothing changes) where the new capsule would overlap.")
+      .def(
+          "contacts",
+          [](const Character& c) {
+            py::list out;
+            for (const CharacterContact& contact : c.contacts()) {
+              py::dict d;
+              d["body"] = contact.body;
+              d["point"] = contact.point;
+              d["normal"] = contact.normal;
+              d["pushed"] = contact.pushed;
+              out.append(std::move(d));
+            }
+            return out;
+          },
+          "What the capsule touched in the last update: dicts of body, point, normal, pushed.");
 
   // ---- Scenes ----
   py::class_<scene::Scene>(m, "Scene", "A scene file's contents (docs/scene-format.md).")

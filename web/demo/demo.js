@@ -1,6 +1,7 @@
 // The demo page: collide's built-in scenes stepped in WebAssembly and drawn with three.js. Pick a
 // scene, drag bodies (a ray cast through collide's broad phase, then a spring on the body), shoot
-// spheres, draw contacts and bounding boxes; the panel shows the milliseconds of each step.
+// spheres, draw contacts and bounding boxes, walk a scene's character with WASD; the panel shows the
+// milliseconds of each step.
 // With ?test=1 the page checks itself for CI (web/test/browser.test.mjs): it steps, draws, and
 // writes what it saw into #test-result.
 import * as THREE from 'three';
@@ -123,13 +124,50 @@ function disposeObjects() {
   dynamic = [];
 }
 
+// The scene's characters (docs/character.md), drawn as capsules: they walk their paths, or the first
+// walks where the keys say when "drive" is on.
+const characterRoot = new THREE.Group();
+scene3.add(characterRoot);
+const characterMaterial = new THREE.MeshStandardMaterial({ color: 0xf4a261, roughness: 0.5 });
+const driveLabel = document.getElementById('drive-label');
+
 function loadScene(name) {
   disposeObjects();
+  characterRoot.traverse((o) => o.geometry?.dispose());
+  characterRoot.clear();
   world?.delete();
   world = collide.World.fromScene(name);
   for (const id of world.bodies()) addBodyObject(id);
+  const c = world.characters();
+  for (let i = 0; i < world.characterCount(); ++i) {
+    characterRoot.add(new THREE.Mesh(new THREE.CapsuleGeometry(c[6 * i + 3], 2 * c[6 * i + 4], 8, 16), characterMaterial));
+  }
+  driveLabel.hidden = world.characterCount() === 0;
   syncObjects();
   frameCamera();
+}
+
+// WASD from the camera's view, space a jump: the first character's walk while "drive" is on.
+const keys = new Set();
+window.addEventListener('keydown', (e) => keys.add(e.code));
+window.addEventListener('keyup', (e) => keys.delete(e.code));
+let jumpQueued = false;
+function playerWalk() {
+  if (!document.getElementById('drive').checked || world.characterCount() === 0) return null;
+  const forward = new THREE.Vector3();
+  camera.getWorldDirection(forward);
+  forward.y = 0;
+  forward.normalize();
+  const right = new THREE.Vector3(-forward.z, 0, forward.x);
+  const walk = new THREE.Vector3();
+  if (keys.has('KeyW')) walk.add(forward);
+  if (keys.has('KeyS')) walk.sub(forward);
+  if (keys.has('KeyD')) walk.add(right);
+  if (keys.has('KeyA')) walk.sub(right);
+  if (walk.lengthSq() > 0) walk.normalize().multiplyScalar(4);
+  if (jumpQueued) walk.y = 5;
+  jumpQueued = false;
+  return walk.toArray();
 }
 
 function frameCamera() {
@@ -149,6 +187,8 @@ function frameCamera() {
 }
 
 function syncObjects() {
+  const c = world.characters();
+  characterRoot.children.forEach((mesh, i) => mesh.position.set(c[6 * i], c[6 * i + 1], c[6 * i + 2]));
   const p = world.positions();
   const q = world.rotations();
   for (let i = 0; i < objects.length; ++i) {
@@ -240,7 +280,12 @@ function shoot() {
   addBodyObject(id);
 }
 document.getElementById('shoot').addEventListener('click', shoot);
-window.addEventListener('keydown', (e) => { if (e.code === 'Space') { e.preventDefault(); shoot(); } });
+window.addEventListener('keydown', (e) => {
+  if (e.code !== 'Space') return;
+  e.preventDefault();
+  if (document.getElementById('drive').checked && world.characterCount() > 0) jumpQueued = true;
+  else shoot();
+});
 
 // ---- The panel ----
 const sceneSelect = document.getElementById('scene');
@@ -260,6 +305,7 @@ function frame() {
     pullDragged(dt);
     const ms = world.step(dt, 1);
     stepMs = stepMs === 0 ? ms : 0.9 * stepMs + 0.1 * ms;
+    if (world.characterCount() > 0) world.updateCharacters(dt, playerWalk());
   }
   syncObjects();
   drawContacts(option('contacts'));

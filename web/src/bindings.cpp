@@ -4,6 +4,7 @@
 // one Float32Array, each shape's geometry, contact points, bounds). Vectors are arrays [x, y, z];
 // rotations are [x, y, z, w], the order of three.js's Quaternion.fromArray. A collide::Error becomes
 // a JavaScript Error with the library's message.
+#include <collide/character.h>
 #include <collide/collide.h>
 #include <collide/scene/builtin_scenes.h>
 #include <collide/scene/runner.h>
@@ -15,6 +16,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -260,6 +262,10 @@ class JsWorld {
   }
   explicit JsWorld(scene::Scene scene) : dt_(scene.dt), steps_(scene.steps), source_(scene.source) {
     scene_ = scene::buildWorld(scene);
+    for (const scene::SceneCharacter& c : scene.characters) {
+      sceneCharacters_.push_back(c);  // a deque: the paths keep pointers to them
+      walkers_.push_back({Character(c.def), scene::CharacterPath(sceneCharacters_.back())});
+    }
   }
 
   static JsWorld* fromScene(const std::string& nameOrJson) {
@@ -617,6 +623,32 @@ class JsWorld {
     });
   }
 
+  // The scene's characters (docs/character.md): after each step, each walks its path, or the first
+  // walks at `playerWalk` ([x, y, z] m/s; its part along up a jump) when one is given.
+  int characterCount() const { return static_cast<int>(walkers_.size()); }
+  void updateCharacters(float dt, const val& playerWalk) {
+    guarded([&] {
+      for (std::size_t i = 0; i < walkers_.size(); ++i) {
+        Walker& w = walkers_[i];
+        const bool player = i == 0 && !playerWalk.isUndefined() && !playerWalk.isNull();
+        const Vec3 walk =
+            player ? vec3(playerWalk, Vec3(0.0f), "playerWalk") : w.path.nextVelocity(w.character, dt);
+        w.character.update(scene_.world, walk, dt);
+      }
+      return 0;
+    });
+  }
+  // Each character's capsule: centre x, y, z, radius, half height, and whether it stands (1) or not.
+  val characters() const {
+    buffer_.clear();
+    for (const Walker& w : walkers_) {
+      const Vec3 p = w.character.position();
+      buffer_.insert(buffer_.end(), {p.x, p.y, p.z, w.character.radius(), w.character.halfHeight(),
+                                     w.character.isOnGround() ? 1.0f : 0.0f});
+    }
+    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+  }
+
   // Snapshots (docs/snapshots.md) as Uint8Arrays.
   val saveSnapshot() const {
     snapshot_ = scene_.world.saveSnapshot();
@@ -656,7 +688,13 @@ class JsWorld {
     return out;
   }
 
+  struct Walker {
+    Character character;
+    scene::CharacterPath path;
+  };
   scene::SceneWorld scene_;
+  std::deque<scene::SceneCharacter> sceneCharacters_;
+  std::vector<Walker> walkers_;
   float dt_ = 1.0f / 60.0f;
   int steps_ = 600;
   std::string source_ = "api";
@@ -665,6 +703,35 @@ class JsWorld {
 };
 
 JsWorld* makeWorld(val options) { return new JsWorld(options); }
+
+// A character of the game's own (docs/character.md): options position, radius, halfHeight,
+// maxSlope, maxStepHeight, skinWidth, pushForce, mass.
+Character* makeCharacter(val options) {
+  return guarded([&] {
+    CharacterDef def;
+    def.position = vec3(options["position"], def.position, "position");
+    def.radius = field<float>(options, "radius", def.radius);
+    def.halfHeight = field<float>(options, "halfHeight", def.halfHeight);
+    def.maxSlope = field<float>(options, "maxSlope", def.maxSlope);
+    def.maxStepHeight = field<float>(options, "maxStepHeight", def.maxStepHeight);
+    def.skinWidth = field<float>(options, "skinWidth", def.skinWidth);
+    def.pushForce = field<float>(options, "pushForce", def.pushForce);
+    def.mass = field<float>(options, "mass", def.mass);
+    return new Character(def);
+  });
+}
+void updateCharacter(Character& c, JsWorld& world, val walk, float dt) {
+  guarded([&] {
+    c.update(world.world(), vec3(walk, Vec3(0.0f), "walk"), dt);
+    return 0;
+  });
+}
+val characterPosition(const Character& c) { return array3(c.position()); }
+val characterFeet(const Character& c) { return array3(c.footPosition()); }
+std::string characterGroundState(const Character& c) { return std::string(toString(c.groundState())); }
+bool characterSetHalfHeight(Character& c, JsWorld& world, float halfHeight) {
+  return guarded([&] { return c.setHalfHeight(world.world(), halfHeight); });
+}
 
 val builtinSceneNames() {
   val out = val::array();
@@ -735,6 +802,15 @@ EMSCRIPTEN_BINDINGS(collide) {
       .function("type", &shapeType)
       .function("geometry", &shapeGeometry);
 
+  class_<Character>("Character")
+      .constructor(&makeCharacter, allow_raw_pointers())
+      .function("update", &updateCharacter)
+      .function("position", &characterPosition)
+      .function("footPosition", &characterFeet)
+      .function("groundState", &characterGroundState)
+      .function("isOnGround", &Character::isOnGround)
+      .function("setHalfHeight", &characterSetHalfHeight);
+
   class_<JsWorld>("World")
       .constructor(&makeWorld, allow_raw_pointers())
       .class_function("fromScene", &JsWorld::fromScene, allow_raw_pointers())
@@ -785,6 +861,9 @@ EMSCRIPTEN_BINDINGS(collide) {
       .function("castShape", &JsWorld::castShape)
       .function("overlapShape", &JsWorld::overlapShape)
       .function("hasLineOfSight", &JsWorld::hasLineOfSight)
+      .function("characterCount", &JsWorld::characterCount)
+      .function("updateCharacters", &JsWorld::updateCharacters)
+      .function("characters", &JsWorld::characters)
       .function("saveSnapshot", &JsWorld::saveSnapshot)
       .function("loadSnapshot", &JsWorld::loadSnapshot);
 }

@@ -147,3 +147,32 @@ test('joints: a slider keeps to its axis up to its limit, a fixed joint breaks p
   world.delete();
   small.delete();
 });
+
+test('the character mover: 10 m in 2 s on flat ground, and a scene character walks its path', () => {
+  const world = new collide.World({});
+  const ground = collide.Shape.box([50, 0.5, 50]);
+  world.createBody({ shape: ground, type: 'static', position: [0, -0.5, 0] });
+  const character = new collide.Character({ position: [0, 0.92, 0] });
+  for (let i = 0; i < 120; ++i) {
+    world.step(1 / 60, 1);
+    character.update(world, [5, 0, 0], 1 / 60);
+    assert.equal(character.groundState(), 'on ground');
+  }
+  assert.ok(Math.abs(character.position()[0] - 10) < 0.1, `${character.position()}`);
+  assert.ok(Math.abs(character.footPosition()[1] - 0.02) < 1e-3);
+  assert.throws(() => new collide.Character({ position: [0, 1, 0], radius: -1 }), /radius/);
+  character.delete();
+  world.delete();
+  ground.delete();
+
+  const level = collide.World.fromScene('character');
+  assert.equal(level.characterCount(), 1);
+  const start = Array.from(level.characters().slice(0, 3));
+  for (let i = 0; i < 300; ++i) {
+    level.step(level.sceneDt(), 1);
+    level.updateCharacters(level.sceneDt(), null);
+  }
+  const now = Array.from(level.characters().slice(0, 3));
+  assert.ok(Math.hypot(now[0] - start[0], now[2] - start[2]) > 3, `${start} -> ${now}`);
+  level.delete();
+});

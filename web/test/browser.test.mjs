@@ -58,7 +58,7 @@ function drawnShareOfPng(file, background, x0) {
   return drawn / counted;
 }
 
-for (const scene of ['billiards', 'terrain']) {
+for (const scene of ['billiards', 'terrain', 'character']) {
   test(`the demo steps and draws ${scene} in headless Chromium without console errors`, async () => {
     const server = await startServer(webDir);
     try {
