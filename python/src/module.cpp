@@ -270,12 +270,21 @@ PYBIND11_MODULE(_collide, m) {
       "Compound",
       [](const std::vector<py::tuple>& children) {
         std::vector<Compound::Child> out;
-        for (const py::tuple& child : children) {
+        for (std::size_t i = 0; i < children.size(); ++i) {
+          const py::tuple& child = children[i];
+          const std::string where = "Compound: children[" + std::to_string(i) + "]: ";
           if (child.size() < 2 || child.size() > 3)
-            throw Error("Compound: each child is (shape, position) or (shape, position, rotation)");
-          Transform pose{child[1].cast<Vec3>(), child.size() == 3 ? child[2].cast<Quat>() : Quat(1, 0, 0, 0),
-                         1.0f};
-          out.push_back({child[0].cast<Shape>(), pose});
+            throw Error(where + "must be (shape, position) or (shape, position, rotation)");
+          if (!py::isinstance<Shape>(child[0])) throw Error(where + "the first item must be a collide shape");
+          Vec3 position(0.0f);
+          Quat rotation(1, 0, 0, 0);
+          try {
+            position = child[1].cast<Vec3>();
+            if (child.size() == 3) rotation = child[2].cast<Quat>();
+          } catch (const py::cast_error&) {
+            throw Error(where + "position must be 3 numbers and rotation 4 (w, x, y, z)");
+          }
+          out.push_back({child[0].cast<Shape>(), Transform{position, rotation, 1.0f}});
         }
         return Shape(Compound::fromChildren(std::move(out)));
       },

@@ -42,3 +42,10 @@ def test_a_bad_scene_names_the_field():
         collide.builtin_scene("no-such-scene")
     with pytest.raises(collide.Error):
         collide.load_scene("/nonexistent/scene.json")
+
+
+def test_a_bad_compound_child_is_named():
+    with pytest.raises(collide.Error, match=r"children\[0\]: the first item must be a collide shape"):
+        collide.Compound([(1, (0, 0, 0))])
+    with pytest.raises(collide.Error, match=r"children\[1\]: position must be 3 numbers"):
+        collide.Compound([(collide.Sphere(1), (0, 0, 0)), (collide.Sphere(1), (0, 0))])
