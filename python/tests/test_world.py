@@ -164,3 +164,21 @@ def test_a_cone_joint_keeps_its_swing_within_the_limit():
         x, y, z = np.subtract(world.position(limb), (0, 5, 0))
         worst = max(worst, math.atan2(math.hypot(x, z), -y))
     assert 0.45 < worst < 0.5 + 0.02
+
+
+def test_separate_worlds_step_in_threads_as_they_do_alone():
+    from concurrent.futures import ThreadPoolExecutor
+
+    def pile(seed):
+        world = collide.World()
+        world.create_body(collide.Plane((0, 1, 0)), type="static")
+        rng = np.random.default_rng(seed)
+        for p in rng.uniform((-2, 1, -2), (2, 6, 2), size=(40, 3)):
+            world.create_body(collide.Box((0.3, 0.3, 0.3)), position=tuple(p))
+        world.steps(DT, 120)
+        return world.positions().tobytes()
+
+    alone = [pile(seed) for seed in range(4)]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        threaded = list(pool.map(pile, range(4)))
+    assert threaded == alone
