@@ -65,26 +65,22 @@ void progressBar(int step, int steps) {
   std::fflush(stderr);
 }
 
-}  // namespace
-
-namespace {
-// A float's bit pattern (std::bit_cast, which emscripten's libc++ 14 lacks).
-std::uint32_t floatBits(float value) {
+// Mixes a float's bit pattern into an FNV-1a hash (64 bit), byte by byte. memcpy, not std::bit_cast,
+// which emscripten's libc++ 14 lacks.
+void mixFloat(std::uint64_t& hash, float value) {
   std::uint32_t bits;
   std::memcpy(&bits, &value, sizeof bits);
-  return bits;
+  for (int i = 0; i < 4; ++i) {
+    hash ^= (bits >> (8 * i)) & 0xFFu;
+    hash *= 1099511628211ull;
+  }
 }
+
 }  // namespace
 
 std::uint64_t stateHash(const SceneWorld& sw) {
   std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bit
-  const auto mix = [&](float value) {
-    const auto bits = floatBits(value);
-    for (int i = 0; i < 4; ++i) {
-      hash ^= (bits >> (8 * i)) & 0xFFu;
-      hash *= 1099511628211ull;
-    }
-  };
+  const auto mix = [&](float value) { mixFloat(hash, value); };
   const auto mixVec = [&](const Vec3& v) {
     mix(v.x);
     mix(v.y);
@@ -303,13 +299,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   for (const Walker& w : walkers) {
     // The characters' feet join the hash (FNV-1a on, as stateHash mixes).
     const Vec3 feet = w.character.footPosition();
-    for (const float value : {feet.x, feet.y, feet.z}) {
-      const auto bits = floatBits(value);
-      for (int i = 0; i < 4; ++i) {
-        summary.stateHash ^= (bits >> (8 * i)) & 0xFFu;
-        summary.stateHash *= 1099511628211ull;
-      }
-    }
+    for (const float value : {feet.x, feet.y, feet.z}) mixFloat(summary.stateHash, value);
     summary.characters.push_back(
         {w.scene->name, feet, w.character.groundState(), w.path.reached(), w.scene->path.size()});
   }
