@@ -84,17 +84,40 @@ std::vector<Vec3> points(const val& flat, const char* what) {
   return out;
 }
 
-val bodyIdValue(BodyId id) {
+// Body and joint ids as { index, generation } objects, and back (`what` names the id in errors).
+template <typename Id>
+val idValue(Id id) {
   val out = val::object();
   out.set("index", id.index);
   out.set("generation", id.generation);
   return out;
 }
-
-BodyId bodyId(const val& v) {
+template <typename Id>
+Id idOf(const val& v, const char* what) {
   if (v.isUndefined() || v.isNull() || !v.hasOwnProperty("index"))
-    throw Error("body: must be a body id {index, generation}");
-  return BodyId{v["index"].as<std::uint32_t>(), v["generation"].as<std::uint32_t>()};
+    throw Error(std::string(what) + ": must be a " + what + " id {index, generation}");
+  return Id{v["index"].as<std::uint32_t>(), v["generation"].as<std::uint32_t>()};
+}
+val bodyIdValue(BodyId id) { return idValue(id); }
+BodyId bodyId(const val& v) { return idOf<BodyId>(v, "body"); }
+
+// A copy of `values` as a JavaScript typed array of `type` ("Float32Array", "Uint32Array", ...).
+template <typename T>
+val typedArray(const char* type, const std::vector<T>& values) {
+  return val::global(type).new_(typed_memory_view(values.size(), values.data()));
+}
+
+// The hash `collide run` prints, as 16 hex digits (a 64-bit number does not fit a JS number).
+std::string hashText(std::uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+// A scene document (JSON text) or the name of a built-in scene.
+scene::Scene sceneOf(const std::string& nameOrJson) {
+  return nameOrJson.find('{') != std::string::npos ? scene::parseScene(nameOrJson, "scene")
+                                                   : scene::loadBuiltinScene(nameOrJson);
 }
 
 // ---- Shapes ----
@@ -218,9 +241,8 @@ val shapeGeometry(const Shape& s) {
     }
   }
   if (!vertices.empty()) {
-    out.set("vertices",
-            val::global("Float32Array").new_(typed_memory_view(vertices.size(), vertices.data())));
-    out.set("indices", val::global("Uint32Array").new_(typed_memory_view(indices.size(), indices.data())));
+    out.set("vertices", typedArray("Float32Array", vertices));
+    out.set("indices", typedArray("Uint32Array", indices));
   }
   return out;
 }
@@ -269,10 +291,7 @@ class JsWorld {
   }
 
   static JsWorld* fromScene(const std::string& nameOrJson) {
-    return guarded([&] {
-      const bool json = nameOrJson.find('{') != std::string::npos;
-      return new JsWorld(json ? scene::parseScene(nameOrJson, "scene") : scene::loadBuiltinScene(nameOrJson));
-    });
+    return guarded([&] { return new JsWorld(sceneOf(nameOrJson)); });
   }
 
   World& world() { return scene_.world; }
@@ -408,7 +427,7 @@ class JsWorld {
       const Vec3 p = scene_.world.transform(id).position;
       buffer_.insert(buffer_.end(), {p.x, p.y, p.z});
     }
-    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+    return typedArray("Float32Array", buffer_);
   }
   val rotations() const {
     buffer_.clear();
@@ -416,7 +435,7 @@ class JsWorld {
       const Quat q = scene_.world.transform(id).rotation;
       buffer_.insert(buffer_.end(), {q.x, q.y, q.z, q.w});
     }
-    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+    return typedArray("Float32Array", buffer_);
   }
   val velocities() const {
     buffer_.clear();
@@ -424,7 +443,7 @@ class JsWorld {
       const Vec3 v = scene_.world.linearVelocity(id);
       buffer_.insert(buffer_.end(), {v.x, v.y, v.z});
     }
-    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+    return typedArray("Float32Array", buffer_);
   }
   // Each body's world box: minX, minY, minZ, maxX, maxY, maxZ.
   val bounds() const {
@@ -433,7 +452,7 @@ class JsWorld {
       const Aabb box = worldBounds(scene_.world.shape(id), scene_.world.transform(id));
       buffer_.insert(buffer_.end(), {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z});
     }
-    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+    return typedArray("Float32Array", buffer_);
   }
   // Every touching contact point: x, y, z, then the normal's x, y, z.
   val contactPoints() const {
@@ -445,17 +464,12 @@ class JsWorld {
         buffer_.insert(buffer_.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
       }
     });
-    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+    return typedArray("Float32Array", buffer_);
   }
 
   val linearMomentum() const { return array3(scene_.world.linearMomentum()); }
   float kineticEnergy() const { return scene_.world.kineticEnergy(); }
-  // The hash `collide run` prints, as 16 hex digits (a 64-bit number does not fit a JS number).
-  std::string stateHash() const {
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(scene::stateHash(scene_)));
-    return text;
-  }
+  std::string stateHash() const { return hashText(scene::stateHash(scene_)); }
 
   // Joints.
   val createDistanceJoint(const val& a, const val& b) {
@@ -479,54 +493,28 @@ class JsWorld {
   // options: { limits: [lower, upper], motor: [speed, maxForce], collideConnected, breakForce }.
   val createHingeJoint(const val& a, const val& b, const val& anchor, const val& axis, const val& options) {
     return guarded([&] {
-      HingeJointDef def;
-      def.a = bodyId(a);
-      def.b = bodyId(b);
-      def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
-      def.axis = vec3(axis, Vec3(0, 0, 1), "axis");
-      def.limits = limitsOf(options, "limits");
-      def.motor = motorOf(options);
-      def.collideConnected = field<bool>(options, "collideConnected", false);
-      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
-      return jointValue(scene_.world.createHingeJoint(def));
+      return jointValue(scene_.world.createHingeJoint(
+          axisJointDef<HingeJointDef>(a, b, anchor, axis, options, Vec3(0, 0, 1))));
     });
   }
   val createSliderJoint(const val& a, const val& b, const val& anchor, const val& axis, const val& options) {
     return guarded([&] {
-      SliderJointDef def;
-      def.a = bodyId(a);
-      def.b = bodyId(b);
-      def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
-      def.axis = vec3(axis, Vec3(1, 0, 0), "axis");
-      def.limits = limitsOf(options, "limits");
-      def.motor = motorOf(options);
-      def.collideConnected = field<bool>(options, "collideConnected", false);
-      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
-      return jointValue(scene_.world.createSliderJoint(def));
+      return jointValue(scene_.world.createSliderJoint(
+          axisJointDef<SliderJointDef>(a, b, anchor, axis, options, Vec3(1, 0, 0))));
     });
   }
   val createFixedJoint(const val& a, const val& b, const val& options) {
-    return guarded([&] {
-      FixedJointDef def;
-      def.a = bodyId(a);
-      def.b = bodyId(b);
-      def.collideConnected = field<bool>(options, "collideConnected", false);
-      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
-      return jointValue(scene_.world.createFixedJoint(def));
-    });
+    return guarded(
+        [&] { return jointValue(scene_.world.createFixedJoint(jointDef<FixedJointDef>(a, b, options))); });
   }
   // options: { swingLimit (radians), twistLimits: [lower, upper], collideConnected, breakForce }.
   val createConeJoint(const val& a, const val& b, const val& anchor, const val& axis, const val& options) {
     return guarded([&] {
-      ConeJointDef def;
-      def.a = bodyId(a);
-      def.b = bodyId(b);
+      ConeJointDef def = jointDef<ConeJointDef>(a, b, options);
       def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
       def.axis = vec3(axis, Vec3(1, 0, 0), "axis");
       def.swingLimit = field<float>(options, "swingLimit", kPi);
       def.twistLimits = limitsOf(options, "twistLimits");
-      def.collideConnected = field<bool>(options, "collideConnected", false);
-      def.breakForce = field<float>(options, "breakForce", kUnbreakable);
       return jointValue(scene_.world.createConeJoint(def));
     });
   }
@@ -646,13 +634,13 @@ class JsWorld {
       buffer_.insert(buffer_.end(), {p.x, p.y, p.z, w.character.radius(), w.character.halfHeight(),
                                      w.character.isOnGround() ? 1.0f : 0.0f});
     }
-    return val::global("Float32Array").new_(typed_memory_view(buffer_.size(), buffer_.data()));
+    return typedArray("Float32Array", buffer_);
   }
 
   // Snapshots (docs/snapshots.md) as Uint8Arrays.
   val saveSnapshot() const {
     snapshot_ = scene_.world.saveSnapshot();
-    return val::global("Uint8Array").new_(typed_memory_view(snapshot_.size(), snapshot_.data()));
+    return typedArray("Uint8Array", snapshot_);
   }
   void loadSnapshot(const val& bytes) {
     guarded([&] {
@@ -663,10 +651,29 @@ class JsWorld {
   }
 
  private:
-  static JointId jointId(const val& v) {
-    if (v.isUndefined() || v.isNull() || !v.hasOwnProperty("index"))
-      throw Error("joint: must be a joint id {index, generation}");
-    return JointId{v["index"].as<std::uint32_t>(), v["generation"].as<std::uint32_t>()};
+  static JointId jointId(const val& v) { return idOf<JointId>(v, "joint"); }
+  static val jointValue(JointId id) { return idValue(id); }
+
+  // What every joint definition with options has: its bodies, collideConnected and breakForce.
+  template <typename Def>
+  static Def jointDef(const val& a, const val& b, const val& options) {
+    Def def;
+    def.a = bodyId(a);
+    def.b = bodyId(b);
+    def.collideConnected = field<bool>(options, "collideConnected", false);
+    def.breakForce = field<float>(options, "breakForce", kUnbreakable);
+    return def;
+  }
+  // And a hinge's or a slider's: the anchor, the axis, limits and a motor.
+  template <typename Def>
+  static Def axisJointDef(const val& a, const val& b, const val& anchor, const val& axis, const val& options,
+                          const Vec3& defaultAxis) {
+    Def def = jointDef<Def>(a, b, options);
+    def.anchor = vec3(anchor, Vec3(0.0f), "anchor");
+    def.axis = vec3(axis, defaultAxis, "axis");
+    def.limits = limitsOf(options, "limits");
+    def.motor = motorOf(options);
+    return def;
   }
   static JointLimits limitsOf(const val& options, const char* name) {
     if (options.isUndefined() || options.isNull() || !options.hasOwnProperty(name)) return {};
@@ -680,12 +687,6 @@ class JsWorld {
     const val pair = options["motor"];
     if (!pair.isArray() || pair["length"].as<int>() != 2) throw Error("motor: must be [speed, maxForce]");
     return JointMotor{true, pair[0].as<float>(), pair[1].as<float>()};
-  }
-  static val jointValue(JointId id) {
-    val out = val::object();
-    out.set("index", id.index);
-    out.set("generation", id.generation);
-    return out;
   }
 
   struct Walker {
@@ -744,15 +745,11 @@ val builtinSceneNames() {
 // characters), its state hash as 16 hex digits and its milliseconds per step.
 val runScene(const std::string& nameOrJson, int steps) {
   return guarded([&] {
-    const bool json = nameOrJson.find('{') != std::string::npos;
     scene::RunOptions options;
     options.steps = steps;
-    const scene::RunSummary summary = scene::runScene(
-        json ? scene::parseScene(nameOrJson, "scene") : scene::loadBuiltinScene(nameOrJson), options);
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(summary.stateHash));
+    const scene::RunSummary summary = scene::runScene(sceneOf(nameOrJson), options);
     val out = val::object();
-    out.set("stateHash", std::string(text));
+    out.set("stateHash", hashText(summary.stateHash));
     out.set("steps", summary.steps);
     out.set("msPerStep", summary.steps > 0 ? 1000.0 * summary.wallSeconds / summary.steps : 0.0);
     return out;
