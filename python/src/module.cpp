@@ -117,6 +117,24 @@ JointMotor motorOf(const py::tuple& t) {
   return JointMotor{true, t[0].cast<float>(), t[1].cast<float>()};
 }
 
+// A hinge's or a slider's definition: the bodies, the anchor and axis (world frame), limits and a
+// motor when given, collide_connected and the break force.
+template <typename Def>
+Def axisJointDef(BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis,
+                 const std::optional<py::tuple>& limits, const std::optional<py::tuple>& motor,
+                 bool collideConnected, float breakForce) {
+  Def def;
+  def.a = a;
+  def.b = b;
+  def.anchor = anchor;
+  def.axis = axis;
+  if (limits) def.limits = limitsOf(*limits);
+  if (motor) def.motor = motorOf(*motor);
+  def.collideConnected = collideConnected;
+  def.breakForce = breakForce;
+  return def;
+}
+
 // The contact events of the last step, as dictionaries a script reads without knowing the types.
 py::list contactEventsOf(const World& world) {
   py::list out;
@@ -479,16 +497,8 @@ PYBIND11_MODULE(_collide, m) {
           [](World& w, BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis,
              std::optional<py::tuple> limits, std::optional<py::tuple> motor, bool collideConnected,
              float breakForce) {
-            HingeJointDef def;
-            def.a = a;
-            def.b = b;
-            def.anchor = anchor;
-            def.axis = axis;
-            if (limits) def.limits = limitsOf(*limits);
-            if (motor) def.motor = motorOf(*motor);
-            def.collideConnected = collideConnected;
-            def.breakForce = breakForce;
-            return w.createHingeJoint(def);
+            return w.createHingeJoint(
+                axisJointDef<HingeJointDef>(a, b, anchor, axis, limits, motor, collideConnected, breakForce));
           },
           py::arg("a"), py::arg("b"), py::arg("anchor"), py::arg("axis"), py::kw_only(),
           py::arg("limits") = std::nullopt, py::arg("motor") = std::nullopt,
@@ -500,16 +510,8 @@ PYBIND11_MODULE(_collide, m) {
           [](World& w, BodyId a, BodyId b, const Vec3& anchor, const Vec3& axis,
              std::optional<py::tuple> limits, std::optional<py::tuple> motor, bool collideConnected,
              float breakForce) {
-            SliderJointDef def;
-            def.a = a;
-            def.b = b;
-            def.anchor = anchor;
-            def.axis = axis;
-            if (limits) def.limits = limitsOf(*limits);
-            if (motor) def.motor = motorOf(*motor);
-            def.collideConnected = collideConnected;
-            def.breakForce = breakForce;
-            return w.createSliderJoint(def);
+            return w.createSliderJoint(axisJointDef<SliderJointDef>(a, b, anchor, axis, limits, motor,
+                                                                    collideConnected, breakForce));
           },
           py::arg("a"), py::arg("b"), py::arg("anchor"), py::arg("axis"), py::kw_only(),
           py::arg("limits") = std::nullopt, py::arg("motor") = std::nullopt,
