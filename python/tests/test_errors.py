@@ -49,3 +49,14 @@ def test_a_bad_compound_child_is_named():
         collide.Compound([(1, (0, 0, 0))])
     with pytest.raises(collide.Error, match=r"children\[1\]: position must be 3 numbers"):
         collide.Compound([(collide.Sphere(1), (0, 0, 0)), (collide.Sphere(1), (0, 0))])
+
+
+def test_bad_joint_limits_and_motors_are_named():
+    world = collide.World()
+    post = world.create_body(collide.Sphere(0.1), type="static")
+    arm = world.create_body(collide.Sphere(0.1), position=(1, 0, 0))
+    with pytest.raises(collide.Error, match=r"limits: must be \(lower, upper\)"):
+        world.create_hinge_joint(post, arm, (0, 0, 0), (0, 0, 1), limits=(1.0,))
+    with pytest.raises(collide.Error, match=r"motor: must be \(speed, max_force\)"):
+        world.create_slider_joint(post, arm, (0, 0, 0), (1, 0, 0), motor=(1.0, 2.0, 3.0))
+    assert world.joint_count == 0
