@@ -1,6 +1,7 @@
 // The world's API bookkeeping: creating, destroying, reading and changing bodies and joints behind
 // their generation-checked ids, and the world's settings. The step itself is in step.cpp, a stage per
 // call; what a stage does is in the folder of its layer.
+#include "base/fail.h"
 #include "world_impl.h"
 
 #include "base/format.h"
@@ -32,18 +33,50 @@ bool World::Impl::isLive(BodyId id) const {
 
 std::uint32_t World::Impl::resolve(BodyId id, const char* operation) const {
   if (!isLive(id)) {
-    throw Error(std::string("world: ") + operation + ": invalid or stale body id (index " +
-                std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")");
+    COLLIDE_FAIL(std::string("world: ") + operation + ": invalid or stale body id (index " +
+                     std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")",
+                 kBadSlot);
   }
   return id.index;
 }
 
 std::uint32_t World::Impl::resolve(JointId id, const char* operation) const {
   if (id.index >= joints.size() || !joints[id.index].alive || joints[id.index].generation != id.generation) {
-    throw Error(std::string("world: ") + operation + ": invalid or stale constraint id (index " +
-                std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")");
+    COLLIDE_FAIL(std::string("world: ") + operation + ": invalid or stale constraint id (index " +
+                     std::to_string(id.index) + ", generation " + std::to_string(id.generation) + ")",
+                 kBadSlot);
   }
   return id.index;
+}
+
+namespace {
+const BodyRecord& noRecord() {
+  static const BodyRecord record;
+  return record;
+}
+const BodyState& noState() {
+  static const BodyState state;
+  return state;
+}
+const Joint& noJoint() {
+  static const Joint joint;
+  return joint;
+}
+}  // namespace
+
+const BodyRecord& World::Impl::recordOf(BodyId id, const char* operation) const {
+  const std::uint32_t i = resolve(id, operation);
+  return i == kBadSlot ? noRecord() : bodies.records[i];
+}
+
+const BodyState& World::Impl::stateOf(BodyId id, const char* operation) const {
+  const std::uint32_t i = resolve(id, operation);
+  return i == kBadSlot ? noState() : bodies.states[i];
+}
+
+const Joint& World::Impl::jointOf(JointId id, const char* operation) const {
+  const std::uint32_t i = resolve(id, operation);
+  return i == kBadSlot ? noJoint() : joints[i];
 }
 
 void World::Impl::freeJoint(std::uint32_t index) {
@@ -64,10 +97,20 @@ Vec3 World::Impl::anchorWorld(std::uint32_t body, const Vec3& localAnchor) const
 }
 
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
-  validateWorldDef(def);
-  impl_->def = def;
-  impl_->broadPhase = createBroadPhase(def.broadPhase);
-  impl_->tasks.configure(def.workerCount, def.enqueueTask, def.finishTask, def.userTaskContext);
+  const detail::ErrorScope scope;
+  // Without exceptions a refused definition leaves the world with the default one (World::create
+  // returns null instead).
+  const bool valid = validateWorldDef(def);
+  impl_->def = valid ? def : WorldDef{};
+  impl_->broadPhase = createBroadPhase(impl_->def.broadPhase);
+  impl_->tasks.configure(impl_->def.workerCount, impl_->def.enqueueTask, impl_->def.finishTask,
+                         impl_->def.userTaskContext);
+}
+
+std::unique_ptr<World> World::create(const WorldDef& def) {
+  const detail::ErrorScope scope;
+  if (!validateWorldDef(def)) return nullptr;
+  return std::make_unique<World>(def);
 }
 
 World::~World() = default;
@@ -77,11 +120,14 @@ World& World::operator=(World&&) noexcept = default;
 const WorldDef& World::def() const { return impl_->def; }
 
 void World::setDef(const WorldDef& def) {
-  validateWorldDef(def);
+  const detail::ErrorScope scope;
+  if (!validateWorldDef(def)) return;
   Impl& w = *impl_;
   if (def.broadPhase != w.def.broadPhase) {
-    std::unique_ptr<BroadPhase> next = createBroadPhase(def.broadPhase);  // may throw: nothing changed yet
+    std::unique_ptr<BroadPhase> next = createBroadPhase(def.broadPhase);  // may fail: nothing changed yet
+    COLLIDE_RETURN_IF_FAILED();
     next->adoptProxies(*w.broadPhase);
+    COLLIDE_RETURN_IF_FAILED();
     w.broadPhase = std::move(next);
   }
   if (w.def.sleeping && !def.sleeping) {
@@ -96,7 +142,9 @@ void World::setDef(const WorldDef& def) {
 }
 
 BodyId World::createBody(const BodyDef& def) {
+  const detail::ErrorScope scope;
   detail::validateBodyDef(def);
+  COLLIDE_RETURN_IF_FAILED(BodyId{});
   Impl& w = *impl_;
   const std::uint32_t index = w.bodies.allocate();
   // Any Error from here on frees the slot again: a body left allocated without a proxy in the broad
@@ -111,11 +159,9 @@ BodyId World::createBody(const BodyDef& def) {
   } slot{w.bodies, index};
   BodyRecord& r = w.bodies.records[index];
   detail::initBody(def, r, w.bodies.states[index]);
-  try {
-    w.addProxy(index);
-  } catch (const Error& e) {
-    throw Error(detail::bodyLabel(def) + ": " + e.what());
-  }
+  COLLIDE_RETURN_IF_FAILED(BodyId{});
+  detail::withErrorContext(detail::bodyLabel(def) + ": ", [&] { w.addProxy(index); });
+  COLLIDE_RETURN_IF_FAILED(BodyId{});
   slot.keep = true;
   w.bodies.tally(r, +1);
   return w.bodies.idOf(index);
@@ -124,6 +170,7 @@ BodyId World::createBody(const BodyDef& def) {
 void World::destroyBody(BodyId id) {
   Impl& w = *impl_;
   const std::uint32_t index = w.resolve(id, "destroyBody");
+  if (index == Impl::kBadSlot) return;
   if (w.bodies.records[index].enabled) w.broadPhase->remove(w.bodies.records[index].proxy);
   for (std::uint32_t j = 0; j < w.joints.size(); ++j) {
     if (w.joints[j].alive && (w.joints[j].bodyA == index || w.joints[j].bodyB == index)) {
@@ -140,13 +187,12 @@ void World::destroyBody(BodyId id) {
 bool World::isValid(BodyId id) const { return impl_->isLive(id); }
 std::size_t World::bodyCount() const { return impl_->bodies.aliveCount; }
 
-BodyType World::type(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "type")].type; }
-bool World::isParticle(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "isParticle")].particle;
-}
+BodyType World::type(BodyId id) const { return impl_->recordOf(id, "type").type; }
+bool World::isParticle(BodyId id) const { return impl_->recordOf(id, "isParticle").particle; }
 
 Transform World::transform(BodyId id) const {
   const std::uint32_t i = impl_->resolve(id, "transform");
+  if (i == Impl::kBadSlot) return {};
   return detail::bodyTransform(impl_->bodies.records[i], impl_->bodies.states[i]);
 }
 
@@ -157,17 +203,20 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation) 
 void World::setTransform(BodyId id, const Vec3& position, const Quat& rotation, bool wake) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setTransform");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(position))
-    throw Error("world: setTransform: position must be finite, got " + formatVec(position));
+    COLLIDE_FAIL("world: setTransform: position must be finite, got " + formatVec(position));
   if (!isFinite(rotation) || std::abs(glm::length(rotation) - 1.0f) > 1e-3f) {
-    throw Error("world: setTransform: rotation must be a finite unit quaternion");
+    COLLIDE_FAIL("world: setTransform: rotation must be a finite unit quaternion");
   }
   BodyRecord& r = w.bodies.records[i];
   BodyState& s = w.bodies.states[i];
   BodyState placed = s;
   placed.rotation = glm::normalize(rotation);
   placed.centerOfMass = position + placed.rotation * r.localCenterOfMass;
+  const detail::ErrorScope scope;
   detail::requireRepresentableBounds(r, placed, "world: setTransform");
+  COLLIDE_RETURN_IF_FAILED();
   s.rotation = placed.rotation;
   s.centerOfMass = placed.centerOfMass;
   s.inverseInertiaWorld = detail::worldInverseInertia(r.inverseInertiaLocal, s.rotation);
@@ -219,6 +268,7 @@ void World::Impl::updateProxy(std::uint32_t index) {
 void World::setEnabled(BodyId id, bool enabled) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setEnabled");
+  if (i == Impl::kBadSlot) return;
   BodyRecord& r = w.bodies.records[i];
   if (r.enabled == enabled) return;
   if (!enabled) {
@@ -232,19 +282,17 @@ void World::setEnabled(BodyId id, bool enabled) {
     return;
   }
   r.enabled = true;
-  try {
-    w.addProxy(i);
-  } catch (const Error& e) {
+  const detail::ErrorScope scope;
+  detail::withErrorContext("world: setEnabled: ", [&] { w.addProxy(i); });
+  if (detail::errorPending()) {
     r.enabled = false;
-    throw Error(std::string("world: setEnabled: ") + e.what());
+    return;
   }
   r.awake = true;
   detail::wakeByUser(w.bodies, i);
 }
 
-bool World::isEnabled(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "isEnabled")].enabled;
-}
+bool World::isEnabled(BodyId id) const { return impl_->recordOf(id, "isEnabled").enabled; }
 
 void World::Impl::centerMoved(std::uint32_t index, const Vec3& shift) {
   if (shift == Vec3(0.0f)) return;
@@ -261,15 +309,14 @@ void World::Impl::centerMoved(std::uint32_t index, const Vec3& shift) {
 void World::setType(BodyId id, BodyType type) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setType");
+  if (i == Impl::kBadSlot) return;
   BodyRecord& r = w.bodies.records[i];
   if (type == r.type) return;
   const Vec3 oldLocalCenter = r.localCenterOfMass;
   const bool wasStatic = r.type == BodyType::Static;
-  try {
-    detail::setBodyType(r, w.bodies.states[i], type);
-  } catch (const Error& e) {
-    throw Error(std::string("world: setType: ") + e.what());
-  }
+  const detail::ErrorScope scope;
+  detail::withErrorContext("world: setType: ", [&] { detail::setBodyType(r, w.bodies.states[i], type); });
+  COLLIDE_RETURN_IF_FAILED();
   w.centerMoved(i, r.localCenterOfMass - oldLocalCenter);
   if (r.enabled && (wasStatic || type == BodyType::Static)) {
     // The broad phase keeps static and movable proxies apart: the proxy moves to the other side (its
@@ -291,17 +338,14 @@ void World::setType(BodyId id, BodyType type) {
   }
 }
 
-Vec3 World::linearVelocity(BodyId id) const {
-  return impl_->bodies.states[impl_->resolve(id, "linearVelocity")].linearVelocity;
-}
-Vec3 World::angularVelocity(BodyId id) const {
-  return impl_->bodies.states[impl_->resolve(id, "angularVelocity")].angularVelocity;
-}
+Vec3 World::linearVelocity(BodyId id) const { return impl_->stateOf(id, "linearVelocity").linearVelocity; }
+Vec3 World::angularVelocity(BodyId id) const { return impl_->stateOf(id, "angularVelocity").angularVelocity; }
 
 void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
   const std::uint32_t i = impl_->resolve(id, "setLinearVelocity");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(velocity))
-    throw Error("world: setLinearVelocity: velocity must be finite, got " + formatVec(velocity));
+    COLLIDE_FAIL("world: setLinearVelocity: velocity must be finite, got " + formatVec(velocity));
   if (impl_->bodies.records[i].type == BodyType::Static) return;  // static bodies never move
   detail::wakeByUser(impl_->bodies, i);
   impl_->bodies.states[i].linearVelocity = velocity;
@@ -309,13 +353,14 @@ void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
 
 void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
   const std::uint32_t i = impl_->resolve(id, "setAngularVelocity");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(velocity))
-    throw Error("world: setAngularVelocity: velocity must be finite, got " + formatVec(velocity));
+    COLLIDE_FAIL("world: setAngularVelocity: velocity must be finite, got " + formatVec(velocity));
   if (impl_->bodies.records[i].type == BodyType::Static) return;
   if (impl_->bodies.records[i].particle) {
     if (velocity != Vec3(0.0f))
-      throw Error("world: setAngularVelocity: a particle has no angular velocity, got " +
-                  formatVec(velocity));
+      COLLIDE_FAIL("world: setAngularVelocity: a particle has no angular velocity, got " +
+                   formatVec(velocity));
     return;
   }
   detail::wakeByUser(impl_->bodies, i);
@@ -324,8 +369,9 @@ void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
 
 void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint) {
   const std::uint32_t i = impl_->resolve(id, "applyImpulse");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(impulse) || !isFinite(worldPoint))
-    throw Error("world: applyImpulse: impulse and point must be finite");
+    COLLIDE_FAIL("world: applyImpulse: impulse and point must be finite");
   if (impl_->bodies.records[i].type != BodyType::Dynamic) return;
   detail::wakeIsland(impl_->bodies, i);
   BodyState& s = impl_->bodies.states[i];
@@ -335,8 +381,9 @@ void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint)
 
 void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
   const std::uint32_t i = impl_->resolve(id, "applyForce");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(force) || !isFinite(worldPoint))
-    throw Error("world: applyForce: force and point must be finite");
+    COLLIDE_FAIL("world: applyForce: force and point must be finite");
   BodyRecord& r = impl_->bodies.records[i];
   if (r.type != BodyType::Dynamic) return;
   detail::wakeIsland(impl_->bodies, i);
@@ -346,7 +393,8 @@ void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
 
 void World::applyTorque(BodyId id, const Vec3& torque) {
   const std::uint32_t i = impl_->resolve(id, "applyTorque");
-  if (!isFinite(torque)) throw Error("world: applyTorque: torque must be finite, got " + formatVec(torque));
+  if (i == Impl::kBadSlot) return;
+  if (!isFinite(torque)) COLLIDE_FAIL("world: applyTorque: torque must be finite, got " + formatVec(torque));
   if (impl_->bodies.records[i].type != BodyType::Dynamic || impl_->bodies.records[i].particle) return;
   detail::wakeIsland(impl_->bodies, i);
   impl_->bodies.records[i].torque += torque;
@@ -354,42 +402,39 @@ void World::applyTorque(BodyId id, const Vec3& torque) {
 
 bool World::isAwake(BodyId id) const {
   const std::uint32_t i = impl_->resolve(id, "isAwake");
+  if (i == Impl::kBadSlot) return false;
   const BodyRecord& r = impl_->bodies.records[i];
   return r.type != BodyType::Static && r.awake;
 }
 
-void World::wakeBody(BodyId id) { detail::wakeByUser(impl_->bodies, impl_->resolve(id, "wakeBody")); }
+void World::wakeBody(BodyId id) {
+  const std::uint32_t i = impl_->resolve(id, "wakeBody");
+  if (i != Impl::kBadSlot) detail::wakeByUser(impl_->bodies, i);
+}
 
-float World::mass(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "mass")].mass; }
-Vec3 World::centerOfMass(BodyId id) const {
-  return impl_->bodies.states[impl_->resolve(id, "centerOfMass")].centerOfMass;
-}
-const Shape& World::shape(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "shape")].shape;
-}
-std::uint64_t World::userData(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "userData")].userData;
-}
-const std::string& World::name(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "name")].name;
-}
+float World::mass(BodyId id) const { return impl_->recordOf(id, "mass").mass; }
+Vec3 World::centerOfMass(BodyId id) const { return impl_->stateOf(id, "centerOfMass").centerOfMass; }
+const Shape& World::shape(BodyId id) const { return impl_->recordOf(id, "shape").shape; }
+std::uint64_t World::userData(BodyId id) const { return impl_->recordOf(id, "userData").userData; }
+const std::string& World::name(BodyId id) const { return impl_->recordOf(id, "name").name; }
 
 BodyMaterial World::material(BodyId id) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "material")];
+  const BodyRecord& r = impl_->recordOf(id, "material");
   return {r.friction, r.bounciness, r.rollingResistance};
 }
 
 void World::setMaterial(BodyId id, const BodyMaterial& material) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setMaterial");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(material.friction) || material.friction < 0.0f)
-    throw Error("world: setMaterial: friction must be finite and >= 0, got " +
-                formatFloat(material.friction));
+    COLLIDE_FAIL("world: setMaterial: friction must be finite and >= 0, got " +
+                 formatFloat(material.friction));
   if (!isFinite(material.bounciness) || material.bounciness < 0.0f || material.bounciness > 1.0f)
-    throw Error("world: setMaterial: bounciness must be in [0, 1], got " + formatFloat(material.bounciness));
+    COLLIDE_FAIL("world: setMaterial: bounciness must be in [0, 1], got " + formatFloat(material.bounciness));
   if (!isFinite(material.rollingResistance) || material.rollingResistance < 0.0f) {
-    throw Error("world: setMaterial: rollingResistance must be finite and >= 0, got " +
-                formatFloat(material.rollingResistance));
+    COLLIDE_FAIL("world: setMaterial: rollingResistance must be finite and >= 0, got " +
+                 formatFloat(material.rollingResistance));
   }
   BodyRecord& r = w.bodies.records[i];
   w.bodies.tally(r, -1);
@@ -401,31 +446,27 @@ void World::setMaterial(BodyId id, const BodyMaterial& material) {
   detail::wakeIsland(w.bodies, i);
 }
 
-float World::gravityScale(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "gravityScale")].gravityScale;
-}
+float World::gravityScale(BodyId id) const { return impl_->recordOf(id, "gravityScale").gravityScale; }
 
 void World::setGravityScale(BodyId id, float scale) {
   const std::uint32_t i = impl_->resolve(id, "setGravityScale");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(scale))
-    throw Error("world: setGravityScale: scale must be finite, got " + formatFloat(scale));
+    COLLIDE_FAIL("world: setGravityScale: scale must be finite, got " + formatFloat(scale));
   impl_->bodies.records[i].gravityScale = scale;
   detail::wakeIsland(impl_->bodies, i);
 }
 
-float World::linearDamping(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "linearDamping")].linearDamping;
-}
-float World::angularDamping(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "angularDamping")].angularDamping;
-}
+float World::linearDamping(BodyId id) const { return impl_->recordOf(id, "linearDamping").linearDamping; }
+float World::angularDamping(BodyId id) const { return impl_->recordOf(id, "angularDamping").angularDamping; }
 
 void World::setDamping(BodyId id, float linear, float angular) {
   const std::uint32_t i = impl_->resolve(id, "setDamping");
+  if (i == Impl::kBadSlot) return;
   if (!isFinite(linear) || linear < 0.0f)
-    throw Error("world: setDamping: linear damping must be finite and >= 0, got " + formatFloat(linear));
+    COLLIDE_FAIL("world: setDamping: linear damping must be finite and >= 0, got " + formatFloat(linear));
   if (!isFinite(angular) || angular < 0.0f)
-    throw Error("world: setDamping: angular damping must be finite and >= 0, got " + formatFloat(angular));
+    COLLIDE_FAIL("world: setDamping: angular damping must be finite and >= 0, got " + formatFloat(angular));
   BodyRecord& r = impl_->bodies.records[i];
   r.linearDamping = linear;
   r.angularDamping = angular;
@@ -457,6 +498,7 @@ void World::setPairFilter(PairFilter filter) { impl_->pairFilter = std::move(fil
 void World::setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mask, std::int32_t group) {
   Impl& w = *impl_;
   const std::uint32_t index = w.resolve(id, "setCollisionFilter");
+  if (index == Impl::kBadSlot) return;
   BodyRecord& r = w.bodies.records[index];
   r.layer = layer;
   r.mask = mask;
@@ -470,20 +512,16 @@ void World::setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mas
   detail::wakeIsland(w.bodies, index);
 }
 
-std::uint32_t World::layer(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "layer")].layer;
-}
-std::uint32_t World::mask(BodyId id) const { return impl_->bodies.records[impl_->resolve(id, "mask")].mask; }
-std::int32_t World::group(BodyId id) const {
-  return impl_->bodies.records[impl_->resolve(id, "group")].group;
-}
+std::uint32_t World::layer(BodyId id) const { return impl_->recordOf(id, "layer").layer; }
+std::uint32_t World::mask(BodyId id) const { return impl_->recordOf(id, "mask").mask; }
+std::int32_t World::group(BodyId id) const { return impl_->recordOf(id, "group").group; }
 
 void World::step(float dt) {
   if (!isFinite(dt) || dt <= 0.0f)
-    throw Error("world: step: dt must be finite and > 0, got " + formatFloat(dt));
+    COLLIDE_FAIL("world: step: dt must be finite and > 0, got " + formatFloat(dt));
   impl_->callbackError.clear();
   impl_->step(dt);
-  if (!impl_->callbackError.empty()) throw Error(impl_->callbackError);
+  if (!impl_->callbackError.empty()) COLLIDE_FAIL(impl_->callbackError);
   if (impl_->contactListener != nullptr)
     detail::tellContactListener(impl_->events, impl_->bodies, impl_->contacts, *impl_->contactListener);
 }
@@ -496,6 +534,7 @@ void World::visitContacts(const std::function<void(const ContactData&)>& visitor
 
 void World::visitContacts(BodyId body, const std::function<void(const ContactData&)>& visitor) const {
   const std::uint32_t index = impl_->resolve(body, "visitContacts");
+  if (index == Impl::kBadSlot) return;
   for (const detail::Contact& c : impl_->contacts) {
     if (c.touching && !c.sensor && (c.bodyA == index || c.bodyB == index))
       visitor(detail::makeContactData(impl_->bodies, c));

@@ -3,7 +3,9 @@
 #include <collide/error.h>
 #include <collide/settings.h>
 
+#include "base/fail.h"
 #include "base/format.h"
+#include "broadphase/broad_phase_internal.h"
 #include "world_impl.h"
 
 #include <array>
@@ -20,8 +22,9 @@ Enum parseName(std::string_view name, const std::array<std::string_view, N>& nam
   }
   std::string expected;
   for (std::size_t i = 0; i < N; ++i) expected += (i ? ", " : "") + std::string(names[i]);
-  throw Error(std::string(what) + ": unknown name \"" + std::string(name) + "\", expected one of " +
-              expected);
+  COLLIDE_FAIL(
+      std::string(what) + ": unknown name \"" + std::string(name) + "\", expected one of " + expected,
+      static_cast<Enum>(0));
 }
 
 constexpr std::array<std::string_view, 4> kCombineNames{"average", "min", "max", "multiply"};
@@ -56,40 +59,49 @@ PenetrationResponse parsePenetrationResponse(std::string_view name) {
   return parseName<PenetrationResponse>(name, kPenetrationNames, "penetration response");
 }
 
-void validateWorldDef(const WorldDef& def) {
+bool validateWorldDef(const WorldDef& def) {
   using detail::formatFloat;
   if (!isFinite(def.gravity))
-    throw Error("world: gravity must be finite, got " + detail::formatVec(def.gravity));
-  if (def.substeps < 1) throw Error("world: substeps must be >= 1, got " + std::to_string(def.substeps));
+    COLLIDE_FAIL("world: gravity must be finite, got " + detail::formatVec(def.gravity), false);
+  if (def.substeps < 1)
+    COLLIDE_FAIL("world: substeps must be >= 1, got " + std::to_string(def.substeps), false);
   if (def.workerCount < 1 || def.workerCount > kMaxWorkers)
-    throw Error("world: workerCount must be 1 to " + std::to_string(kMaxWorkers) + ", got " +
-                std::to_string(def.workerCount));
+    COLLIDE_FAIL("world: workerCount must be 1 to " + std::to_string(kMaxWorkers) + ", got " +
+                     std::to_string(def.workerCount),
+                 false);
   if ((def.enqueueTask == nullptr) != (def.finishTask == nullptr))
-    throw Error("world: enqueueTask and finishTask come together (one is set, the other null)");
+    COLLIDE_FAIL("world: enqueueTask and finishTask come together (one is set, the other null)", false);
   const ContactTuning& t = def.contact;
   const auto check = [](float value, bool ok, const char* field) {
     if (!isFinite(value) || !ok)
-      throw Error(std::string("world: contact.") + field + " out of range, got " + formatFloat(value));
+      COLLIDE_FAIL(std::string("world: contact.") + field + " out of range, got " + formatFloat(value),
+                   false);
+    return true;
   };
-  check(t.hertz, t.hertz > 0.0f, "hertz (must be > 0)");
-  check(t.dampingRatio, t.dampingRatio >= 0.0f, "dampingRatio (must be >= 0)");
-  check(t.pushOutSpeed, t.pushOutSpeed > 0.0f, "pushOutSpeed (must be > 0)");
-  check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)");
-  check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)");
-  check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)");
-  check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)");
-  check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
+  const bool contactValid =
+      check(t.hertz, t.hertz > 0.0f, "hertz (must be > 0)") &&
+      check(t.dampingRatio, t.dampingRatio >= 0.0f, "dampingRatio (must be >= 0)") &&
+      check(t.pushOutSpeed, t.pushOutSpeed > 0.0f, "pushOutSpeed (must be > 0)") &&
+      check(t.restitutionThreshold, t.restitutionThreshold >= 0.0f, "restitutionThreshold (must be >= 0)") &&
+      check(t.linearSlop, t.linearSlop >= 0.0f, "linearSlop (must be >= 0)") &&
+      check(t.speculativeDistance, t.speculativeDistance >= 0.0f, "speculativeDistance (must be >= 0)") &&
+      check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)") &&
+      check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
+  if (!contactValid) return false;
   if (t.relaxPasses < 0)
-    throw Error("world: contact.relaxPasses out of range (must be >= 0), got " +
-                std::to_string(t.relaxPasses));
+    COLLIDE_FAIL(
+        "world: contact.relaxPasses out of range (must be >= 0), got " + std::to_string(t.relaxPasses),
+        false);
   const SleepTuning& sleep = def.sleep;
   const auto checkSleep = [](float value, bool ok, const char* field) {
     if (!isFinite(value) || !ok)
-      throw Error(std::string("world: sleep.") + field + " out of range, got " + formatFloat(value));
+      COLLIDE_FAIL(std::string("world: sleep.") + field + " out of range, got " + formatFloat(value), false);
+    return true;
   };
-  checkSleep(sleep.linearSpeed, sleep.linearSpeed >= 0.0f, "linearSpeed (must be >= 0)");
-  checkSleep(sleep.angularSpeed, sleep.angularSpeed >= 0.0f, "angularSpeed (must be >= 0)");
-  checkSleep(sleep.timeToSleep, sleep.timeToSleep > 0.0f, "timeToSleep (must be > 0)");
+  return checkSleep(sleep.linearSpeed, sleep.linearSpeed >= 0.0f, "linearSpeed (must be >= 0)") &&
+         checkSleep(sleep.angularSpeed, sleep.angularSpeed >= 0.0f, "angularSpeed (must be >= 0)") &&
+         checkSleep(sleep.timeToSleep, sleep.timeToSleep > 0.0f, "timeToSleep (must be > 0)") &&
+         detail::validateBroadPhaseSettings(def.broadPhase);
 }
 
 }  // namespace collide

@@ -2,6 +2,7 @@
 // contacts, constraints and centres of mass through an engine's DebugDraw.
 #include <collide/debug_draw.h>
 
+#include "base/fail.h"
 #include "bodies/body_parts.h"
 #include "world_impl.h"
 
@@ -104,7 +105,7 @@ void World::draw(DebugDraw& draw, const DebugDrawOptions& options) const {
   if (!(options.normalLength >= 0.0f) || !(options.impulseScale >= 0.0f) || !(options.planeSize > 0.0f) ||
       !std::isfinite(options.normalLength) || !std::isfinite(options.impulseScale) ||
       !std::isfinite(options.planeSize)) {
-    throw Error(
+    COLLIDE_FAIL(
         "world: draw: normalLength and impulseScale must be finite and >= 0, planeSize finite and > 0");
   }
   const auto& records = w.bodies.records;

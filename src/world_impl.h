@@ -28,7 +28,7 @@
 namespace collide {
 
 // Throws Error naming the setting for a definition no world can run (world_def.cpp).
-void validateWorldDef(const WorldDef& def);
+bool validateWorldDef(const WorldDef& def);
 
 struct World::Impl {
   WorldDef def;
@@ -63,24 +63,32 @@ struct World::Impl {
   std::size_t touchingCount = 0;
   float lastSubstep = 0.0f;  // the last step's substep, s (the joints' loads are impulses over it)
 
-  // The slot of a live body or joint; Error naming the operation for a stale or invalid id.
-  // Whether the id names a live body of this generation (World::isValid; resolve throws unless).
+  // Whether the id names a live body of this generation (World::isValid).
   bool isLive(BodyId id) const;
+  // The slot of a live body or joint; Error naming the operation for a stale or invalid id, and
+  // without exceptions kBadSlot.
+  static constexpr std::uint32_t kBadSlot = 0xFFFFFFFFu;
   std::uint32_t resolve(BodyId id, const char* operation) const;
   std::uint32_t resolve(JointId id, const char* operation) const;
+  // What the getters read: the live body's or joint's record and state, or for a stale or invalid
+  // id (Error; without exceptions) a default one.
+  const detail::BodyRecord& recordOf(BodyId id, const char* operation) const;
+  const detail::BodyState& stateOf(BodyId id, const char* operation) const;
+  const detail::Joint& jointOf(JointId id, const char* operation) const;
   void freeJoint(std::uint32_t index);
   // Stores a new joint (its type's fields filled in), in a free slot if there is one, keeps its
   // bodies apart in the pair filters unless it lets them collide, and wakes both.
   JointId addJoint(detail::Joint joint);
-  // Throws Error (prefixed with `who`) unless a and b are two different live bodies, one dynamic.
-  void requireJointBodies(BodyId a, BodyId b, const std::string& who) const;
+  // Error (prefixed with `who`), and false, unless a and b are two different live bodies, one dynamic.
+  bool requireJointBodies(BodyId a, BodyId b, const std::string& who) const;
   // A joint of `type` between a and b at the world anchor, its frame's x along `axis` (unset: the
   // world's frame), its local anchors and frames filled in; Error naming the field for bad bodies,
   // anchor or axis. `turns`: the joint holds the bodies' rotation, which a particle does not have.
   detail::Joint jointAt(BodyId a, BodyId b, const Vec3& anchor, const std::optional<Vec3>& axis,
                         JointType type, bool turns) const;
-  // The live joint of `id` if its type is one of `types`; Error naming the operation otherwise.
-  detail::Joint& jointFor(JointId id, const char* operation, std::initializer_list<JointType> types);
+  // The live joint of `id` if its type is one of `types`; Error naming the operation otherwise (and
+  // without exceptions null).
+  detail::Joint* jointFor(JointId id, const char* operation, std::initializer_list<JointType> types);
   void wakeJoint(const detail::Joint& joint);
   // createHingeJoint and createSliderJoint (world_joints.cpp).
   template <typename Def>

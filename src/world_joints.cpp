@@ -1,5 +1,6 @@
 // The world's joints: creating them from their definitions (checked field by field), reading and
 // changing them behind their generation-checked ids. The solver's side is src/dynamics/joints/.
+#include "base/fail.h"
 #include "world_impl.h"
 
 #include "base/format.h"
@@ -16,68 +17,79 @@ using detail::Joint;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& who, const std::string& message) {
-  throw Error(who + ": " + message);
+// Reports Error (`who: message`); false, for the checks' returns.
+bool fail(const std::string& who, const std::string& message) {
+  detail::raiseError(who + ": " + message);
+  return false;
 }
 
 Vec3 checkedAxis(const Vec3& axis, const std::string& who) {
   const float length = glm::length(axis);
-  if (!isFinite(axis) || !(length > 1e-6f) || !std::isfinite(length))
+  if (!isFinite(axis) || !(length > 1e-6f) || !std::isfinite(length)) {
     fail(who, "axis must be finite and non-zero, got " + formatVec(axis));
+    return Vec3(1.0f, 0.0f, 0.0f);
+  }
   return axis / length;
 }
 
-void checkSoftness(const JointSoftness& s, const std::string& who, const char* field) {
+bool checkSoftness(const JointSoftness& s, const std::string& who, const char* field) {
   if (!isFinite(s.hertz) || s.hertz < 0.0f)
-    fail(who, std::string(field) + ".hertz must be finite and >= 0, got " + formatFloat(s.hertz));
+    return fail(who, std::string(field) + ".hertz must be finite and >= 0, got " + formatFloat(s.hertz));
   if (!isFinite(s.dampingRatio) || s.dampingRatio < 0.0f)
-    fail(who,
-         std::string(field) + ".dampingRatio must be finite and >= 0, got " + formatFloat(s.dampingRatio));
+    return fail(who, std::string(field) + ".dampingRatio must be finite and >= 0, got " +
+                         formatFloat(s.dampingRatio));
+  return true;
 }
 
 // Angles within [-pi, pi]; lengths >= 0.
 enum class Coordinate { Angle, Offset, Length };
 
-void checkLimits(const JointLimits& l, Coordinate coordinate, const std::string& who, const char* field) {
+bool checkLimits(const JointLimits& l, Coordinate coordinate, const std::string& who, const char* field) {
   if (!isFinite(l.lower) || !isFinite(l.upper) || !(l.lower <= l.upper)) {
-    fail(who, std::string(field) + ": lower and upper must be finite with lower <= upper, got [" +
-                  formatFloat(l.lower) + ", " + formatFloat(l.upper) + "]");
+    return fail(who, std::string(field) + ": lower and upper must be finite with lower <= upper, got [" +
+                         formatFloat(l.lower) + ", " + formatFloat(l.upper) + "]");
   }
   if (coordinate == Coordinate::Angle && (l.lower < -kPi || l.upper > kPi)) {
-    fail(who, std::string(field) + ": angles must be within [-pi, pi], got [" + formatFloat(l.lower) + ", " +
-                  formatFloat(l.upper) + "]");
+    return fail(who, std::string(field) + ": angles must be within [-pi, pi], got [" + formatFloat(l.lower) +
+                         ", " + formatFloat(l.upper) + "]");
   }
   if (coordinate == Coordinate::Length && l.lower < 0.0f)
-    fail(who, std::string(field) + ": lengths must be >= 0, got lower " + formatFloat(l.lower));
+    return fail(who, std::string(field) + ": lengths must be >= 0, got lower " + formatFloat(l.lower));
+  return true;
 }
 
-void checkMotor(const JointMotor& m, const std::string& who) {
-  if (!isFinite(m.speed)) fail(who, "motor.speed must be finite, got " + formatFloat(m.speed));
+bool checkMotor(const JointMotor& m, const std::string& who) {
+  if (!isFinite(m.speed)) return fail(who, "motor.speed must be finite, got " + formatFloat(m.speed));
   if (!isFinite(m.maxForce) || m.maxForce < 0.0f)
-    fail(who, "motor.maxForce must be finite and >= 0, got " + formatFloat(m.maxForce));
+    return fail(who, "motor.maxForce must be finite and >= 0, got " + formatFloat(m.maxForce));
+  return true;
 }
 
-void checkSpring(const JointSpring& s, const std::string& who) {
+bool checkSpring(const JointSpring& s, const std::string& who) {
   if (!isFinite(s.hertz) || s.hertz < 0.0f)
-    fail(who, "spring.hertz must be finite and >= 0, got " + formatFloat(s.hertz));
+    return fail(who, "spring.hertz must be finite and >= 0, got " + formatFloat(s.hertz));
   if (!isFinite(s.dampingRatio) || s.dampingRatio < 0.0f)
-    fail(who, "spring.dampingRatio must be finite and >= 0, got " + formatFloat(s.dampingRatio));
-  if (!isFinite(s.target)) fail(who, "spring.target must be finite, got " + formatFloat(s.target));
+    return fail(who, "spring.dampingRatio must be finite and >= 0, got " + formatFloat(s.dampingRatio));
+  if (!isFinite(s.target)) return fail(who, "spring.target must be finite, got " + formatFloat(s.target));
+  return true;
 }
 
-void checkBreak(float value, const std::string& who, const char* field) {
+bool checkBreak(float value, const std::string& who, const char* field) {
   if (!(value > 0.0f))
-    fail(who, std::string(field) + " must be > 0 (kUnbreakable for none), got " + formatFloat(value));
+    return fail(who, std::string(field) + " must be > 0 (kUnbreakable for none), got " + formatFloat(value));
+  return true;
 }
 
-void checkFriction(float value, const std::string& who, const char* field) {
+bool checkFriction(float value, const std::string& who, const char* field) {
   if (!isFinite(value) || value < 0.0f)
-    fail(who, std::string(field) + " must be finite and >= 0, got " + formatFloat(value));
+    return fail(who, std::string(field) + " must be finite and >= 0, got " + formatFloat(value));
+  return true;
 }
 
-void checkSwing(float swing, const std::string& who) {
+bool checkSwing(float swing, const std::string& who) {
   if (!isFinite(swing) || swing < 0.0f || swing > kPi)
-    fail(who, "swingLimit must be within [0, pi], got " + formatFloat(swing));
+    return fail(who, "swingLimit must be within [0, pi], got " + formatFloat(swing));
+  return true;
 }
 
 // The rotation that takes x to the unit axis: the joint frame in the world at creation.
@@ -109,22 +121,23 @@ JointId World::Impl::addJoint(Joint joint) {
   return {index, joints[index].generation};
 }
 
-void World::Impl::requireJointBodies(BodyId a, BodyId b, const std::string& who) const {
-  if (!isLive(a)) fail(who, "a: invalid or stale body id (index " + std::to_string(a.index) + ")");
-  if (!isLive(b)) fail(who, "b: invalid or stale body id (index " + std::to_string(b.index) + ")");
-  if (a == b) fail(who, "a and b are the same body (index " + std::to_string(a.index) + ")");
+bool World::Impl::requireJointBodies(BodyId a, BodyId b, const std::string& who) const {
+  if (!isLive(a)) return fail(who, "a: invalid or stale body id (index " + std::to_string(a.index) + ")");
+  if (!isLive(b)) return fail(who, "b: invalid or stale body id (index " + std::to_string(b.index) + ")");
+  if (a == b) return fail(who, "a and b are the same body (index " + std::to_string(a.index) + ")");
   const BodyRecord& ra = bodies.records[a.index];
   const BodyRecord& rb = bodies.records[b.index];
   if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) {
-    fail(who, "a and b: at least one body must be dynamic, got " + std::string(toString(ra.type)) + " and " +
-                  std::string(toString(rb.type)));
+    return fail(who, "a and b: at least one body must be dynamic, got " + std::string(toString(ra.type)) +
+                         " and " + std::string(toString(rb.type)));
   }
+  return true;
 }
 
 Joint World::Impl::jointAt(BodyId a, BodyId b, const Vec3& anchor, const std::optional<Vec3>& axis,
                            JointType type, bool turns) const {
   const std::string who = std::string(toString(type)) + " joint";
-  requireJointBodies(a, b, who);
+  if (!requireJointBodies(a, b, who)) return {};
   if (!isFinite(anchor)) fail(who, "anchor must be finite, got " + formatVec(anchor));
   const Quat frame = axis ? frameOfAxis(checkedAxis(*axis, who)) : Quat(1.0f, 0.0f, 0.0f, 0.0f);
   Joint joint;
@@ -156,7 +169,8 @@ Joint World::Impl::jointAt(BodyId a, BodyId b, const Vec3& anchor, const std::op
 JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
   Impl& w = *impl_;
   const std::string who = "distance constraint";
-  w.requireJointBodies(def.a, def.b, who);
+  const detail::ErrorScope scope;
+  if (!w.requireJointBodies(def.a, def.b, who)) return {};
   const BodyRecord& ra = w.bodies.records[def.a.index];
   const BodyRecord& rb = w.bodies.records[def.b.index];
   const auto localAnchor = [&](const std::optional<Vec3>& anchor, const BodyRecord& r, const char* field) {
@@ -198,11 +212,13 @@ JointId World::createDistanceConstraint(const DistanceConstraintDef& def) {
   joint.breakForce = def.breakForce;
   joint.collideConnected = def.collideConnected;
   if (glm::length(d) > 1e-6f) joint.axis = d / glm::length(d);
+  COLLIDE_RETURN_IF_FAILED(JointId{});
   return w.addJoint(joint);
 }
 
 JointId World::createBallJoint(const BallJointDef& def) {
   Impl& w = *impl_;
+  const detail::ErrorScope scope;
   Joint joint = w.jointAt(def.a, def.b, def.anchor, std::nullopt, JointType::Ball, false);
   checkSoftness(def.softness, "ball joint", "softness");
   checkBreak(def.breakForce, "ball joint", "breakForce");
@@ -211,6 +227,7 @@ JointId World::createBallJoint(const BallJointDef& def) {
   joint.friction = def.frictionTorque;
   joint.breakForce = def.breakForce;
   joint.collideConnected = def.collideConnected;
+  COLLIDE_RETURN_IF_FAILED(JointId{});
   return w.addJoint(joint);
 }
 
@@ -218,6 +235,7 @@ JointId World::createBallJoint(const BallJointDef& def) {
 template <typename Def>
 JointId World::Impl::addAxialJoint(const Def& def, JointType type) {
   const std::string who = std::string(toString(type)) + " joint";
+  const detail::ErrorScope scope;
   Joint joint = jointAt(def.a, def.b, def.anchor, def.axis, type, true);
   checkLimits(def.limits, type == JointType::Hinge ? Coordinate::Angle : Coordinate::Offset, who, "limits");
   checkMotor(def.motor, who);
@@ -239,6 +257,7 @@ JointId World::Impl::addAxialJoint(const Def& def, JointType type) {
   joint.breakForce = def.breakForce;
   joint.breakTorque = def.breakTorque;
   joint.collideConnected = def.collideConnected;
+  COLLIDE_RETURN_IF_FAILED(JointId{});
   return addJoint(joint);
 }
 
@@ -252,7 +271,11 @@ JointId World::createSliderJoint(const SliderJointDef& def) {
 JointId World::createFixedJoint(const FixedJointDef& def) {
   Impl& w = *impl_;
   const std::string who = "fixed joint";
-  if (!w.isLive(def.b)) w.requireJointBodies(def.a, def.b, who);
+  const detail::ErrorScope scope;
+  if (!w.isLive(def.b)) {
+    w.requireJointBodies(def.a, def.b, who);
+    return {};
+  }
   const Vec3 anchor = def.anchor ? *def.anchor : w.bodies.states[def.b.index].centerOfMass;
   Joint joint = w.jointAt(def.a, def.b, anchor, std::nullopt, JointType::Fixed, true);
   checkSoftness(def.linearSoftness, who, "linearSoftness");
@@ -264,12 +287,14 @@ JointId World::createFixedJoint(const FixedJointDef& def) {
   joint.breakForce = def.breakForce;
   joint.breakTorque = def.breakTorque;
   joint.collideConnected = def.collideConnected;
+  COLLIDE_RETURN_IF_FAILED(JointId{});
   return w.addJoint(joint);
 }
 
 JointId World::createConeJoint(const ConeJointDef& def) {
   Impl& w = *impl_;
   const std::string who = "cone joint";
+  const detail::ErrorScope scope;
   Joint joint = w.jointAt(def.a, def.b, def.anchor, def.axis, JointType::Cone, true);
   checkSwing(def.swingLimit, who);
   checkLimits(def.twistLimits, Coordinate::Angle, who, "twistLimits");
@@ -284,12 +309,14 @@ JointId World::createConeJoint(const ConeJointDef& def) {
   joint.breakForce = def.breakForce;
   joint.breakTorque = def.breakTorque;
   joint.collideConnected = def.collideConnected;
+  COLLIDE_RETURN_IF_FAILED(JointId{});
   return w.addJoint(joint);
 }
 
 void World::destroyConstraint(JointId id) {
   Impl& w = *impl_;
   const std::uint32_t index = w.resolve(id, "destroyConstraint");
+  if (index == Impl::kBadSlot) return;
   detail::wakeIsland(w.bodies, w.joints[index].bodyA);
   detail::wakeIsland(w.bodies, w.joints[index].bodyB);
   w.freeJoint(index);
@@ -300,39 +327,39 @@ bool World::isValid(JointId id) const {
          impl_->joints[id.index].generation == id.generation;
 }
 std::size_t World::constraintCount() const { return impl_->jointCount; }
-JointType World::jointType(JointId id) const { return impl_->joints[impl_->resolve(id, "jointType")].type; }
+JointType World::jointType(JointId id) const { return impl_->jointOf(id, "jointType").type; }
 BodyId World::jointBodyA(JointId id) const {
-  return impl_->bodies.idOf(impl_->joints[impl_->resolve(id, "jointBodyA")].bodyA);
+  return impl_->bodies.idOf(impl_->jointOf(id, "jointBodyA").bodyA);
 }
 BodyId World::jointBodyB(JointId id) const {
-  return impl_->bodies.idOf(impl_->joints[impl_->resolve(id, "jointBodyB")].bodyB);
+  return impl_->bodies.idOf(impl_->jointOf(id, "jointBodyB").bodyB);
 }
 
 float World::constraintLength(JointId id) const {
-  const Joint& j = impl_->joints[impl_->resolve(id, "constraintLength")];
+  const Joint& j = impl_->jointOf(id, "constraintLength");
   return j.type == JointType::Distance ? j.length : 0.0f;
 }
 float World::constraintCurrentLength(JointId id) const {
-  const Joint& j = impl_->joints[impl_->resolve(id, "constraintCurrentLength")];
+  const Joint& j = impl_->jointOf(id, "constraintCurrentLength");
   return glm::length(impl_->anchorWorld(j.bodyB, j.localAnchorB) -
                      impl_->anchorWorld(j.bodyA, j.localAnchorA));
 }
 
 Vec3 World::jointAnchorA(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->joints[impl_->resolve(id, "jointAnchorA")]).anchorA;
+  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointAnchorA")).anchorA;
 }
 Vec3 World::jointAnchorB(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->joints[impl_->resolve(id, "jointAnchorB")]).anchorB;
+  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointAnchorB")).anchorB;
 }
 Vec3 World::jointAxis(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->joints[impl_->resolve(id, "jointAxis")]).axisA;
+  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointAxis")).axisA;
 }
 float World::jointPosition(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->joints[impl_->resolve(id, "jointPosition")]).position;
+  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointPosition")).position;
 }
 
 float World::jointSpeed(JointId id) const {
-  const Joint& j = impl_->joints[impl_->resolve(id, "jointSpeed")];
+  const Joint& j = impl_->jointOf(id, "jointSpeed");
   const detail::JointPose pose = detail::jointPose(impl_->bodies, j);
   const BodyState& a = impl_->bodies.states[j.bodyA];
   const BodyState& b = impl_->bodies.states[j.bodyB];
@@ -364,24 +391,27 @@ float World::jointSpeed(JointId id) const {
 }
 
 float World::jointForce(JointId id) const {
-  const Joint& j = impl_->joints[impl_->resolve(id, "jointForce")];
+  const Joint& j = impl_->jointOf(id, "jointForce");
   return impl_->lastSubstep > 0.0f ? detail::jointLoad(j, impl_->lastSubstep).force : 0.0f;
 }
 float World::jointTorque(JointId id) const {
-  const Joint& j = impl_->joints[impl_->resolve(id, "jointTorque")];
+  const Joint& j = impl_->jointOf(id, "jointTorque");
   return impl_->lastSubstep > 0.0f ? detail::jointLoad(j, impl_->lastSubstep).torque : 0.0f;
 }
 float World::jointMotorForce(JointId id) const {
-  const Joint& j = impl_->joints[impl_->resolve(id, "jointMotorForce")];
+  const Joint& j = impl_->jointOf(id, "jointMotorForce");
   return impl_->lastSubstep > 0.0f ? j.motorImpulse / impl_->lastSubstep : 0.0f;
 }
 
-Joint& World::Impl::jointFor(JointId id, const char* operation, std::initializer_list<JointType> types) {
-  Joint& j = joints[resolve(id, operation)];
+Joint* World::Impl::jointFor(JointId id, const char* operation, std::initializer_list<JointType> types) {
+  const std::uint32_t index = resolve(id, operation);
+  if (index == kBadSlot) return nullptr;
+  Joint& j = joints[index];
   for (JointType t : types) {
-    if (j.type == t) return j;
+    if (j.type == t) return &j;
   }
   fail(std::string("world: ") + operation, "does not apply to a " + std::string(toString(j.type)) + " joint");
+  return nullptr;
 }
 
 void World::Impl::wakeJoint(const Joint& joint) {
@@ -397,110 +427,122 @@ constexpr std::initializer_list<JointType> kFrictionTypes = {JointType::Ball, Jo
                                                              JointType::Hinge, JointType::Slider};
 }  // namespace
 
-JointLimits World::jointLimits(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointLimits")].limits;
-}
+JointLimits World::jointLimits(JointId id) const { return impl_->jointOf(id, "jointLimits").limits; }
 void World::setJointLimits(JointId id, const JointLimits& limits) {
-  Joint& j = impl_->jointFor(id, "setJointLimits",
-                             {JointType::Distance, JointType::Hinge, JointType::Slider, JointType::Cone});
+  Joint* const found = impl_->jointFor(
+      id, "setJointLimits", {JointType::Distance, JointType::Hinge, JointType::Slider, JointType::Cone});
+  if (!found) return;
+  Joint& j = *found;
   const Coordinate coordinate = j.type == JointType::Slider     ? Coordinate::Offset
                                 : j.type == JointType::Distance ? Coordinate::Length
                                                                 : Coordinate::Angle;
-  checkLimits(limits, coordinate, "world: setJointLimits", "limits");
+  if (!checkLimits(limits, coordinate, "world: setJointLimits", "limits")) return;
   if (!limits.enabled) j.lowerImpulse = j.upperImpulse = 0.0f;
   j.limits = limits;
   impl_->wakeJoint(j);
 }
 
-JointMotor World::jointMotor(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointMotor")].motor;
-}
+JointMotor World::jointMotor(JointId id) const { return impl_->jointOf(id, "jointMotor").motor; }
 void World::setJointMotor(JointId id, const JointMotor& motor) {
-  Joint& j = impl_->jointFor(id, "setJointMotor", {JointType::Hinge, JointType::Slider});
-  checkMotor(motor, "world: setJointMotor");
+  Joint* const found = impl_->jointFor(id, "setJointMotor", {JointType::Hinge, JointType::Slider});
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkMotor(motor, "world: setJointMotor")) return;
   if (!motor.enabled) j.motorImpulse = 0.0f;
   j.motor = motor;
   impl_->wakeJoint(j);
 }
 
-JointSpring World::jointSpring(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointSpring")].spring;
-}
+JointSpring World::jointSpring(JointId id) const { return impl_->jointOf(id, "jointSpring").spring; }
 void World::setJointSpring(JointId id, const JointSpring& spring) {
-  Joint& j =
+  Joint* const found =
       impl_->jointFor(id, "setJointSpring", {JointType::Distance, JointType::Hinge, JointType::Slider});
-  checkSpring(spring, "world: setJointSpring");
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkSpring(spring, "world: setJointSpring")) return;
   if (j.type == JointType::Distance && spring.enabled && j.compliance > 0.0f)
-    fail("world: setJointSpring", "the distance constraint has a compliance spring already");
+    return static_cast<void>(
+        fail("world: setJointSpring", "the distance constraint has a compliance spring already"));
   if (!spring.enabled) j.springImpulse = 0.0f;
   j.spring = spring;
   impl_->wakeJoint(j);
 }
 
-JointSoftness World::jointSoftness(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointSoftness")].softness;
-}
+JointSoftness World::jointSoftness(JointId id) const { return impl_->jointOf(id, "jointSoftness").softness; }
 void World::setJointSoftness(JointId id, const JointSoftness& softness) {
-  Joint& j = impl_->jointFor(id, "setJointSoftness", kAllTypes);
-  checkSoftness(softness, "world: setJointSoftness", "softness");
+  Joint* const found = impl_->jointFor(id, "setJointSoftness", kAllTypes);
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkSoftness(softness, "world: setJointSoftness", "softness")) return;
   j.softness = softness;
   impl_->wakeJoint(j);
 }
 JointSoftness World::jointAngularSoftness(JointId id) const {
-  return impl_->jointFor(id, "jointAngularSoftness", {JointType::Fixed}).angularSoftness;
+  const Joint* j = impl_->jointFor(id, "jointAngularSoftness", {JointType::Fixed});
+  return j ? j->angularSoftness : decltype(j->angularSoftness){};
 }
 void World::setJointAngularSoftness(JointId id, const JointSoftness& softness) {
-  Joint& j = impl_->jointFor(id, "setJointAngularSoftness", {JointType::Fixed});
-  checkSoftness(softness, "world: setJointAngularSoftness", "softness");
+  Joint* const found = impl_->jointFor(id, "setJointAngularSoftness", {JointType::Fixed});
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkSoftness(softness, "world: setJointAngularSoftness", "softness")) return;
   j.angularSoftness = softness;
   impl_->wakeJoint(j);
 }
 
 float World::coneSwingLimit(JointId id) const {
-  return impl_->jointFor(id, "coneSwingLimit", {JointType::Cone}).swingLimit;
+  const Joint* j = impl_->jointFor(id, "coneSwingLimit", {JointType::Cone});
+  return j ? j->swingLimit : decltype(j->swingLimit){};
 }
 void World::setConeSwingLimit(JointId id, float swingLimit) {
-  Joint& j = impl_->jointFor(id, "setConeSwingLimit", {JointType::Cone});
-  checkSwing(swingLimit, "world: setConeSwingLimit");
+  Joint* const found = impl_->jointFor(id, "setConeSwingLimit", {JointType::Cone});
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkSwing(swingLimit, "world: setConeSwingLimit")) return;
   j.swingLimit = swingLimit;
   impl_->wakeJoint(j);
 }
 
-float World::jointBreakForce(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointBreakForce")].breakForce;
-}
+float World::jointBreakForce(JointId id) const { return impl_->jointOf(id, "jointBreakForce").breakForce; }
 void World::setJointBreakForce(JointId id, float force) {
-  Joint& j = impl_->jointFor(id, "setJointBreakForce", kAllTypes);
-  checkBreak(force, "world: setJointBreakForce", "force");
+  Joint* const found = impl_->jointFor(id, "setJointBreakForce", kAllTypes);
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkBreak(force, "world: setJointBreakForce", "force")) return;
   j.breakForce = force;
 }
-float World::jointBreakTorque(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointBreakTorque")].breakTorque;
-}
+float World::jointBreakTorque(JointId id) const { return impl_->jointOf(id, "jointBreakTorque").breakTorque; }
 void World::setJointBreakTorque(JointId id, float torque) {
   // A distance or ball joint carries no torque.
-  Joint& j = impl_->jointFor(id, "setJointBreakTorque",
-                             {JointType::Hinge, JointType::Slider, JointType::Fixed, JointType::Cone});
-  checkBreak(torque, "world: setJointBreakTorque", "torque");
+  Joint* const found = impl_->jointFor(
+      id, "setJointBreakTorque", {JointType::Hinge, JointType::Slider, JointType::Fixed, JointType::Cone});
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkBreak(torque, "world: setJointBreakTorque", "torque")) return;
   j.breakTorque = torque;
 }
 
 float World::jointFriction(JointId id) const {
-  return impl_->jointFor(id, "jointFriction", kFrictionTypes).friction;
+  const Joint* j = impl_->jointFor(id, "jointFriction", kFrictionTypes);
+  return j ? j->friction : decltype(j->friction){};
 }
 void World::setJointFriction(JointId id, float friction) {
-  Joint& j = impl_->jointFor(id, "setJointFriction", kFrictionTypes);
-  checkFriction(friction, "world: setJointFriction", "friction");
+  Joint* const found = impl_->jointFor(id, "setJointFriction", kFrictionTypes);
+  if (!found) return;
+  Joint& j = *found;
+  if (!checkFriction(friction, "world: setJointFriction", "friction")) return;
   j.friction = friction;
   impl_->wakeJoint(j);
 }
 
 bool World::jointCollideConnected(JointId id) const {
-  return impl_->joints[impl_->resolve(id, "jointCollideConnected")].collideConnected;
+  return impl_->jointOf(id, "jointCollideConnected").collideConnected;
 }
 void World::setJointCollideConnected(JointId id, bool collide) {
   Impl& w = *impl_;
-  Joint& j = w.joints[w.resolve(id, "setJointCollideConnected")];
+  const std::uint32_t index = w.resolve(id, "setJointCollideConnected");
+  if (index == Impl::kBadSlot) return;
+  Joint& j = w.joints[index];
   if (j.collideConnected == collide) return;
   const std::uint64_t key = detail::bodyPairKey(j.bodyA, j.bodyB);
   if (collide) {

@@ -1,5 +1,6 @@
 // The world's API for the parts of a body (docs/parts.md): reading them, changing a part's material
 // and filter, adding and removing parts at run time.
+#include "base/fail.h"
 #include "world_impl.h"
 
 #include "base/format.h"
@@ -21,25 +22,36 @@ using detail::PartRecord;
 
 namespace {
 
-std::uint32_t checkPart(const BodyRecord& r, std::uint32_t part, const char* operation) {
+bool partInRange(const BodyRecord& r, std::uint32_t part, const char* operation) {
   const std::uint32_t count = detail::partCount(r);
   if (part >= count) {
-    throw Error(std::string("world: ") + operation + ": part " + std::to_string(part) +
-                " out of range (the body has " + std::to_string(count) + (count == 1 ? " part)" : " parts)"));
+    COLLIDE_FAIL(std::string("world: ") + operation + ": part " + std::to_string(part) +
+                     " out of range (the body has " + std::to_string(count) +
+                     (count == 1 ? " part)" : " parts)"),
+                 false);
   }
-  return part;
+  return true;
 }
 
-void checkMaterial(const BodyMaterial& material, const char* operation) {
+// The part a getter reads: `part`, or after an Error without exceptions part 0, which every body has.
+std::uint32_t checkPart(const BodyRecord& r, std::uint32_t part, const char* operation) {
+  return partInRange(r, part, operation) ? part : 0;
+}
+
+bool validMaterial(const BodyMaterial& material, const char* operation) {
   const std::string where = std::string("world: ") + operation + ": ";
   if (!isFinite(material.friction) || material.friction < 0.0f)
-    throw Error(where + "friction must be finite and >= 0, got " + detail::formatFloat(material.friction));
+    COLLIDE_FAIL(where + "friction must be finite and >= 0, got " + detail::formatFloat(material.friction),
+                 false);
   if (!isFinite(material.bounciness) || material.bounciness < 0.0f || material.bounciness > 1.0f)
-    throw Error(where + "bounciness must be in [0, 1], got " + detail::formatFloat(material.bounciness));
+    COLLIDE_FAIL(where + "bounciness must be in [0, 1], got " + detail::formatFloat(material.bounciness),
+                 false);
   if (!isFinite(material.rollingResistance) || material.rollingResistance < 0.0f) {
-    throw Error(where + "rollingResistance must be finite and >= 0, got " +
-                detail::formatFloat(material.rollingResistance));
+    COLLIDE_FAIL(where + "rollingResistance must be finite and >= 0, got " +
+                     detail::formatFloat(material.rollingResistance),
+                 false);
   }
+  return true;
 }
 
 // The record's summaries of its parts (BodyRecord::parts) after a part's material or filter changed.
@@ -58,40 +70,40 @@ void summariseParts(BodyRecord& r) {
 }  // namespace
 
 std::uint32_t World::partCount(BodyId id) const {
-  return detail::partCount(impl_->bodies.records[impl_->resolve(id, "partCount")]);
+  return detail::partCount(impl_->recordOf(id, "partCount"));
 }
 
 const Shape& World::partShape(BodyId id, std::uint32_t part) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partShape")];
+  const BodyRecord& r = impl_->recordOf(id, "partShape");
   return detail::partShape(r, checkPart(r, part, "partShape"));
 }
 
 Transform World::partLocalPose(BodyId id, std::uint32_t part) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partLocalPose")];
+  const BodyRecord& r = impl_->recordOf(id, "partLocalPose");
   return detail::partLocalPose(r, checkPart(r, part, "partLocalPose"));
 }
 
 bool World::partIsSensor(BodyId id, std::uint32_t part) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partIsSensor")];
+  const BodyRecord& r = impl_->recordOf(id, "partIsSensor");
   return detail::partIsSensor(r, checkPart(r, part, "partIsSensor"));
 }
 
 std::uint64_t World::partUserData(BodyId id, std::uint32_t part) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partUserData")];
+  const BodyRecord& r = impl_->recordOf(id, "partUserData");
   return detail::partUserData(r, checkPart(r, part, "partUserData"));
 }
 
 BodyMaterial World::partMaterial(BodyId id, std::uint32_t part) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partMaterial")];
+  const BodyRecord& r = impl_->recordOf(id, "partMaterial");
   return detail::partMaterial(r, checkPart(r, part, "partMaterial"));
 }
 
 void World::setPartMaterial(BodyId id, std::uint32_t part, const BodyMaterial& material) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setPartMaterial");
+  if (i == Impl::kBadSlot) return;
   BodyRecord& r = w.bodies.records[i];
-  checkPart(r, part, "setPartMaterial");
-  checkMaterial(material, "setPartMaterial");
+  if (!partInRange(r, part, "setPartMaterial") || !validMaterial(material, "setPartMaterial")) return;
   if (!detail::hasParts(r)) {
     setMaterial(id, material);
     return;
@@ -104,7 +116,7 @@ void World::setPartMaterial(BodyId id, std::uint32_t part, const BodyMaterial& m
 }
 
 CollisionFilter World::partFilter(BodyId id, std::uint32_t part) const {
-  const BodyRecord& r = impl_->bodies.records[impl_->resolve(id, "partFilter")];
+  const BodyRecord& r = impl_->recordOf(id, "partFilter");
   const detail::PartFilter f = detail::partFilter(r, checkPart(r, part, "partFilter"));
   return {f.layer, f.mask, f.group};
 }
@@ -112,8 +124,9 @@ CollisionFilter World::partFilter(BodyId id, std::uint32_t part) const {
 void World::setPartFilter(BodyId id, std::uint32_t part, const CollisionFilter& filter) {
   Impl& w = *impl_;
   const std::uint32_t i = w.resolve(id, "setPartFilter");
+  if (i == Impl::kBadSlot) return;
   BodyRecord& r = w.bodies.records[i];
-  checkPart(r, part, "setPartFilter");
+  if (!partInRange(r, part, "setPartFilter")) return;
   if (!detail::hasParts(r)) {
     setCollisionFilter(id, filter.layer, filter.mask, filter.group);
     return;
@@ -132,7 +145,8 @@ void World::Impl::replaceParts(std::uint32_t index, Array<Compound::Child> child
   BodyState& s = bodies.states[index];
   const Vec3 oldLocalCenter = r.localCenterOfMass;
   BodyRecord before = r;
-  detail::setBodyParts(r, s, std::move(children), std::move(parts));  // throws before any change
+  detail::setBodyParts(r, s, std::move(children), std::move(parts));  // fails before any change
+  COLLIDE_RETURN_IF_FAILED();
   bodies.tally(before, -1);
   bodies.tally(r, +1);
   centerMoved(index, r.localCenterOfMass - oldLocalCenter);
@@ -142,12 +156,17 @@ void World::Impl::replaceParts(std::uint32_t index, Array<Compound::Child> child
 
 std::uint32_t World::addPart(BodyId id, const PartDef& part) {
   Impl& w = *impl_;
+  const detail::ErrorScope scope;
   const std::uint32_t i = w.resolve(id, "addPart");
+  if (i == Impl::kBadSlot) return kNoPart;
   const BodyRecord& r = w.bodies.records[i];
-  if (r.particle) throw Error("world: addPart: a particle is a point mass of one sphere and has no parts");
+  if (r.particle)
+    COLLIDE_FAIL("world: addPart: a particle is a point mass of one sphere and has no parts", kNoPart);
   if (r.shape.type() == ShapeType::Plane)
-    throw Error("world: addPart: a body of one plane cannot have parts; make the part a body of its own");
+    COLLIDE_FAIL("world: addPart: a body of one plane cannot have parts; make the part a body of its own",
+                 kNoPart);
   detail::validatePartDef(part, r.type, "world: addPart");
+  COLLIDE_RETURN_IF_FAILED(kNoPart);
   Array<Compound::Child> children;
   Array<PartRecord> parts;
   if (detail::hasParts(r)) {
@@ -163,30 +182,28 @@ std::uint32_t World::addPart(BodyId id, const PartDef& part) {
   children.push_back(detail::makePartChild(part));
   parts.push_back(detail::makePartRecord(part));
   const auto index = static_cast<std::uint32_t>(parts.size() - 1);
-  try {
-    w.replaceParts(i, std::move(children), std::move(parts));
-  } catch (const Error& e) {
-    throw Error(std::string("world: addPart: ") + e.what());
-  }
+  detail::withErrorContext("world: addPart: ",
+                           [&] { w.replaceParts(i, std::move(children), std::move(parts)); });
+  COLLIDE_RETURN_IF_FAILED(kNoPart);
   return index;
 }
 
 void World::removePart(BodyId id, std::uint32_t part) {
   Impl& w = *impl_;
+  const detail::ErrorScope scope;
   const std::uint32_t i = w.resolve(id, "removePart");
+  if (i == Impl::kBadSlot) return;
   const BodyRecord& r = w.bodies.records[i];
-  checkPart(r, part, "removePart");
-  if (detail::partCount(r) == 1) throw Error("world: removePart: a body keeps at least one part");
+  if (!partInRange(r, part, "removePart")) return;
+  if (detail::partCount(r) == 1) COLLIDE_FAIL("world: removePart: a body keeps at least one part");
   const auto current = r.shape.compound().children();
   Array<Compound::Child> children(current.begin(), current.end());
   Array<PartRecord> parts = r.parts;
   children.erase(children.begin() + part);
   parts.erase(parts.begin() + part);
-  try {
-    w.replaceParts(i, std::move(children), std::move(parts));
-  } catch (const Error& e) {
-    throw Error(std::string("world: removePart: ") + e.what());
-  }
+  detail::withErrorContext("world: removePart: ",
+                           [&] { w.replaceParts(i, std::move(children), std::move(parts)); });
+  COLLIDE_RETURN_IF_FAILED();
   // The removed part's contacts end (with the next step's events); the later parts' move down.
   const auto ofRemoved = [&](const Contact& c) {
     return (c.bodyA == i && c.partA == part) || (c.bodyB == i && c.partB == part);

@@ -12,6 +12,7 @@
 //
 // `layout` is a fingerprint of the fields this build writes: a snapshot of a build whose fields
 // differ is refused by name, not misread.
+#include "base/fail.h"
 #include "world_impl.h"
 
 #include "bodies/body_def.h"
@@ -47,8 +48,6 @@ std::uint64_t fnv1a(std::span<const std::uint8_t> bytes, std::uint64_t hash = 0x
   for (const std::uint8_t byte : bytes) hash = (hash ^ byte) * 0x100000001b3ull;
   return hash;
 }
-
-[[noreturn]] void refuse(const std::string& what) { throw Error("snapshot: " + what); }
 
 // ---- How many values each enum has: a byte read back must be one of them. ----
 template <typename E>
@@ -355,8 +354,42 @@ class Reader {
 
   // Where reading is, for the messages: "bodies", "contacts", ...
   void section(const char* name) { section_ = name; }
-  [[noreturn]] void fail(const std::string& what) const { refuse(std::string(section_) + ": " + what); }
+  // Refuses the snapshot: Error "snapshot: <section>: <what>". Without exceptions the first refusal
+  // is kept, the rest of the bytes are skipped (every later value reads as zero and every count as
+  // none), and the loader stops at the next failed() before it follows an index.
+#if COLLIDE_EXCEPTIONS
+  [[noreturn]] void fail(const std::string& what) {
+    throw Error("snapshot: " + std::string(section_) + ": " + what);
+  }
+#else
+  void fail(const std::string& what) {
+    if (failed_) return;
+    detail::raiseError("snapshot: " + std::string(section_) + ": " + what);
+    failed_ = true;
+    at_ = in_.size();
+  }
+#endif
+  bool failed() const { return failed_; }
   bool done() const { return at_ == in_.size(); }
+
+  // Runs f, an Error it raises refused as the section's: "snapshot: <section>: <its message>".
+  template <typename F>
+  void guard(F&& f) {
+#if COLLIDE_EXCEPTIONS
+    try {
+      f();
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+#else
+    if (failed_) return;
+    detail::withErrorContext("snapshot: " + std::string(section_) + ": ", f);
+    if (detail::errorPending()) {
+      failed_ = true;
+      at_ = in_.size();
+    }
+#endif
+  }
 
   template <typename... T>
   void operator()(T&... values) {
@@ -367,7 +400,7 @@ class Reader {
     std::uint8_t byte = 0;
     get(byte);
     if (byte > 1) fail("a flag holds " + std::to_string(byte) + ", not 0 or 1");
-    value = byte != 0;
+    value = byte == 1;
   }
   template <typename T>
   requires std::is_arithmetic_v<T>
@@ -378,9 +411,11 @@ class Reader {
     std::underlying_type_t<E> raw{};
     get(raw);
     static_assert(kEnumValues<E> > 0, "an enum without its count of values (kEnumValues)");
-    if (static_cast<std::uint64_t>(raw) >= kEnumValues<E>)
+    if (static_cast<std::uint64_t>(raw) >= kEnumValues<E>) {
       fail("value " + std::to_string(+raw) + " is not one of the " + std::to_string(kEnumValues<E>) +
            " values of its kind");
+      raw = 0;
+    }
     value = static_cast<E>(raw);
   }
   void get(Vec3& v) { (*this)(v.x, v.y, v.z); }
@@ -424,15 +459,21 @@ class Reader {
   std::size_t countOf(std::size_t bytesEach) {
     std::uint64_t count = 0;
     get(count);
-    if (count > (in_.size() - at_) / bytesEach)
+    if (count > (in_.size() - at_) / bytesEach) {
       fail("a count of " + std::to_string(count) + " is more than the " + std::to_string(in_.size() - at_) +
            " bytes left could hold");
+      return 0;
+    }
     return static_cast<std::size_t>(count);
   }
 
  private:
   void take(void* out, std::size_t bytes) {
-    if (in_.size() - at_ < bytes) fail("truncated: the payload ends inside it");
+    if (in_.size() - at_ < bytes) {
+      std::memset(out, 0, bytes);
+      fail("truncated: the payload ends inside it");
+      return;
+    }
     std::memcpy(out, in_.data() + at_, bytes);
     at_ += bytes;
   }
@@ -440,6 +481,7 @@ class Reader {
   std::span<const std::uint8_t> in_;
   std::size_t at_ = 0;
   const char* section_ = "header";
+  bool failed_ = false;
 };
 
 template <typename T>
@@ -565,7 +607,7 @@ std::vector<Shape> readShapeTable(Reader& r) {
   for (std::size_t i = 0; i < count; ++i) {
     ShapeType type{};
     r.get(type);
-    try {
+    const auto readShape = [&] {
       switch (type) {
         case ShapeType::Sphere: {
           Sphere sphere;
@@ -595,7 +637,7 @@ std::vector<Shape> readShapeTable(Reader& r) {
           std::int32_t k = 0;
           r(k);
           if (k != 6 && k != 14 && k != 18 && k != 26)
-            r.fail("shape " + std::to_string(i) + ": no " + std::to_string(k) + "-DOP");
+            return r.fail("shape " + std::to_string(i) + ": no " + std::to_string(k) + "-DOP");
           std::vector<float> slabMin(static_cast<std::size_t>(k / 2)),
               slabMax(static_cast<std::size_t>(k / 2));
           for (int axis = 0; axis < k / 2; ++axis) r(slabMin[axis], slabMax[axis]);
@@ -638,17 +680,33 @@ std::vector<Shape> readShapeTable(Reader& r) {
             Transform transform;
             r(child, transform);
             if (child >= shapes.size())
-              r.fail("shape " + std::to_string(i) + ": a child that comes after it");
+              return r.fail("shape " + std::to_string(i) + ": a child that comes after it");
             children.push_back({shapes[child], transform});
           }
           shapes.emplace_back(Compound::fromChildren(std::move(children)));
           break;
         }
       }
+    };
+    // A shape's own refusal (a radius, a hull) comes out as the snapshot's, naming the shape.
+#if COLLIDE_EXCEPTIONS
+    try {
+      readShape();
     } catch (const Error& e) {
       if (std::string_view(e.what()).starts_with("snapshot: ")) throw;
       r.fail("shape " + std::to_string(i) + ": " + e.what());
     }
+#else
+    if (!r.failed()) {
+      const detail::ErrorScope scope;
+      readShape();
+      if (detail::errorPending() && !r.failed()) {
+        detail::wrapPendingError("snapshot: shapes: shape " + std::to_string(i) + ": ", "");
+        r.fail("");  // stops the reading; the pending message is the shape's
+      }
+    }
+    if (r.failed()) return shapes;
+#endif
   }
   return shapes;
 }
@@ -709,11 +767,14 @@ struct SavedBodies {
   Array<std::uint32_t> freeSlots;
 };
 
-void checkBody(Reader& r, const Array<detail::BodyRecord>& records, std::uint32_t index,
+bool checkBody(Reader& r, const Array<detail::BodyRecord>& records, std::uint32_t index,
                std::uint32_t generation, const char* what) {
-  if (index >= records.size() || !records[index].alive || records[index].generation != generation)
+  if (index >= records.size() || !records[index].alive || records[index].generation != generation) {
     r.fail(std::string(what) + " refers to body " + std::to_string(index) +
            ", which the snapshot does not have alive");
+    return false;
+  }
+  return true;
 }
 
 // The contents as a whole: every index a stage follows is in range, so that no step can read outside
@@ -729,17 +790,17 @@ void checkWorld(Reader& r, const WorldImpl& w) {
     const std::string name = "body " + std::to_string(i);
     const detail::BodyState& state = w.bodies.states[i];
     // The pose every query and bound takes (isValid(Transform)); the rest without NaN.
-    if (hasNan(body) || hasNan(state)) r.fail(name + ": a value that is not a number");
+    if (hasNan(body) || hasNan(state)) return r.fail(name + ": a value that is not a number");
     if (!detail::hasValidPose(state) || !isFinite(state.centerOfMass0) || !isUnit(state.rotation0) ||
         !(std::isfinite(body.scale) && body.scale > 0.0f) || !isFinite(body.localCenterOfMass))
-      r.fail(name + ": a pose that is not a finite position with a unit rotation and a scale > 0");
+      return r.fail(name + ": a pose that is not a finite position with a unit rotation and a scale > 0");
     if (!isFinite(state.linearVelocity) || !isFinite(state.angularVelocity) || !(state.inverseMass >= 0.0f) ||
         !std::isfinite(state.inverseMass))
-      r.fail(name + ": a velocity or a mass that is not finite");
+      return r.fail(name + ": a velocity or a mass that is not finite");
     if ((body.boundsValid &&
          (!isBox(body.bounds) || !isFinite(body.boundsCenter) || !isUnit(body.boundsRotation))) ||
         !isFinite(body.validCenterOfMass) || !isUnit(body.validRotation))
-      r.fail(name + ": a kept box or pose that is not one");
+      return r.fail(name + ": a kept box or pose that is not one");
     // What the stages grow boxes and margins by, and the material: what no body has is refused.
     const auto nonNegative = [](float value) { return std::isfinite(value) && value >= 0.0f; };
     const auto material = [&](const BodyMaterial& m) {
@@ -754,50 +815,48 @@ void checkWorld(Reader& r, const WorldImpl& w) {
         !nonNegative(body.angularDamping) || !std::isfinite(body.gravityScale) ||
         !(std::isfinite(body.density) && body.density > 0.0f) || !materials ||
         !nonNegative(body.sleepTime == std::numeric_limits<float>::infinity() ? 0.0f : body.sleepTime))
-      r.fail(name + ": a radius, mass, damping, material or timer out of its range");
+      return r.fail(name + ": a radius, mass, damping, material or timer out of its range");
     if (!body.parts.empty() && (body.shape.type() != ShapeType::Compound ||
                                 body.shape.compound().children().size() != body.parts.size()))
-      r.fail(name + ": " + std::to_string(body.parts.size()) +
-             " parts but not a compound of as many children");
-    if (body.island >= records.size()) r.fail(name + ": its island's body is out of range");
+      return r.fail(name + ": " + std::to_string(body.parts.size()) +
+                    " parts but not a compound of as many children");
+    if (body.island >= records.size()) return r.fail(name + ": its island's body is out of range");
     // The shapes each body type may have, as createBody and setType hold them.
     if (body.type != BodyType::Static && body.shape.type() == ShapeType::Plane)
-      r.fail(name + ": a plane on a body that is not static");
-    if (body.particle && body.type != BodyType::Dynamic) r.fail(name + ": a particle that is not dynamic");
+      return r.fail(name + ": a plane on a body that is not static");
+    if (body.particle && body.type != BodyType::Dynamic)
+      return r.fail(name + ": a particle that is not dynamic");
     if (body.type == BodyType::Dynamic) {
       if (body.parts.empty() && !body.sensor && body.shape.type() == ShapeType::Mesh &&
           !body.shape.mesh().isClosed())
-        r.fail(name + ": a dynamic body of an open mesh");
+        return r.fail(name + ": a dynamic body of an open mesh");
       for (std::uint32_t k = 0; k < body.parts.size(); ++k) {
         if (detail::partShape(body, k).type() == ShapeType::Mesh)
-          r.fail(name + ": a dynamic body with a mesh part");
+          return r.fail(name + ": a dynamic body with a mesh part");
       }
     }
-    try {
-      detail::requireRepresentableBounds(body, state, name);
-    } catch (const Error& e) {
-      r.fail(e.what());
-    }
+    r.guard([&] { detail::requireRepresentableBounds(body, state, name); });
+    if (r.failed()) return;
     const bool inBroadPhase = body.enabled;
     if (inBroadPhase && (body.proxy.index >= proxies.size() || !proxies[body.proxy.index].alive ||
                          proxies[body.proxy.index].generation != body.proxy.generation ||
                          proxies[body.proxy.index].userValue != i))
-      r.fail(name + ": its broad-phase proxy is not the one the broad phase holds for it");
+      return r.fail(name + ": its broad-phase proxy is not the one the broad phase holds for it");
   }
   r.section("pairs");
   for (const ProxyPair& pair : w.pairs) {
     if (pair.a.index >= proxies.size() || pair.b.index >= proxies.size() || !proxies[pair.a.index].alive ||
         !proxies[pair.b.index].alive)
-      r.fail("a pair of proxies the broad phase does not hold");
+      return r.fail("a pair of proxies the broad phase does not hold");
   }
   // A manifold cache's directions and turn, as the narrow phase takes them: a separating axis is a
   // unit direction (a support query along it refuses a zero one), a kept pose has a unit rotation.
   const auto checkCache = [&](const detail::ManifoldCache& cache) {
     if (cache.hasAxis &&
         !(isFinite(cache.separatingAxis) && std::abs(glm::length(cache.separatingAxis) - 1.0f) < 1e-3f))
-      r.fail("a separating axis that is not a unit direction");
+      return r.fail("a separating axis that is not a unit direction");
     if (cache.valid && !(isFinite(cache.relativePosition) && isUnit(cache.relativeRotation)))
-      r.fail("a manifold cache whose pose is not finite with a unit rotation");
+      return r.fail("a manifold cache whose pose is not finite with a unit rotation");
   };
   const auto checkContacts = [&](const Array<detail::Contact>& contacts, const char* section) {
     r.section(section);
@@ -805,25 +864,29 @@ void checkWorld(Reader& r, const WorldImpl& w) {
     // input, and the step takes that (the fault guard freezes a body a NaN reaches). Its indices are.
     for (const detail::Contact& c : contacts) {
       checkCache(c.cache);
-      checkBody(r, records, c.bodyA, c.generationA, "a contact");
-      checkBody(r, records, c.bodyB, c.generationB, "a contact");
+      if (!checkBody(r, records, c.bodyA, c.generationA, "a contact") ||
+          !checkBody(r, records, c.bodyB, c.generationB, "a contact"))
+        return;
       const auto partCount = [&](std::uint32_t body) {
         return std::max<std::size_t>(1, records[body].parts.size());
       };
       if (c.partA >= partCount(c.bodyA) || c.partB >= partCount(c.bodyB))
-        r.fail("a contact of a part out of range");
+        return r.fail("a contact of a part out of range");
       if (c.manifold.count < 0 || c.manifold.count > Manifold::kMaxPoints)
-        r.fail("a manifold of " + std::to_string(c.manifold.count) + " points");
+        return r.fail("a manifold of " + std::to_string(c.manifold.count) + " points");
     }
   };
   checkContacts(w.contacts, "contacts");
+  if (r.failed()) return;
   checkContacts(w.previousContacts, "previous contacts");
+  if (r.failed()) return;
   for (const auto* apart : {&w.apartPairs, &w.previousApartPairs}) {
     r.section("pairs apart");
     for (const detail::ApartPair& p : *apart) {
       checkCache(p.cache);
-      checkBody(r, records, p.bodyA, p.generationA, "a pair apart");
-      checkBody(r, records, p.bodyB, p.generationB, "a pair apart");
+      if (!checkBody(r, records, p.bodyA, p.generationA, "a pair apart") ||
+          !checkBody(r, records, p.bodyB, p.generationB, "a pair apart"))
+        return;
     }
   }
   r.section("joints");
@@ -833,25 +896,25 @@ void checkWorld(Reader& r, const WorldImpl& w) {
     ++alive;
     if (!isFinite(joint.localAnchorA) || !isFinite(joint.localAnchorB) || !isUnit(joint.localFrameA) ||
         !isUnit(joint.localFrameB))
-      r.fail("a joint whose anchors or frames are not finite");
+      return r.fail("a joint whose anchors or frames are not finite");
     if (joint.bodyA >= records.size() || joint.bodyB >= records.size() || !records[joint.bodyA].alive ||
         !records[joint.bodyB].alive || joint.bodyA == joint.bodyB)
-      r.fail("a joint between bodies the snapshot does not have alive");
+      return r.fail("a joint between bodies the snapshot does not have alive");
   }
-  if (alive != w.jointCount) r.fail("the joint count does not match the joints alive");
+  if (alive != w.jointCount) return r.fail("the joint count does not match the joints alive");
   Array<std::uint8_t> free(w.joints.size(), 0);
   for (const std::uint32_t slot : w.freeJoints) {
     if (slot >= w.joints.size() || w.joints[slot].alive || free[slot])
-      r.fail("free joint slot " + std::to_string(slot) + " is out of range, alive or listed twice");
+      return r.fail("free joint slot " + std::to_string(slot) + " is out of range, alive or listed twice");
     free[slot] = 1;
   }
   r.section("events");
   for (const std::uint32_t contact : w.events.contactOfEvent) {
     if (contact != detail::StepEvents::kNoContact && contact >= w.contacts.size())
-      r.fail("an event of a contact out of range");
+      return r.fail("an event of a contact out of range");
   }
   if (w.events.contactOfEvent.size() != w.events.contacts.size())
-    r.fail("the contact events and their contacts differ in number");
+    return r.fail("the contact events and their contacts differ in number");
 }
 
 }  // namespace
@@ -891,8 +954,9 @@ std::vector<std::uint8_t> World::saveSnapshot() const {
 }
 
 void World::loadSnapshot(std::span<const std::uint8_t> snapshot) {
+  const detail::ErrorScope scope;
   if (snapshot.size() < kHeaderBytes || std::memcmp(snapshot.data(), kMagic, sizeof kMagic) != 0)
-    refuse("not a collide world snapshot (it does not begin with collide's mark)");
+    COLLIDE_FAIL("snapshot: not a collide world snapshot (it does not begin with collide's mark)");
   Reader header(snapshot.subspan(sizeof kMagic, kHeaderBytes - sizeof kMagic));
   std::uint32_t format = 0, library = 0;
   std::uint64_t layout = 0, payloadBytes = 0, checksum = 0;
@@ -901,16 +965,16 @@ void World::loadSnapshot(std::span<const std::uint8_t> snapshot) {
     return std::to_string(v >> 16) + "." + std::to_string((v >> 8) & 0xFF) + "." + std::to_string(v & 0xFF);
   };
   if (format != kFormatVersion)
-    refuse("format version " + std::to_string(format) + " (collide " + version(library) +
-           "); this build reads " + std::to_string(kFormatVersion));
+    COLLIDE_FAIL("snapshot: format version " + std::to_string(format) + " (collide " + version(library) +
+                 "); this build reads " + std::to_string(kFormatVersion));
   if (layout != layoutFingerprint())
-    refuse("written by collide " + version(library) + " with other fields than this build (" + kVersion +
-           ") has; a snapshot loads into the build that saved it");
+    COLLIDE_FAIL("snapshot: written by collide " + version(library) + " with other fields than this build (" +
+                 kVersion + ") has; a snapshot loads into the build that saved it");
   const std::span<const std::uint8_t> payload = snapshot.subspan(kHeaderBytes);
   if (payload.size() != payloadBytes)
-    refuse("truncated or padded: the header promises " + std::to_string(payloadBytes) +
-           " bytes of contents, there are " + std::to_string(payload.size()));
-  if (fnv1a(payload) != checksum) refuse("corrupt: its checksum does not match its contents");
+    COLLIDE_FAIL("snapshot: truncated or padded: the header promises " + std::to_string(payloadBytes) +
+                 " bytes of contents, there are " + std::to_string(payload.size()));
+  if (fnv1a(payload) != checksum) COLLIDE_FAIL("snapshot: corrupt: its checksum does not match its contents");
 
   Reader r(payload);
   auto fresh = std::make_unique<Impl>();
@@ -921,36 +985,35 @@ void World::loadSnapshot(std::span<const std::uint8_t> snapshot) {
   w.def.enqueueTask = impl_->def.enqueueTask;
   w.def.finishTask = impl_->def.finishTask;
   w.def.userTaskContext = impl_->def.userTaskContext;
-  try {
-    validateWorldDef(w.def);
-  } catch (const Error& e) {
-    r.fail(e.what());
-  }
+  r.guard([&] { validateWorldDef(w.def); });
+  if (r.failed()) return;
   const std::vector<Shape> shapes = readShapeTable(r);
+  if (r.failed()) return;
   r.section("bodies");
   std::vector<std::uint32_t> bodyShapes;
   SavedBodies bodies;
   r(bodyShapes, bodies.records, bodies.states, bodies.freeSlots);
   if (bodyShapes.size() != bodies.records.size()) r.fail("the bodies and their shapes differ in number");
+  if (r.failed()) return;
   for (std::size_t i = 0; i < bodyShapes.size(); ++i) {
-    if (bodyShapes[i] >= shapes.size()) r.fail("body " + std::to_string(i) + "'s shape is not in the table");
+    if (bodyShapes[i] >= shapes.size())
+      return r.fail("body " + std::to_string(i) + "'s shape is not in the table");
     bodies.records[i].shape = shapes[bodyShapes[i]];
   }
-  try {
+  r.guard([&] {
     w.bodies.restore(std::move(bodies.records), std::move(bodies.states), std::move(bodies.freeSlots));
-  } catch (const Error& e) {
-    r.fail(e.what());
-  }
+  });
+  if (r.failed()) return;
   r.section("broad phase");
   Array<BroadPhase::ProxyRecord> proxies;
   std::vector<std::uint32_t> freeProxies;
   r(proxies, freeProxies);
-  try {
+  r.guard([&] {
     w.broadPhase = createBroadPhase(w.def.broadPhase);
+    COLLIDE_RETURN_IF_FAILED();
     w.broadPhase->adoptProxies(proxies, freeProxies);
-  } catch (const Error& e) {
-    r.fail(e.what());
-  }
+  });
+  if (r.failed()) return;
   r.section("contacts");
   r(w.pairs, w.contacts, w.previousContacts, w.apartPairs, w.previousApartPairs);
   r.section("joints");
@@ -972,7 +1035,9 @@ void World::loadSnapshot(std::span<const std::uint8_t> snapshot) {
   r(w.lastStats, w.totalStats, touching, w.lastSubstep, w.callbackError);
   w.touchingCount = static_cast<std::size_t>(touching);
   if (!r.done()) r.fail("bytes left over after the last section");
+  if (r.failed()) return;
   checkWorld(r, w);
+  if (r.failed()) return;
 
   // Taken whole: this world's task system and callbacks, the snapshot's everything else.
   std::swap(w.tasks, impl_->tasks);

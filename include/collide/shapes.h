@@ -95,6 +95,8 @@ class ConvexHull {
   // coordinates, or points that are all (nearly) coplanar.
   static ConvexHull fromPoints(std::span<const Vec3> points);
 
+  // Without exceptions, what a failed fromPoints returns (collide/error.h).
+  bool isEmpty() const { return vertices_.empty(); }
   std::span<const Vec3> vertices() const { return vertices_; }
   std::span<const HalfEdge> halfEdges() const { return halfEdges_; }
   std::span<const Face> faces() const { return faces_; }
@@ -155,6 +157,8 @@ class Kdop {
   // The unit axes of a k-DOP: k/2 of them.
   static std::span<const Vec3> axes(int k);
 
+  // Without exceptions, what a failed fromPoints or fromSlabs returns (collide/error.h).
+  bool isEmpty() const { return !polytope_; }
   int k() const { return k_; }
   int axisCount() const { return k_ / 2; }
   float slabMin(int axis) const { return min_[axis]; }
@@ -190,6 +194,8 @@ class TriangleMesh {
   // (nearly) zero area.
   static TriangleMesh fromTriangles(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles);
 
+  // Without exceptions, what a failed fromTriangles returns (collide/error.h).
+  bool isEmpty() const { return triangles_.empty(); }
   std::span<const Vec3> vertices() const { return vertices_; }
   std::span<const MeshTriangle> triangles() const { return triangles_; }
   std::span<const BvhNode> bvh() const { return nodes_; }
@@ -247,6 +253,8 @@ class Compound {
   static Compound fromChildren(std::vector<Child> children);
 
   std::span<const Child> children() const;
+  // Without exceptions, what a failed fromChildren returns (collide/error.h).
+  bool isEmpty() const { return children_.empty(); }
   Aabb bounds() const { return bounds_; }
 
  private:
@@ -256,9 +264,13 @@ class Compound {
 
 // ---- Shape: one proxy of any type. A small value; polyhedra are shared, immutable. ----
 
+namespace detail {
+bool validateShape(const Shape& shape);
+}  // namespace detail
+
 class Shape {
  public:
-  // Each constructor validates and throws Error naming the bad field.
+  // Each constructor validates and reports Error naming the bad field (collide/error.h).
   Shape(const Sphere& sphere);
   Shape(const Capsule& capsule);
   Shape(const Plane& plane);
@@ -292,6 +304,7 @@ class Shape {
   decltype(auto) visit(F&& f) const;
 
  private:
+  friend bool detail::validateShape(const Shape& shape);
   // The alternatives' order is ShapeType's order.
   std::variant<Sphere, Capsule, Plane, Box, std::shared_ptr<const Kdop>, Ellipsoid, Cylinder,
                std::shared_ptr<const ConvexHull>, std::shared_ptr<const TriangleMesh>,

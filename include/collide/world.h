@@ -4,6 +4,10 @@
 //
 // Bodies are created from a BodyDef and named by a BodyId (slot index + generation, as Box2D v3),
 // so a stale id is reported with collide::Error instead of aliasing a new body.
+//
+// "Throws Error" below means: reports it (collide/error.h). A build with exceptions throws; one
+// without (COLLIDE_EXCEPTIONS=OFF) calls the error handler and returns a null id, a default value
+// or no hit, having changed nothing, as a thrown Error leaves things.
 #pragma once
 
 #include <collide/body.h>
@@ -179,7 +183,10 @@ class World {
  public:
   // Throws Error on invalid settings (substeps < 1, non-finite gravity, bad tuning) and on
   // settings not implemented yet.
+  // Without exceptions (collide/error.h) a refused definition is reported and the world takes the
+  // default one; create() returns null instead, the result to check.
   explicit World(const WorldDef& def = {});
+  static std::unique_ptr<World> create(const WorldDef& def = {});
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
@@ -285,7 +292,9 @@ class World {
   // of its constraints with the centre of mass, and wake it. Contacts of the removed part end
   // (their End events open the next step's events); other contacts go on. Not for a particle, nor a
   // body of one plane.
+  // Returns the new part's index, or without exceptions kNoPart after an Error.
   std::uint32_t addPart(BodyId id, const PartDef& part);
+  static constexpr std::uint32_t kNoPart = 0xFFFFFFFFu;
   void removePart(BodyId id, std::uint32_t part);
 
   // ---- Joints (collide/joints.h, docs/joints.md). Stale ids throw Error; destroying a body

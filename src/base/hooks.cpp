@@ -4,6 +4,7 @@
 #include <collide/hooks.h>
 
 #include "base/assert.h"
+#include "base/fail.h"
 #include "base/log.h"
 #include "base/profile.h"
 
@@ -54,11 +55,76 @@ std::atomic<void*> gLogContext{nullptr};
 
 ProfileHooks gProfileHooks;
 
+void defaultErrorHandler(const char* message, void*) {
+  std::fprintf(stderr, "collide: error: %s\n", message);
+}
+std::atomic<ErrorHandler> gErrorHandler{&defaultErrorHandler};
+std::atomic<void*> gErrorContext{nullptr};
+
+// The thread's error state: the last error handed over, and in a build without exceptions the
+// pending one of the call in progress (ErrorScope depth > 0).
+struct ThreadErrors {
+  std::string last;
+  std::string pending;
+  bool hasPending = false;
+  int depth = 0;
+};
+thread_local ThreadErrors tErrors;
+
+[[maybe_unused]] void deliverError(std::string message) {
+  tErrors.last = std::move(message);
+  gErrorHandler.load()(tErrors.last.c_str(), gErrorContext.load());
+}
+
 }  // namespace
+
+bool exceptionsEnabled() { return COLLIDE_EXCEPTIONS != 0; }
+
+void setErrorHandler(ErrorHandler handler, void* context) {
+  gErrorContext.store(context);
+  gErrorHandler.store(handler ? handler : &defaultErrorHandler);
+}
+
+const char* lastError() { return tErrors.last.c_str(); }
+void clearLastError() { tErrors.last.clear(); }
+
+#if !COLLIDE_EXCEPTIONS
+namespace detail {
+
+void raiseError(std::string message) {
+  if (tErrors.depth == 0) {
+    deliverError(std::move(message));
+    return;
+  }
+  if (tErrors.hasPending) return;  // the first failure of a call is its cause
+  tErrors.pending = std::move(message);
+  tErrors.hasPending = true;
+}
+
+bool errorPending() { return tErrors.hasPending; }
+
+void wrapPendingError(std::string_view prefix, std::string_view suffix) {
+  tErrors.pending.insert(0, prefix);
+  tErrors.pending += suffix;
+}
+
+ErrorScope::ErrorScope() {
+  if (tErrors.depth++ == 0) tErrors.hasPending = false;
+}
+
+ErrorScope::~ErrorScope() {
+  if (--tErrors.depth == 0 && tErrors.hasPending) {
+    tErrors.hasPending = false;
+    deliverError(std::move(tErrors.pending));
+  }
+}
+
+}  // namespace detail
+#endif
 
 void setAllocator(const Allocator& allocator) {
   if ((allocator.allocate == nullptr) != (allocator.free == nullptr))
-    throw Error("setAllocator: allocate and free must both be set, or both be null (the C++ heap)");
+    COLLIDE_FAIL("setAllocator: allocate and free must both be set, or both be null (the C++ heap)");
   if (allocator.allocate == nullptr) {
     gCurrent.store(&gAllocators[0]);
     return;
@@ -66,8 +132,8 @@ void setAllocator(const Allocator& allocator) {
   const std::lock_guard lock(gInstallMutex);
   const std::size_t count = gInstalled.load();
   if (count == kMaxAllocators) {
-    throw Error("setAllocator: " + std::to_string(kMaxAllocators - 1) +
-                " allocators were installed already, the most one process can have");
+    COLLIDE_FAIL("setAllocator: " + std::to_string(kMaxAllocators - 1) +
+                 " allocators were installed already, the most one process can have");
   }
   gAllocators[count] = allocator;
   gInstalled.store(count + 1);
@@ -79,11 +145,23 @@ std::size_t liveAllocatedBytes() { return gLiveBytes.load(); }
 
 namespace detail {
 
+// An allocator that has no memory left: std::bad_alloc where there are exceptions; without them the
+// engine's error handler hears of it, then the process aborts, as operator new does.
+[[noreturn]] void outOfMemory(std::size_t bytes) {
+#if COLLIDE_EXCEPTIONS
+  static_cast<void>(bytes);
+  throw std::bad_alloc();
+#else
+  deliverError("out of memory: the allocator returned null for " + std::to_string(bytes) + " bytes");
+  std::abort();
+#endif
+}
+
 void* allocateBytes(std::size_t bytes, std::size_t alignment) {
   const Allocator* allocator = gCurrent.load(std::memory_order_acquire);
   const std::size_t header = headerBytes(alignment);
   auto* raw = static_cast<unsigned char*>(allocator->allocate(header + bytes, header, allocator->context));
-  if (!raw) throw std::bad_alloc();
+  if (!raw) outOfMemory(header + bytes);
   unsigned char* block = raw + header;
   std::memcpy(block - sizeof(allocator), &allocator, sizeof(allocator));
   gLiveAllocations.fetch_add(1, std::memory_order_relaxed);

@@ -3,6 +3,7 @@
 
 #include <collide/error.h>
 
+#include "base/fail.h"
 #include "base/format.h"
 #include "bodies/body_parts.h"
 #include "shapes/shape_functions.h"
@@ -25,11 +26,12 @@ bool isFiniteMatrix(const Mat3& m) {
 }
 
 void validateParticle(const BodyDef& def, const std::string& who) {
-  const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
+  const auto fail = [&](const std::string& message) { raiseError(who + ": " + message); };
   if (def.type != BodyType::Dynamic)
-    fail("particle: a particle must be a dynamic body, got type " + std::string(toString(def.type)));
+    return fail("particle: a particle must be a dynamic body, got type " + std::string(toString(def.type)));
   if (def.shape.type() != ShapeType::Sphere) {
-    fail("particle: a particle's shape must be a sphere, got " + std::string(toString(def.shape.type())));
+    return fail("particle: a particle's shape must be a sphere, got " +
+                std::string(toString(def.shape.type())));
   }
   if (def.angularVelocity != Vec3(0.0f)) {
     fail("particle: a particle has no angular velocity, got angularVelocity " +
@@ -52,12 +54,10 @@ MassProperties partsMassProperties(const Compound& compound, const Array<PartRec
   for (std::size_t i = 0; i < parts.size(); ++i) {
     if (parts[i].density == 0.0f) continue;
     const Compound::Child& child = compound.children()[i];
-    MassProperties m;
-    try {
-      m = massProperties(child.shape, parts[i].density, scale);
-    } catch (const Error& e) {
-      throw Error("parts[" + std::to_string(i) + "]: shape: " + e.what());
-    }
+    const MassProperties m = withErrorContext("parts[" + std::to_string(i) + "]: shape: ", [&] {
+      return massProperties(child.shape, parts[i].density, scale);
+    });
+    COLLIDE_RETURN_IF_FAILED(total);
     const Mat3 rotation = glm::mat3_cast(child.transform.rotation);
     const Vec3 center = scale * child.transform.position + rotation * m.centerOfMass;
     placed.push_back({m.mass, center, rotation * m.inertia * glm::transpose(rotation)});
@@ -65,7 +65,7 @@ MassProperties partsMassProperties(const Compound& compound, const Array<PartRec
     total.volume += m.volume;
     weighted += m.mass * center;
   }
-  if (placed.empty()) throw Error("parts: a dynamic body needs a part with density > 0");
+  if (placed.empty()) COLLIDE_FAIL("parts: a dynamic body needs a part with density > 0", total);
   total.centerOfMass = weighted / total.mass;
   for (const Placed& p : placed)
     total.inertia += shiftInertia(p.inertia, p.mass, p.center - total.centerOfMass);
@@ -99,11 +99,11 @@ void initMass(const MassProperties& props, const std::optional<float>& givenMass
         isFinite(r.localCenterOfMass) && isFiniteMatrix(r.inverseInertiaLocal))) {
     const bool shapeFits = std::isfinite(props.mass) && props.mass > 0.0f && isFinite(props.centerOfMass);
     if (givenMass && shapeFits) {
-      throw Error("mass: mass properties not representable in float with mass " + formatFloat(*givenMass) +
-                  ": the mass is too large or too small for this shape at this scale");
+      COLLIDE_FAIL("mass: mass properties not representable in float with mass " + formatFloat(*givenMass) +
+                   ": the mass is too large or too small for this shape at this scale");
     }
-    throw Error("shape: mass properties not representable in float (mass " + formatFloat(r.mass) +
-                "): the shape is too large or too small at this scale");
+    COLLIDE_FAIL("shape: mass properties not representable in float (mass " + formatFloat(r.mass) +
+                 "): the shape is too large or too small at this scale");
   }
 }
 
@@ -123,19 +123,13 @@ void initShapeExtents(BodyRecord& r) {
 // What the shape's size gives the record: mass (dynamic bodies), radii and extent.
 void initShapeMeasures(const BodyDef& def, BodyRecord& r, BodyState& s) {
   if (def.type == BodyType::Dynamic) {
-    MassProperties props;
-    try {
-      props = massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale);
-    } catch (const Error& e) {
-      throw Error(std::string("shape: ") + e.what());
-    }
+    const MassProperties props = withErrorContext(
+        "shape: ", [&] { return massProperties(def.shape, def.mass ? 1.0f : def.density, def.scale); });
+    COLLIDE_RETURN_IF_FAILED();
     initMass(props, def.mass, def.particle, r, s);  // its errors name their field
+    COLLIDE_RETURN_IF_FAILED();
   }
-  try {
-    initShapeExtents(r);
-  } catch (const Error& e) {
-    throw Error(std::string("shape: ") + e.what());
-  }
+  withErrorContext("shape: ", [&] { initShapeExtents(r); });
 }
 
 void validateMaterial(const BodyMaterial& m, const std::function<void(const std::string&)>& fail) {
@@ -167,8 +161,12 @@ std::string bodyLabel(const BodyDef& def) {
 
 void validateBodyDef(const BodyDef& def) {
   const std::string who = bodyLabel(def);
-  const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
-  if (static_cast<int>(def.type) > static_cast<int>(BodyType::Dynamic)) fail("type: unknown body type");
+  const auto fail = [&](const std::string& message) { raiseError(who + ": " + message); };
+  if (static_cast<int>(def.type) > static_cast<int>(BodyType::Dynamic))
+    return fail("type: unknown body type");
+  // The shape first: a Shape made from a bad primitive without exceptions carries its bad value.
+  withErrorContext(who + ": shape: ", [&] { validateShape(def.shape); });
+  COLLIDE_RETURN_IF_FAILED();
   if (!isFinite(def.position)) fail("position must be finite, got " + formatVec(def.position));
   if (!isFinite(def.rotation) || std::abs(glm::length(def.rotation) - 1.0f) > 1e-3f) {
     fail("rotation must be a finite unit quaternion, got length " + formatFloat(glm::length(def.rotation)));
@@ -187,12 +185,13 @@ void validateBodyDef(const BodyDef& def) {
   if (!isFinite(def.angularDamping) || def.angularDamping < 0.0f)
     fail("angularDamping must be finite and >= 0, got " + formatFloat(def.angularDamping));
   if (!def.parts.empty()) {
-    if (def.particle) fail("parts: a particle is a point mass of one sphere and has no parts");
+    if (def.particle) return fail("parts: a particle is a point mass of one sphere and has no parts");
     if (def.type == BodyType::Dynamic && def.mass && (!isFinite(*def.mass) || *def.mass <= 0.0f))
       fail("mass must be finite and > 0, got " + formatFloat(*def.mass));
     bool anyMass = false;
     for (std::size_t i = 0; i < def.parts.size(); ++i) {
       validatePartDef(def.parts[i], def.type, who + ": parts[" + std::to_string(i) + "]");
+      COLLIDE_RETURN_IF_FAILED();
       anyMass = anyMass || def.parts[i].density > 0.0f;
     }
     if (def.type == BodyType::Dynamic && !anyMass)
@@ -200,11 +199,11 @@ void validateBodyDef(const BodyDef& def) {
     return;  // the single-part fields are not read
   }
   if (def.shape.type() == ShapeType::Plane && def.type != BodyType::Static) {
-    fail("shape: a plane is an infinite half-space and can only be on a static body");
+    return fail("shape: a plane is an infinite half-space and can only be on a static body");
   }
   if (def.type == BodyType::Dynamic && !def.sensor && def.shape.type() == ShapeType::Mesh &&
       !def.shape.mesh().isClosed()) {
-    fail("shape: an open triangle mesh has no mass; make the body static or kinematic");
+    return fail("shape: an open triangle mesh has no mass; make the body static or kinematic");
   }
   if (def.particle) validateParticle(def, who);
   if (def.type == BodyType::Dynamic) {
@@ -218,11 +217,13 @@ void validateBodyDef(const BodyDef& def) {
 }
 
 void validatePartDef(const PartDef& part, BodyType type, const std::string& who) {
-  const auto fail = [&](const std::string& message) { throw Error(who + ": " + message); };
+  const auto fail = [&](const std::string& message) { raiseError(who + ": " + message); };
+  withErrorContext(who + ": shape: ", [&] { validateShape(part.shape); });
+  COLLIDE_RETURN_IF_FAILED();
   if (part.shape.type() == ShapeType::Plane)
-    fail("shape: a plane is an infinite half-space and cannot be a part; make it a body of its own");
+    return fail("shape: a plane is an infinite half-space and cannot be a part; make it a body of its own");
   if (part.shape.type() == ShapeType::Mesh && type == BodyType::Dynamic)
-    fail("shape: a triangle mesh part is for static and kinematic bodies");
+    return fail("shape: a triangle mesh part is for static and kinematic bodies");
   if (!isFinite(part.position)) fail("position must be finite, got " + formatVec(part.position));
   if (!isFinite(part.rotation) || std::abs(glm::length(part.rotation) - 1.0f) > 1e-3f) {
     fail("rotation must be a finite unit quaternion, got length " + formatFloat(glm::length(part.rotation)));
@@ -257,19 +258,16 @@ void remeasure(BodyRecord& next, BodyState& nextState, const Vec3& origin, const
     if (hasParts(next)) {
       props = partsMassProperties(next.shape.compound(), next.parts, next.scale);
     } else {
-      try {
-        props = massProperties(next.shape, next.givenMass ? 1.0f : next.density, next.scale);
-      } catch (const Error& e) {
-        throw Error(std::string("shape: ") + e.what());
-      }
+      props = withErrorContext("shape: ", [&] {
+        return massProperties(next.shape, next.givenMass ? 1.0f : next.density, next.scale);
+      });
     }
+    COLLIDE_RETURN_IF_FAILED();
     initMass(props, next.givenMass, next.particle, next, nextState);
+    COLLIDE_RETURN_IF_FAILED();
   }
-  try {
-    initShapeExtents(next);
-  } catch (const Error& e) {
-    throw Error(std::string("shape: ") + e.what());
-  }
+  withErrorContext("shape: ", [&] { initShapeExtents(next); });
+  COLLIDE_RETURN_IF_FAILED();
   const Quat rotation = nextState.rotation;
   nextState.centerOfMass = origin + rotation * next.localCenterOfMass;
   nextState.centerOfMass0 = nextState.centerOfMass;
@@ -285,7 +283,9 @@ void remeasure(BodyRecord& next, BodyState& nextState, const Vec3& origin, const
 }  // namespace
 
 void setBodyParts(BodyRecord& r, BodyState& s, Array<Compound::Child> children, Array<PartRecord> parts) {
-  Shape shape = Compound::fromChildren(std::vector<Compound::Child>(children.begin(), children.end()));
+  Compound compound = Compound::fromChildren(std::vector<Compound::Child>(children.begin(), children.end()));
+  COLLIDE_RETURN_IF_FAILED();
+  Shape shape = std::move(compound);
   BodyRecord next = r;  // the record changes only once everything below has succeeded
   next.shape = std::move(shape);
   next.parts = std::move(parts);
@@ -303,23 +303,25 @@ void setBodyParts(BodyRecord& r, BodyState& s, Array<Compound::Child> children, 
   next.ccd = next.ccd && !next.sensor;
   BodyState nextState = s;
   remeasure(next, nextState, bodyOrigin(r, s), s.centerOfMass);
+  COLLIDE_RETURN_IF_FAILED();
   requireRepresentableBounds(next, nextState, "parts");
+  COLLIDE_RETURN_IF_FAILED();
   r = std::move(next);
   s = nextState;
 }
 
 void setBodyType(BodyRecord& r, BodyState& s, BodyType type) {
-  if (static_cast<int>(type) > static_cast<int>(BodyType::Dynamic)) throw Error("type: unknown body type");
-  if (r.particle && type != BodyType::Dynamic) throw Error("type: a particle is a dynamic body");
+  if (static_cast<int>(type) > static_cast<int>(BodyType::Dynamic)) COLLIDE_FAIL("type: unknown body type");
+  if (r.particle && type != BodyType::Dynamic) COLLIDE_FAIL("type: a particle is a dynamic body");
   if (type != BodyType::Static && r.shape.type() == ShapeType::Plane)
-    throw Error("type: a plane is an infinite half-space and can only be on a static body");
+    COLLIDE_FAIL("type: a plane is an infinite half-space and can only be on a static body");
   if (type == BodyType::Dynamic) {
     if (!hasParts(r) && !r.sensor && r.shape.type() == ShapeType::Mesh && !r.shape.mesh().isClosed())
-      throw Error("type: an open triangle mesh has no mass; it can be static or kinematic");
+      COLLIDE_FAIL("type: an open triangle mesh has no mass; it can be static or kinematic");
     for (std::uint32_t k = 0; k < r.parts.size(); ++k) {
       if (partShape(r, k).type() == ShapeType::Mesh)
-        throw Error("type: part " + std::to_string(k) +
-                    " is a triangle mesh, which is for static and kinematic bodies");
+        COLLIDE_FAIL("type: part " + std::to_string(k) +
+                     " is a triangle mesh, which is for static and kinematic bodies");
     }
   }
   BodyRecord next = r;
@@ -327,6 +329,7 @@ void setBodyType(BodyRecord& r, BodyState& s, BodyType type) {
   BodyState nextState = s;
   if (type == BodyType::Static) nextState.linearVelocity = nextState.angularVelocity = Vec3(0.0f);
   remeasure(next, nextState, bodyOrigin(r, s), s.centerOfMass);
+  COLLIDE_RETURN_IF_FAILED();
   r = std::move(next);
   s = nextState;
 }
@@ -354,11 +357,8 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
   r.density = def.density;
   s.rotation = glm::normalize(def.rotation);
   if (def.parts.empty()) {
-    try {
-      initShapeMeasures(def, r, s);
-    } catch (const Error& e) {
-      throw Error(who + ": " + e.what());  // "shape: ..." or "mass: ..."
-    }
+    withErrorContext(who + ": ", [&] { initShapeMeasures(def, r, s); });  // "shape: ..." or "mass: ..."
+    COLLIDE_RETURN_IF_FAILED();
   } else {
     Array<Compound::Child> children;
     Array<PartRecord> parts;
@@ -369,11 +369,8 @@ void initBody(const BodyDef& def, BodyRecord& r, BodyState& s) {
     r.ccd = def.ccd;
     s.centerOfMass = def.position;  // the origin, until the parts' centre of mass is known
     r.localCenterOfMass = Vec3(0.0f);
-    try {
-      setBodyParts(r, s, std::move(children), std::move(parts));
-    } catch (const Error& e) {
-      throw Error(who + ": " + e.what());
-    }
+    withErrorContext(who + ": ", [&] { setBodyParts(r, s, std::move(children), std::move(parts)); });
+    COLLIDE_RETURN_IF_FAILED();
   }
   s.centerOfMass = def.position + s.rotation * r.localCenterOfMass;
   s.centerOfMass0 = s.centerOfMass;
@@ -393,15 +390,12 @@ void requireRepresentableBounds(const BodyRecord& r, const BodyState& s, const s
   // Refused before the broad phase sees it: a shape whose box at this place is not representable
   // (or whose parts cannot be placed: a compound's child scales can multiply down to zero, a part
   // near float's limit from the body's origin lands beyond it).
-  Aabb bounds;
-  try {
-    bounds = worldBounds(r.shape, bodyTransform(r, s));
-  } catch (const Error& e) {
-    throw Error(who + ": shape: " + e.what());
-  }
+  const Aabb bounds =
+      withErrorContext(who + ": shape: ", [&] { return worldBounds(r.shape, bodyTransform(r, s)); });
+  COLLIDE_RETURN_IF_FAILED();
   if (!isFinite(bounds.min) || !isFinite(bounds.max) || !std::isfinite(r.boundingRadius)) {
-    throw Error(who + ": shape: its bounds are not finite at this position and scale (min " +
-                formatVec(bounds.min) + ", max " + formatVec(bounds.max) + "): the shape is too large");
+    COLLIDE_FAIL(who + ": shape: its bounds are not finite at this position and scale (min " +
+                 formatVec(bounds.min) + ", max " + formatVec(bounds.max) + "): the shape is too large");
   }
 }
 

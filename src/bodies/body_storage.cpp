@@ -1,5 +1,6 @@
 // The body storage's slots: allocation with generations, freeing, forces cleared (body_storage.h).
 #include "bodies/body_storage.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 
@@ -54,12 +55,12 @@ std::size_t BodyStorage::memoryBytes() const {
 void BodyStorage::restore(Array<BodyRecord> restoredRecords, Array<BodyState> restoredStates,
                           Array<std::uint32_t> restoredFreeSlots) {
   if (restoredRecords.size() != restoredStates.size())
-    throw Error("bodies: " + std::to_string(restoredRecords.size()) + " records but " +
-                std::to_string(restoredStates.size()) + " states");
+    COLLIDE_FAIL("bodies: " + std::to_string(restoredRecords.size()) + " records but " +
+                 std::to_string(restoredStates.size()) + " states");
   Array<std::uint8_t> free(restoredRecords.size(), 0);
   for (const std::uint32_t slot : restoredFreeSlots) {
     if (slot >= restoredRecords.size() || restoredRecords[slot].alive || free[slot])
-      throw Error("bodies: free slot " + std::to_string(slot) + " is out of range, alive or listed twice");
+      COLLIDE_FAIL("bodies: free slot " + std::to_string(slot) + " is out of range, alive or listed twice");
     free[slot] = 1;
   }
   records = std::move(restoredRecords);

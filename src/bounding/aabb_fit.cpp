@@ -7,7 +7,7 @@
 namespace collide {
 
 Aabb boundingBox(std::span<const Vec3> points) {
-  bounding::requireFinitePoints("bounding_box", points);
+  if (!bounding::requireFinitePoints("bounding_box", points)) return {};
   Aabb box = Aabb::empty();
   for (const Vec3& p : points) box.grow(p);
   return box;

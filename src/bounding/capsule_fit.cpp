@@ -82,7 +82,7 @@ AxisFit fitAlong(std::span<const Vec3> points, const DVec3& mean, const DVec3& a
 }  // namespace
 
 FittedCapsule fitCapsule(std::span<const Vec3> points) {
-  bounding::requireFinitePoints("fit_capsule", points);
+  if (!bounding::requireFinitePoints("fit_capsule", points)) return {};
   const bounding::PrincipalAxes pca = bounding::principalAxes(points);
 
   const Array<Vec3> extremes =

@@ -3,6 +3,7 @@
 // convex hull, the tightest convex proxy.
 #include <collide/bounding.h>
 
+#include "base/fail.h"
 #include "bounding/obb_fit.h"
 #include "bounding/point_set.h"
 
@@ -24,7 +25,8 @@ std::size_t polytopeBytes(const ConvexHull& hull) {
 }  // namespace
 
 std::vector<ProxyFit> fitAllProxies(std::span<const Vec3> points) {
-  bounding::requireFinitePoints("fit_all_proxies", points);
+  const detail::ErrorScope scope;
+  if (!bounding::requireFinitePoints("fit_all_proxies", points)) return {};
   const Aabb bounds = boundingBox(points);
   const Vec3 extent = bounds.max - bounds.min;
   const float widest = std::max({extent.x, extent.y, extent.z});
@@ -33,16 +35,12 @@ std::vector<ProxyFit> fitAllProxies(std::span<const Vec3> points) {
     message << "fit_all_proxies: the points span " << widest
             << " m along an axis; proxies are fitted to sets up to " << kMaxFitExtent
             << " m across, whose volumes stay finite in float";
-    throw Error(message.str());
+    COLLIDE_FAIL(message.str(), {});
   }
-  auto hull = [&] {
-    try {
-      return std::make_shared<const ConvexHull>(ConvexHull::fromPoints(points));
-    } catch (const Error& e) {
-      throw Error(std::string("fit_all_proxies: the proxies need points that span a volume (") + e.what() +
-                  ")");
-    }
-  }();
+  auto hull = std::make_shared<const ConvexHull>(detail::withErrorContext(
+      "fit_all_proxies: the proxies need points that span a volume (",
+      [&] { return ConvexHull::fromPoints(points); }, ")"));
+  COLLIDE_RETURN_IF_FAILED({});
   const float hullVolume = hull->volume();
   std::vector<ProxyFit> fits;
   // Memory counts what the proxy needs beyond the points' frame: a sphere its centre and radius, a

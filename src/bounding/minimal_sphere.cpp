@@ -173,7 +173,7 @@ void deterministicShuffle(Array<DVec3>& points) {
 }  // namespace
 
 BoundingSphere minimalBoundingSphere(std::span<const Vec3> points) {
-  bounding::requireFinitePoints("minimal_bounding_sphere", points);
+  if (!bounding::requireFinitePoints("minimal_bounding_sphere", points)) return {};
   Array<DVec3> work(points.begin(), points.end());
   double size = 0.0;
   for (const DVec3& p : work) size = std::max(size, glm::length(p - work.front()));

@@ -15,6 +15,7 @@
 // final extents are measured over every point as before.
 #include <collide/bounding.h>
 
+#include "base/fail.h"
 #include "bounding/min_area_rectangle.h"
 #include "bounding/obb_fit.h"
 #include "bounding/point_set.h"
@@ -119,15 +120,12 @@ Candidate bestOverCoarseHull(std::span<const DVec3> vertices, const bounding::Pr
 }  // namespace
 
 OrientedBox fitOrientedBox(std::span<const Vec3> points) {
-  bounding::requireFinitePoints("fit_oriented_box", points);
-  const ConvexHull hull = [&] {
-    try {
-      return ConvexHull::fromPoints(points);
-    } catch (const Error& e) {
-      throw Error(std::string("fit_oriented_box: an oriented box needs points that span a volume (") +
-                  e.what() + ")");
-    }
-  }();
+  const detail::ErrorScope scope;
+  if (!bounding::requireFinitePoints("fit_oriented_box", points)) return {};
+  const ConvexHull hull = detail::withErrorContext(
+      "fit_oriented_box: an oriented box needs points that span a volume (",
+      [&] { return ConvexHull::fromPoints(points); }, ")");
+  COLLIDE_RETURN_IF_FAILED({});
   return bounding::fitOrientedBoxOnHull(points, hull);
 }
 

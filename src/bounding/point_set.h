@@ -14,9 +14,9 @@
 
 namespace collide::bounding {
 
-// Throws Error, prefixed with `who`, for an empty set or a non-finite point (naming its index and
-// value).
-void requireFinitePoints(std::string_view who, std::span<const Vec3> points);
+// Reports Error, prefixed with `who`, for an empty set or a non-finite point (naming its index and
+// value); false then (collide/error.h).
+bool requireFinitePoints(std::string_view who, std::span<const Vec3> points);
 
 std::string formatPoint(const Vec3& p);
 

@@ -2,6 +2,8 @@
 // crash or a NaN proxy.
 #include "bounding/point_set.h"
 
+#include "base/fail.h"
+
 #include <sstream>
 
 namespace collide::bounding {
@@ -12,14 +14,17 @@ std::string formatPoint(const Vec3& p) {
   return out.str();
 }
 
-void requireFinitePoints(std::string_view who, std::span<const Vec3> points) {
-  if (points.empty()) throw Error(std::string(who) + ": the point set is empty, need at least one point");
+bool requireFinitePoints(std::string_view who, std::span<const Vec3> points) {
+  if (points.empty())
+    COLLIDE_FAIL(std::string(who) + ": the point set is empty, need at least one point", false);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!isFinite(points[i])) {
-      throw Error(std::string(who) + ": point " + std::to_string(i) + " is not finite, got " +
-                  formatPoint(points[i]));
+      COLLIDE_FAIL(
+          std::string(who) + ": point " + std::to_string(i) + " is not finite, got " + formatPoint(points[i]),
+          false);
     }
   }
+  return true;
 }
 
 }  // namespace collide::bounding

@@ -1,5 +1,6 @@
 // The broad-phase interface: proxy storage with generational ids, validation of every input, the
 // canonical pair list, the query wrappers, and the factory of the four algorithms.
+#include "base/fail.h"
 #include "broadphase/broad_phase_internal.h"
 #include "memory/heap_bytes.h"
 
@@ -19,16 +20,23 @@ std::string describe(const Vec3& v) {
   return out.str();
 }
 
-void validateBox(const Aabb& box, const char* what) {
+bool validBox(const Aabb& box, const char* what) {
   if (!isFinite(box.min) || !isFinite(box.max)) {
-    throw Error(std::string("broad phase: ") + what + ": box must be finite, got min " + describe(box.min) +
-                " max " + describe(box.max));
+    COLLIDE_FAIL(std::string("broad phase: ") + what + ": box must be finite, got min " + describe(box.min) +
+                     " max " + describe(box.max),
+                 false);
   }
   if (box.min.x > box.max.x || box.min.y > box.max.y || box.min.z > box.max.z) {
-    throw Error(std::string("broad phase: ") + what + ": box is inverted (min > max), got min " +
-                describe(box.min) + " max " + describe(box.max));
+    COLLIDE_FAIL(std::string("broad phase: ") + what + ": box is inverted (min > max), got min " +
+                     describe(box.min) + " max " + describe(box.max),
+                 false);
   }
+  return true;
 }
+
+// What resolve returns for a bad id without exceptions.
+constexpr std::uint32_t kBadProxy = 0xFFFFFFFFu;
+const Aabb kNoBounds{};
 
 }  // namespace
 
@@ -51,7 +59,8 @@ BroadPhaseType parseBroadPhaseType(std::string_view name) {
     const auto type = static_cast<BroadPhaseType>(i);
     if (toString(type) == name) return type;
   }
-  throw Error("broad phase: unknown type \"" + std::string(name) + "\" (expected tree, sap, grid or brute)");
+  COLLIDE_FAIL("broad phase: unknown type \"" + std::string(name) + "\" (expected tree, sap, grid or brute)",
+               BroadPhaseType::Tree);
 }
 
 BroadPhase::~BroadPhase() = default;
@@ -62,30 +71,32 @@ std::size_t BroadPhase::memoryBytes() const {
 }
 
 std::uint32_t BroadPhase::resolve(ProxyId id, const char* operation) const {
-  if (id.isNull()) throw Error(std::string("broad phase: ") + operation + ": null proxy id");
+  if (id.isNull()) COLLIDE_FAIL(std::string("broad phase: ") + operation + ": null proxy id", kBadProxy);
   if (id.index >= proxies_.size()) {
-    throw Error(std::string("broad phase: ") + operation + ": unknown proxy id (index " +
-                std::to_string(id.index) + ", generation " + std::to_string(id.generation) + "; only " +
-                std::to_string(proxies_.size()) + " slots exist)");
+    COLLIDE_FAIL(std::string("broad phase: ") + operation + ": unknown proxy id (index " +
+                     std::to_string(id.index) + ", generation " + std::to_string(id.generation) + "; only " +
+                     std::to_string(proxies_.size()) + " slots exist)",
+                 kBadProxy);
   }
   const ProxyRecord& record = proxies_[id.index];
   if (!record.alive || record.generation != id.generation) {
-    throw Error(std::string("broad phase: ") + operation + ": stale proxy id (index " +
-                std::to_string(id.index) + ", generation " + std::to_string(id.generation) +
-                "; the slot is now " +
-                (record.alive ? "generation " + std::to_string(record.generation) : "free") + ")");
+    COLLIDE_FAIL(std::string("broad phase: ") + operation + ": stale proxy id (index " +
+                     std::to_string(id.index) + ", generation " + std::to_string(id.generation) +
+                     "; the slot is now " +
+                     (record.alive ? "generation " + std::to_string(record.generation) : "free") + ")",
+                 kBadProxy);
   }
   return id.index;
 }
 
 ProxyId BroadPhase::add(const ProxyDef& def) {
-  validateBox(def.bounds, "add");
+  if (!validBox(def.bounds, "add")) return {};
   std::uint32_t index;
   if (!freeSlots_.empty()) {
     index = freeSlots_.back();
     freeSlots_.pop_back();
   } else {
-    if (proxies_.size() >= ProxyId::kNullIndex) throw Error("broad phase: add: too many proxies");
+    if (proxies_.size() >= ProxyId::kNullIndex) COLLIDE_FAIL("broad phase: add: too many proxies", {});
     index = static_cast<std::uint32_t>(proxies_.size());
     proxies_.emplace_back();
   }
@@ -102,6 +113,7 @@ ProxyId BroadPhase::add(const ProxyDef& def) {
 
 void BroadPhase::remove(ProxyId id) {
   const std::uint32_t index = resolve(id, "remove");
+  if (index == kBadProxy) return;
   onRemove(index);
   ProxyRecord& record = proxies_[index];
   record.alive = false;
@@ -115,18 +127,18 @@ void BroadPhase::adoptProxies(const BroadPhase& source) { adoptProxies(source.pr
 
 void BroadPhase::adoptProxies(std::span<const ProxyRecord> records,
                               std::span<const std::uint32_t> freeSlots) {
-  if (!proxies_.empty()) throw Error("broad phase: adoptProxies: this broad phase already has proxies");
+  if (!proxies_.empty()) COLLIDE_FAIL("broad phase: adoptProxies: this broad phase already has proxies");
   std::size_t alive = 0;
   for (std::uint32_t index = 0; index < records.size(); ++index) {
     if (!records[index].alive) continue;
-    validateBox(records[index].bounds, "adoptProxies");
+    if (!validBox(records[index].bounds, "adoptProxies")) return;
     ++alive;
   }
   Array<std::uint8_t> free(records.size(), 0);
   for (const std::uint32_t slot : freeSlots) {
     if (slot >= records.size() || records[slot].alive || free[slot])
-      throw Error("broad phase: adoptProxies: free slot " + std::to_string(slot) +
-                  " is out of range, alive or listed twice");
+      COLLIDE_FAIL("broad phase: adoptProxies: free slot " + std::to_string(slot) +
+                   " is out of range, alive or listed twice");
     free[slot] = 1;
   }
   proxies_.assign(records.begin(), records.end());
@@ -139,7 +151,7 @@ void BroadPhase::adoptProxies(std::span<const ProxyRecord> records,
 
 void BroadPhase::update(ProxyId id, const Aabb& bounds) {
   const std::uint32_t index = resolve(id, "update");
-  validateBox(bounds, "update");
+  if (index == kBadProxy || !validBox(bounds, "update")) return;
   const Aabb old = proxies_[index].bounds;
   proxies_[index].bounds = bounds;
   onUpdate(index, old);
@@ -150,12 +162,25 @@ bool BroadPhase::contains(ProxyId id) const {
          proxies_[id.index].generation == id.generation;
 }
 
-const Aabb& BroadPhase::bounds(ProxyId id) const { return proxies_[resolve(id, "bounds")].bounds; }
-MotionType BroadPhase::motion(ProxyId id) const { return proxies_[resolve(id, "motion")].motion; }
-std::uint64_t BroadPhase::userValue(ProxyId id) const { return proxies_[resolve(id, "userValue")].userValue; }
-std::uint32_t BroadPhase::layer(ProxyId id) const { return proxies_[resolve(id, "layer")].layer; }
+const Aabb& BroadPhase::bounds(ProxyId id) const {
+  const std::uint32_t index = resolve(id, "bounds");
+  return index == kBadProxy ? kNoBounds : proxies_[index].bounds;
+}
+MotionType BroadPhase::motion(ProxyId id) const {
+  const std::uint32_t index = resolve(id, "motion");
+  return index == kBadProxy ? MotionType::Static : proxies_[index].motion;
+}
+std::uint64_t BroadPhase::userValue(ProxyId id) const {
+  const std::uint32_t index = resolve(id, "userValue");
+  return index == kBadProxy ? 0 : proxies_[index].userValue;
+}
+std::uint32_t BroadPhase::layer(ProxyId id) const {
+  const std::uint32_t index = resolve(id, "layer");
+  return index == kBadProxy ? 0 : proxies_[index].layer;
+}
 void BroadPhase::setLayer(ProxyId id, std::uint32_t layer) {
-  proxies_[resolve(id, "setLayer")].layer = layer;
+  const std::uint32_t index = resolve(id, "setLayer");
+  if (index != kBadProxy) proxies_[index].layer = layer;
 }
 
 const BroadPhaseStats& BroadPhase::findPairs(Array<ProxyPair>& outPairs, detail::TaskRunner& tasks) {
@@ -191,18 +216,18 @@ const BroadPhaseStats& BroadPhase::findPairs(Array<ProxyPair>& outPairs) {
 
 void BroadPhase::rayCast(const Ray& ray, LayerMask mask, const RayCastCallback& callback) const {
   if (!isFinite(ray.origin))
-    throw Error("broad phase: ray cast: origin must be finite, got " + describe(ray.origin));
+    COLLIDE_FAIL("broad phase: ray cast: origin must be finite, got " + describe(ray.origin));
   if (!isFinite(ray.direction)) {
-    throw Error("broad phase: ray cast: direction must be finite, got " + describe(ray.direction));
+    COLLIDE_FAIL("broad phase: ray cast: direction must be finite, got " + describe(ray.direction));
   }
   const float length = glm::length(ray.direction);
   if (!(length > 0.0f) || !std::isfinite(length)) {
-    throw Error("broad phase: ray cast: direction must be non-zero, got " + describe(ray.direction));
+    COLLIDE_FAIL("broad phase: ray cast: direction must be non-zero, got " + describe(ray.direction));
   }
   if (std::isnan(ray.maxDistance) || ray.maxDistance < 0.0f) {
-    throw Error("broad phase: ray cast: maxDistance must be >= 0, got " + std::to_string(ray.maxDistance));
+    COLLIDE_FAIL("broad phase: ray cast: maxDistance must be >= 0, got " + std::to_string(ray.maxDistance));
   }
-  if (!callback) throw Error("broad phase: ray cast: empty callback");
+  if (!callback) COLLIDE_FAIL("broad phase: ray cast: empty callback");
   RayQuery query;
   query.aim(ray.origin, ray.direction / length, ray.maxDistance);
   query.mask = mask;
@@ -214,10 +239,10 @@ void BroadPhase::rayCast(const Ray& ray, LayerMask mask, const RayCastCallback& 
 void BroadPhase::boxCast(const Aabb& box, const Vec3& translation, LayerMask mask,
                          const RayCastCallback& callback) const {
   if (!isFinite(box.min) || !isFinite(box.max) || !isFinite(translation)) {
-    throw Error("broad phase: box cast: box and translation must be finite, got box " + describe(box.min) +
-                " to " + describe(box.max) + ", translation " + describe(translation));
+    COLLIDE_FAIL("broad phase: box cast: box and translation must be finite, got box " + describe(box.min) +
+                 " to " + describe(box.max) + ", translation " + describe(translation));
   }
-  if (!callback) throw Error("broad phase: box cast: empty callback");
+  if (!callback) COLLIDE_FAIL("broad phase: box cast: empty callback");
   const float length = glm::length(translation);
   if (!(length > 0.0f) || !std::isfinite(length)) {
     queryAabb(box, mask, [&](ProxyId id) { return callback(id, 0.0f) >= 0.0f; });
@@ -258,18 +283,18 @@ std::vector<ProxyRayHit> BroadPhase::rayCastAll(const Ray& ray, LayerMask mask) 
 }
 
 void BroadPhase::queryAabb(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const {
-  validateBox(box, "AABB query");
-  if (!callback) throw Error("broad phase: AABB query: empty callback");
+  if (!validBox(box, "AABB query")) return;
+  if (!callback) COLLIDE_FAIL("broad phase: AABB query: empty callback");
   queryAabbImpl(box, mask, callback);
 }
 
 void BroadPhase::querySphere(const BoundingSphere& sphere, LayerMask mask,
                              const OverlapCallback& callback) const {
   if (!isFinite(sphere.center) || !std::isfinite(sphere.radius) || sphere.radius < 0.0f) {
-    throw Error("broad phase: sphere query: centre must be finite and radius finite and >= 0, got centre " +
-                describe(sphere.center) + " radius " + std::to_string(sphere.radius));
+    COLLIDE_FAIL("broad phase: sphere query: centre must be finite and radius finite and >= 0, got centre " +
+                 describe(sphere.center) + " radius " + std::to_string(sphere.radius));
   }
-  if (!callback) throw Error("broad phase: sphere query: empty callback");
+  if (!callback) COLLIDE_FAIL("broad phase: sphere query: empty callback");
   querySphereImpl(sphere, mask, callback);
 }
 
@@ -277,12 +302,12 @@ void BroadPhase::queryFrustum(const Frustum& frustum, LayerMask mask, const Over
   for (const Plane& plane : frustum.planes) {
     const float length = glm::length(plane.normal);
     if (!isFinite(plane.normal) || !std::isfinite(plane.distance) || std::abs(length - 1.0f) > 1e-3f) {
-      throw Error(
+      COLLIDE_FAIL(
           "broad phase: frustum query: planes need finite unit normals and finite distances, got normal " +
           describe(plane.normal) + " distance " + std::to_string(plane.distance));
     }
   }
-  if (!callback) throw Error("broad phase: frustum query: empty callback");
+  if (!callback) COLLIDE_FAIL("broad phase: frustum query: empty callback");
   queryFrustumImpl(frustum, mask, callback);
 }
 
@@ -324,8 +349,9 @@ std::vector<ProxyId> BroadPhase::cullFrustum(const Frustum& frustum, LayerMask m
 
 bool BroadPhase::isSegmentBlocked(const Vec3& from, const Vec3& to, LayerMask mask) const {
   if (!isFinite(from) || !isFinite(to)) {
-    throw Error("broad phase: line of sight: end points must be finite, got " + describe(from) + " and " +
-                describe(to));
+    COLLIDE_FAIL("broad phase: line of sight: end points must be finite, got " + describe(from) + " and " +
+                     describe(to),
+                 false);
   }
   const Vec3 d = to - from;
   const float length = glm::length(d);
@@ -345,16 +371,25 @@ bool BroadPhase::isSegmentBlocked(const Vec3& from, const Vec3& to, LayerMask ma
   return blocked;
 }
 
-std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseSettings& settings) {
+bool detail::validateBroadPhaseSettings(const BroadPhaseSettings& settings) {
   if (!std::isfinite(settings.treeMargin) || settings.treeMargin < 0.0f) {
-    throw Error("broad phase: treeMargin must be finite and >= 0, got " +
-                std::to_string(settings.treeMargin));
+    COLLIDE_FAIL(
+        "broad phase: treeMargin must be finite and >= 0, got " + std::to_string(settings.treeMargin), false);
   }
   if (!std::isfinite(settings.gridCellSize) || settings.gridCellSize < 0.0f) {
-    throw Error("broad phase: gridCellSize must be finite and >= 0 (0: automatic), got " +
-                std::to_string(settings.gridCellSize));
+    COLLIDE_FAIL("broad phase: gridCellSize must be finite and >= 0 (0: automatic), got " +
+                     std::to_string(settings.gridCellSize),
+                 false);
   }
-  if (settings.gridMaxCellsPerAxis == 0) throw Error("broad phase: gridMaxCellsPerAxis must be >= 1, got 0");
+  if (settings.gridMaxCellsPerAxis == 0)
+    COLLIDE_FAIL("broad phase: gridMaxCellsPerAxis must be >= 1, got 0", false);
+  if (static_cast<int>(settings.type) >= kBroadPhaseTypeCount)
+    COLLIDE_FAIL("broad phase: unknown type " + std::to_string(static_cast<int>(settings.type)), false);
+  return true;
+}
+
+std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseSettings& settings) {
+  if (!detail::validateBroadPhaseSettings(settings)) return nullptr;
   switch (settings.type) {
     case BroadPhaseType::Tree:
       return makeTreeBroadPhase(settings);
@@ -365,7 +400,7 @@ std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseSettings& settings)
     case BroadPhaseType::BruteForce:
       return makeBruteForceBroadPhase(settings);
   }
-  throw Error("broad phase: unknown type " + std::to_string(static_cast<int>(settings.type)));
+  COLLIDE_FAIL("broad phase: unknown type " + std::to_string(static_cast<int>(settings.type)), nullptr);
 }
 
 }  // namespace collide

@@ -11,6 +11,11 @@
 
 namespace collide {
 
+namespace detail {
+// Reports Error naming the field for bad settings (createBroadPhase refuses them); false then.
+bool validateBroadPhaseSettings(const BroadPhaseSettings& settings);
+}  // namespace detail
+
 // (a, b) with a < b packed so that sorting keys sorts pairs by (a, b).
 inline std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
   return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;

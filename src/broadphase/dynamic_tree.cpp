@@ -1,6 +1,7 @@
 // The dynamic AABB tree: node pool, SAH insertion, removal and AVL-style rebalancing.
 #include "broadphase/dynamic_tree.h"
 #include "base/assert.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 
@@ -207,37 +208,38 @@ std::int32_t DynamicTree::rebalance(std::int32_t a) {
 
 void DynamicTree::validate() const {
   auto fail = [](const std::string& what, std::int32_t index) {
-    throw Error("dynamic tree: " + what + " at node " + std::to_string(index));
+    detail::raiseError("dynamic tree: " + what + " at node " + std::to_string(index));
   };
   if (root_ == kNull) {
-    if (leafCount_ != 0) fail("empty tree with a non-zero leaf count", kNull);
+    if (leafCount_ != 0) return fail("empty tree with a non-zero leaf count", kNull);
     return;
   }
-  if (nodes_[root_].parent != kNull) fail("root has a parent", root_);
+  if (nodes_[root_].parent != kNull) return fail("root has a parent", root_);
   std::size_t leaves = 0;
   Array<std::int32_t> stack{root_};
   while (!stack.empty()) {
     const std::int32_t index = stack.back();
     stack.pop_back();
     const Node& n = nodes_[index];
-    if (n.height < 0) fail("free node reachable", index);
+    if (n.height < 0) return fail("free node reachable", index);
     if (n.isLeaf()) {
-      if (n.height != 0) fail("leaf with non-zero height", index);
+      if (n.height != 0) return fail("leaf with non-zero height", index);
       ++leaves;
       continue;
     }
-    if (n.child2 == kNull) fail("inner node with one child", index);
+    if (n.child2 == kNull) return fail("inner node with one child", index);
     const Node& c1 = nodes_[n.child1];
     const Node& c2 = nodes_[n.child2];
-    if (c1.parent != index || c2.parent != index) fail("child whose parent link is wrong", index);
-    if (n.height != 1 + std::max(c1.height, c2.height)) fail("wrong height", index);
-    if (!n.box.contains(c1.box) || !n.box.contains(c2.box)) fail("box not containing a child's box", index);
+    if (c1.parent != index || c2.parent != index) return fail("child whose parent link is wrong", index);
+    if (n.height != 1 + std::max(c1.height, c2.height)) return fail("wrong height", index);
+    if (!n.box.contains(c1.box) || !n.box.contains(c2.box))
+      return fail("box not containing a child's box", index);
     stack.push_back(n.child1);
     stack.push_back(n.child2);
   }
   if (leaves != leafCount_) {
-    throw Error("dynamic tree: " + std::to_string(leaves) + " leaves reachable, " +
-                std::to_string(leafCount_) + " expected");
+    COLLIDE_FAIL("dynamic tree: " + std::to_string(leaves) + " leaves reachable, " +
+                 std::to_string(leafCount_) + " expected");
   }
 }
 

@@ -7,6 +7,7 @@
 // the pairs between proxies that did not move cost nothing to find again (a broad phase that touches
 // only what moved). Each call then walks the persistent set once: pairs whose fat boxes separated are
 // dropped, and pairs whose tight boxes overlap are reported, so the output is exact, like the others.
+#include "base/fail.h"
 #include "base/task_runner.h"
 #include "broadphase/broad_phase_internal.h"
 #include "broadphase/dynamic_tree.h"
@@ -35,8 +36,11 @@ class TreeBroadPhase final : public BroadPhase {
   }
 
   void validate() const override {
+    const detail::ErrorScope scope;
     staticTree_.validate();
+    COLLIDE_RETURN_IF_FAILED();
     movableTree_.validate();
+    COLLIDE_RETURN_IF_FAILED();
     std::size_t statics = 0, movables = 0;
     for (std::uint32_t i = 0; i < proxies_.size(); ++i) {
       const ProxyRecord& p = proxies_[i];
@@ -44,13 +48,13 @@ class TreeBroadPhase final : public BroadPhase {
       const DynamicTree& tree = treeOf(i);
       (p.motion == MotionType::Static ? statics : movables) += 1;
       if (tree.proxy(leaf_[i]) != i)
-        throw Error("tree broad phase: leaf of proxy " + std::to_string(i) + " is wrong");
+        COLLIDE_FAIL("tree broad phase: leaf of proxy " + std::to_string(i) + " is wrong");
       if (!tree.box(leaf_[i]).contains(p.bounds)) {
-        throw Error("tree broad phase: fat box of proxy " + std::to_string(i) + " does not contain its box");
+        COLLIDE_FAIL("tree broad phase: fat box of proxy " + std::to_string(i) + " does not contain its box");
       }
     }
     if (statics != staticTree_.leafCount() || movables != movableTree_.leafCount()) {
-      throw Error("tree broad phase: leaf counts do not match the proxies");
+      COLLIDE_FAIL("tree broad phase: leaf counts do not match the proxies");
     }
   }
 

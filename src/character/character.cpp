@@ -7,6 +7,7 @@
 #include <collide/narrowphase.h>
 #include <collide/world.h>
 
+#include "base/fail.h"
 #include "geometry/closest_points.h"
 #include "geometry/triangle.h"
 
@@ -90,32 +91,44 @@ SegmentTriangle closestSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3&
 
 }  // namespace
 
-Character::Character(const CharacterDef& def) : def_(def) {
-  const auto fail = [](const std::string& message) { throw Error("character: " + message); };
-  if (!isFinite(def.position)) fail("position must be finite");
+namespace {
+
+bool validCharacterDef(const CharacterDef& def) {
+  const auto fail = [](const std::string& message) {
+    detail::raiseError("character: " + message);
+    return false;
+  };
+  if (!isFinite(def.position)) return fail("position must be finite");
   const float upLength = glm::length(def.up);
-  if (!isFinite(def.up) || !(upLength > 1e-6f)) fail("up must be a finite, non-zero direction");
-  def_.up = def.up / upLength;
+  if (!isFinite(def.up) || !(upLength > 1e-6f)) return fail("up must be a finite, non-zero direction");
   if (!(def.radius > 0.0f) || !std::isfinite(def.radius))
-    fail("radius must be finite and > 0, got " + formatNumber(def.radius));
+    return fail("radius must be finite and > 0, got " + formatNumber(def.radius));
   if (!(def.halfHeight >= 0.0f) || !std::isfinite(def.halfHeight))
-    fail("halfHeight must be finite and >= 0, got " + formatNumber(def.halfHeight));
+    return fail("halfHeight must be finite and >= 0, got " + formatNumber(def.halfHeight));
   if (!(def.maxSlope > 0.0f && def.maxSlope < 0.5f * kPi))
-    fail("maxSlope must be in (0, pi/2) radians, got " + formatNumber(def.maxSlope));
+    return fail("maxSlope must be in (0, pi/2) radians, got " + formatNumber(def.maxSlope));
   if (!(def.maxStepHeight >= 0.0f) || !std::isfinite(def.maxStepHeight))
-    fail("maxStepHeight must be finite and >= 0, got " + formatNumber(def.maxStepHeight));
+    return fail("maxStepHeight must be finite and >= 0, got " + formatNumber(def.maxStepHeight));
   if (!(def.skinWidth > 0.0f) || !std::isfinite(def.skinWidth))
-    fail("skinWidth must be finite and > 0, got " + formatNumber(def.skinWidth));
+    return fail("skinWidth must be finite and > 0, got " + formatNumber(def.skinWidth));
   if (!(def.pushForce >= 0.0f) || !std::isfinite(def.pushForce))
-    fail("pushForce must be finite and >= 0, got " + formatNumber(def.pushForce));
+    return fail("pushForce must be finite and >= 0, got " + formatNumber(def.pushForce));
   if (!(def.mass > 0.0f) || !std::isfinite(def.mass))
-    fail("mass must be finite and > 0, got " + formatNumber(def.mass));
-  if (!isFinite(def.gravity)) fail("gravity must be finite");
-  position_ = def.position;
+    return fail("mass must be finite and > 0, got " + formatNumber(def.mass));
+  if (!isFinite(def.gravity)) return fail("gravity must be finite");
+  return true;
+}
+
+}  // namespace
+
+// Without exceptions a refused definition is reported and the default one taken.
+Character::Character(const CharacterDef& def) : def_(validCharacterDef(def) ? def : CharacterDef{}) {
+  def_.up = def_.up / glm::length(def_.up);
+  position_ = def_.position;
 }
 
 void Character::setPosition(const Vec3& position, bool stop) {
-  if (!isFinite(position)) throw Error("character: setPosition: position must be finite");
+  if (!isFinite(position)) COLLIDE_FAIL("character: setPosition: position must be finite");
   position_ = position;
   if (stop) {
     verticalSpeed_ = 0.0f;
@@ -434,8 +447,8 @@ void Character::pushBodies(World& world, const Vec3& velocity, float dt) {
 
 void Character::update(World& world, const Vec3& walkVelocity, float dt) {
   if (!(dt > 0.0f) || !std::isfinite(dt))
-    throw Error("character: update: dt must be finite and > 0, got " + formatNumber(dt));
-  if (!isFinite(walkVelocity)) throw Error("character: update: walkVelocity must be finite");
+    COLLIDE_FAIL("character: update: dt must be finite and > 0, got " + formatNumber(dt));
+  if (!isFinite(walkVelocity)) COLLIDE_FAIL("character: update: walkVelocity must be finite");
   const Vec3 up = def_.up;
   touched_.clear();
   contacts_.clear();
@@ -523,8 +536,9 @@ void Character::update(World& world, const Vec3& walkVelocity, float dt) {
 
 bool Character::setHalfHeight(World& world, float halfHeight) {
   if (!(halfHeight >= 0.0f) || !std::isfinite(halfHeight))
-    throw Error("character: setHalfHeight: halfHeight must be finite and >= 0, got " +
-                formatNumber(halfHeight));
+    COLLIDE_FAIL(
+        "character: setHalfHeight: halfHeight must be finite and >= 0, got " + formatNumber(halfHeight),
+        false);
   const Vec3 feet = footPosition();
   const Vec3 centre = feet + (halfHeight + def_.radius) * def_.up;
   if (halfHeight > def_.halfHeight && overlapsAt(world, centre, halfHeight)) return false;

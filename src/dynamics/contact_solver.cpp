@@ -1,5 +1,6 @@
 // The soft-step contact solver: batches, warm start, solve, restitution, store (contact_solver.h).
 #include "dynamics/contact_solver.h"
+#include "base/fail.h"
 
 #include "dynamics/constraint_graph.h"
 #include "dynamics/contact_lanes.h"
@@ -51,8 +52,10 @@ ContactSolver::ContactSolver(int laneWidth) {
     lanes_ = makeAvx2ContactLanes();
 #endif
   } else {
-    throw Error("contact solver: lane width " + std::to_string(laneWidth) + " is not available here (4" +
-                std::string(widestContactLanes() == 8 ? " or 8" : "") + ")");
+    // Without exceptions the four-lane kernel, which every x86-64 has, stands in.
+    lanes_ = std::make_unique<LaneContactSolver<FloatW>>();
+    COLLIDE_FAIL("contact solver: lane width " + std::to_string(laneWidth) + " is not available here (4" +
+                 std::string(widestContactLanes() == 8 ? " or 8" : "") + ")");
   }
 }
 

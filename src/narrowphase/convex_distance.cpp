@@ -1,5 +1,6 @@
 // GJK + radii + EPA (see convex_distance.h).
 #include "narrowphase/convex_distance.h"
+#include "base/fail.h"
 
 #include "narrowphase/epa.h"
 #include "narrowphase/gjk.h"
@@ -128,15 +129,17 @@ DistanceResult mirrored(DistanceResult result) {
 
 DistanceResult distance(const Shape& shapeA, const Transform& givenA, const Shape& shapeB,
                         const Transform& givenB) {
-  detail::requireValidTransform(givenA, "distance", "A");
-  detail::requireValidTransform(givenB, "distance", "B");
+  if (!detail::requireValidTransform(givenA, "distance", "A") ||
+      !detail::requireValidTransform(givenB, "distance", "B"))
+    return {};
   const Transform transformA = detail::withUnitRotation(givenA);
   const Transform transformB = detail::withUnitRotation(givenB);
   const bool planeA = shapeA.type() == ShapeType::Plane;
   const bool planeB = shapeB.type() == ShapeType::Plane;
   if ((!planeA && !shapeA.isConvex()) || (!planeB && !shapeB.isConvex()) || (planeA && planeB)) {
-    throw Error("distance: needs two convex shapes or a plane and a convex shape, got " +
-                std::string(toString(shapeA.type())) + " and " + std::string(toString(shapeB.type())));
+    COLLIDE_FAIL("distance: needs two convex shapes or a plane and a convex shape, got " +
+                     std::string(toString(shapeA.type())) + " and " + std::string(toString(shapeB.type())),
+                 {});
   }
   if (planeA) return planeConvexDistance(shapeA, transformA, shapeB, transformB);
   if (planeB) return mirrored(planeConvexDistance(shapeB, transformB, shapeA, transformA));

@@ -1,5 +1,6 @@
 // Cores and radii of the convex proxies (see convex_support.h).
 #include "narrowphase/convex_support.h"
+#include "base/fail.h"
 
 namespace collide::detail {
 
@@ -48,7 +49,8 @@ ConvexSupport makeConvexSupport(const Shape& shape, const Transform& transform) 
     case ShapeType::Plane:
     case ShapeType::Mesh:
     case ShapeType::Compound:
-      throw Error("narrow phase: a " + std::string(toString(shape.type())) + " has no support function");
+      COLLIDE_FAIL("narrow phase: a " + std::string(toString(shape.type())) + " has no support function",
+                   support);
   }
   return support;
 }

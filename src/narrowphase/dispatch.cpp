@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "base/fail.h"
 #include "narrowphase/pair_functions.h"
 
 namespace collide {
@@ -70,9 +71,10 @@ bool overlapMirrored(const Shape& shapeA, const Transform& transformA, const Sha
 // ---- Unsupported cells ----
 
 bool collidePlanePlane(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&) {
-  throw Error(
+  COLLIDE_FAIL(
       "collide: plane–plane is not supported: two half-spaces are infinite static proxies, which the "
-      "world never pairs; make one of the bodies a box");
+      "world never pairs; make one of the bodies a box",
+      false);
 }
 
 // ---- Bounding-volume semantics ----
@@ -277,26 +279,28 @@ std::string format(const Vec3& v) {
   return out.str();
 }
 
-[[noreturn]] void throwInvalidTransform(const Transform& t, const char* query, const char* which) {
+void reportInvalidTransform(const Transform& t, const char* query, const char* which) {
   std::ostringstream out;
   out << query << ": transform of shape " << which
       << " must have a finite position, a unit rotation and a finite scale > 0, got position "
       << format(t.position) << ", rotation (w " << t.rotation.w << ", x " << t.rotation.x << ", y "
       << t.rotation.y << ", z " << t.rotation.z << "), scale " << t.scale;
-  throw Error(out.str());
+  raiseError(out.str());
 }
 
 // The same test as isValid() but cheap enough for the cheapest pairs: one NaN/infinity probe
 // (x * 0 is 0 only for finite x), then the unit quaternion and the positive scale.
-inline void requireValid(const Transform& t, const char* query, const char* which) {
+inline bool requireValid(const Transform& t, const char* query, const char* which) {
   const float probe = (t.position.x + t.position.y + t.position.z + t.rotation.x + t.rotation.y +
                        t.rotation.z + t.rotation.w + t.scale) *
                       0.0f;
   const float norm = t.rotation.x * t.rotation.x + t.rotation.y * t.rotation.y + t.rotation.z * t.rotation.z +
                      t.rotation.w * t.rotation.w;
   if (probe == 0.0f && std::abs(norm - 1.0f) < 1e-3f && t.scale > 0.0f) [[likely]]
-    return;
-  if (!isValid(t)) throwInvalidTransform(t, query, which);  // the probe may overflow for huge values
+    return true;
+  if (isValid(t)) return true;  // the probe may overflow for huge values
+  reportInvalidTransform(t, query, which);
+  return false;
 }
 
 }  // namespace
@@ -349,20 +353,21 @@ std::string describePairTable() {
 
 bool overlap(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
              const Transform& transformB) {
-  detail::requireValid(transformA, "overlap", "A");
-  detail::requireValid(transformB, "overlap", "B");
+  if (!detail::requireValid(transformA, "overlap", "A") || !detail::requireValid(transformB, "overlap", "B"))
+    return false;
   return detail::kPairTable[detail::index(shapeA.type())][detail::index(shapeB.type())].overlap(
       shapeA, detail::withUnitRotation(transformA), shapeB, detail::withUnitRotation(transformB));
 }
 
 bool collide(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
              const Transform& transformB, Manifold& out, float speculativeMargin) {
-  detail::requireValid(transformA, "collide", "A");
-  detail::requireValid(transformB, "collide", "B");
+  out.count = 0;
+  if (!detail::requireValid(transformA, "collide", "A") || !detail::requireValid(transformB, "collide", "B"))
+    return false;
   if (!(speculativeMargin >= 0.0f) || !std::isfinite(speculativeMargin)) {
     std::ostringstream message;
     message << "collide: speculative margin must be finite and >= 0, got " << speculativeMargin;
-    throw Error(message.str());
+    COLLIDE_FAIL(message.str(), false);
   }
   return detail::collidePair(shapeA, detail::withUnitRotation(transformA), shapeB,
                              detail::withUnitRotation(transformB), speculativeMargin, out);
@@ -370,8 +375,8 @@ bool collide(const Shape& shapeA, const Transform& transformA, const Shape& shap
 
 namespace detail {
 // Shared with distance() in convex_distance.cpp.
-void requireValidTransform(const Transform& transform, const char* query, const char* which) {
-  requireValid(transform, query, which);
+bool requireValidTransform(const Transform& transform, const char* query, const char* which) {
+  return requireValid(transform, query, which);
 }
 
 // The caller's transform with its rotation normalised: a valid rotation may be off unit length by

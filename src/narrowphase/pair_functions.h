@@ -136,7 +136,7 @@ bool collideChildrenAny(std::span<const Compound::Child> children, const Transfo
                         const Shape& other, const Transform& otherTransform, float margin, Manifold& out);
 
 // Throws Error naming the query and the shape ("A" or "B") for an invalid transform.
-void requireValidTransform(const Transform& transform, const char* query, const char* which);
+bool requireValidTransform(const Transform& transform, const char* query, const char* which);
 // The transform with its rotation normalised, for the public queries (dispatch.cpp).
 Transform withUnitRotation(const Transform& transform);
 

@@ -10,6 +10,7 @@
 // are taken apart into triangles and children, and the earliest hit wins.
 #include <collide/narrowphase.h>
 
+#include "base/fail.h"
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/convex_support.h"
 #include "narrowphase/pair_functions.h"
@@ -600,39 +601,48 @@ std::string describe(float value) {
   return out.str();
 }
 
-void requireValidSweep(const Sweep& sweep, const char* which) {
+bool validSweep(const Sweep& sweep, const char* which) {
   const auto bad = [&](const std::string& what) {
-    throw Error(std::string("timeOfImpact: sweep ") + which + ": " + what);
+    detail::raiseError(std::string("timeOfImpact: sweep ") + which + ": " + what);
+    return false;
   };
   if (!isFinite(sweep.localCenter) || !isFinite(sweep.center0) || !isFinite(sweep.center1))
-    bad("centres must be finite");
+    return bad("centres must be finite");
   // The same test as a Transform's (isValid): |q|^2 within 1e-3 of 1.
   const auto unit = [](const Quat& q) { return isFinite(q) && std::abs(glm::dot(q, q) - 1.0f) < 1e-3f; };
   if (!unit(sweep.rotation0))
-    bad("rotation0 must be a finite unit quaternion, got length " + describe(glm::length(sweep.rotation0)));
+    return bad("rotation0 must be a finite unit quaternion, got length " +
+               describe(glm::length(sweep.rotation0)));
   if (!unit(sweep.rotation1))
-    bad("rotation1 must be a finite unit quaternion, got length " + describe(glm::length(sweep.rotation1)));
+    return bad("rotation1 must be a finite unit quaternion, got length " +
+               describe(glm::length(sweep.rotation1)));
   if (!isFinite(sweep.scale) || sweep.scale <= 0.0f)
-    bad("scale must be finite and > 0, got " + describe(sweep.scale));
+    return bad("scale must be finite and > 0, got " + describe(sweep.scale));
+  return true;
 }
 
 }  // namespace
 
 ToiResult timeOfImpact(const Shape& shapeA, const Sweep& sweepA, const Shape& shapeB, const Sweep& sweepB,
                        const ToiSettings& settings) {
-  requireValidSweep(sweepA, "A");
-  requireValidSweep(sweepB, "B");
+  const ToiResult refused;  // without exceptions, what a refused query returns: separated, t = 1
+  if (!validSweep(sweepA, "A") || !validSweep(sweepB, "B")) return refused;
   if (!isFinite(settings.targetSeparation))
-    throw Error("timeOfImpact: targetSeparation must be finite, got " + describe(settings.targetSeparation));
+    COLLIDE_FAIL("timeOfImpact: targetSeparation must be finite, got " + describe(settings.targetSeparation),
+                 refused);
   if (!isFinite(settings.tolerance) || settings.tolerance <= 0.0f)
-    throw Error("timeOfImpact: tolerance must be finite and > 0, got " + describe(settings.tolerance));
+    COLLIDE_FAIL("timeOfImpact: tolerance must be finite and > 0, got " + describe(settings.tolerance),
+                 refused);
   if (settings.maxIterations < 1)
-    throw Error("timeOfImpact: maxIterations must be >= 1, got " + std::to_string(settings.maxIterations));
+    COLLIDE_FAIL("timeOfImpact: maxIterations must be >= 1, got " + std::to_string(settings.maxIterations),
+                 refused);
   const bool planeA = shapeA.type() == ShapeType::Plane, planeB = shapeB.type() == ShapeType::Plane;
-  if (planeA && planeB) throw Error("timeOfImpact: two planes (infinite static half-spaces) cannot meet");
+  if (planeA && planeB)
+    COLLIDE_FAIL("timeOfImpact: two planes (infinite static half-spaces) cannot meet", refused);
   if ((planeA && sweepA.angle() > 0.0f) || (planeB && sweepB.angle() > 0.0f)) {
-    throw Error(std::string("timeOfImpact: the plane ") + (planeA ? "A" : "B") +
-                " turns during its sweep; a plane may only translate (its far points have no bound)");
+    COLLIDE_FAIL(std::string("timeOfImpact: the plane ") + (planeA ? "A" : "B") +
+                     " turns during its sweep; a plane may only translate (its far points have no bound)",
+                 refused);
   }
   return shapesToi(shapeA, sweepA, shapeB, sweepB, settings);
 }

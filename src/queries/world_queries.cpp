@@ -1,5 +1,6 @@
 // The world's queries over the broad phase: rays, shape casts, overlaps and points (world_queries.h).
 #include "queries/world_queries.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 #include <collide/narrowphase.h>
@@ -35,16 +36,18 @@ std::uint32_t bodyIndex(const BroadPhase& broadPhase, ProxyId proxy) {
   return static_cast<std::uint32_t>(broadPhase.userValue(proxy));
 }
 
-// The ray with a unit direction, or Error naming the query.
-Ray checkedUnitRay(const Ray& ray, const char* query) {
+// The ray with a unit direction, or Error naming the query (and without exceptions nothing).
+std::optional<Ray> checkedUnitRay(const Ray& ray, const char* query) {
   const std::string where = std::string("world: ") + query + ": ";
-  if (!isFinite(ray.origin)) throw Error(where + "origin must be finite, got " + formatVec(ray.origin));
+  if (!isFinite(ray.origin))
+    COLLIDE_FAIL(where + "origin must be finite, got " + formatVec(ray.origin), std::nullopt);
   const float length = glm::length(ray.direction);
   if (!isFinite(ray.direction) || !(length > 0.0f) || !std::isfinite(length)) {
-    throw Error(where + "direction must be finite and non-zero, got " + formatVec(ray.direction));
+    COLLIDE_FAIL(where + "direction must be finite and non-zero, got " + formatVec(ray.direction),
+                 std::nullopt);
   }
   if (std::isnan(ray.maxDistance) || ray.maxDistance < 0.0f) {
-    throw Error(where + "maxDistance must be >= 0, got " + formatFloat(ray.maxDistance));
+    COLLIDE_FAIL(where + "maxDistance must be >= 0, got " + formatFloat(ray.maxDistance), std::nullopt);
   }
   Ray unit = ray;
   unit.direction = ray.direction / length;
@@ -92,13 +95,15 @@ bool nearerRay(const RayCastResult& a, const RayCastResult& b) {
   return a.distance < b.distance || (a.distance == b.distance && a.body.index < b.body.index);
 }
 
-void checkPose(const Transform& pose, const char* query) {
+bool checkPose(const Transform& pose, const char* query) {
   if (!isValid(pose)) {
-    throw Error(std::string("world: ") + query +
-                ": pose must have a finite position, a unit rotation and a positive finite scale, got "
-                "position " +
-                formatVec(pose.position) + ", scale " + formatFloat(pose.scale));
+    COLLIDE_FAIL(std::string("world: ") + query +
+                     ": pose must have a finite position, a unit rotation and a positive finite scale, got "
+                     "position " +
+                     formatVec(pose.position) + ", scale " + formatFloat(pose.scale),
+                 false);
   }
+  return true;
 }
 
 // The candidates whose proxy box touches `box`, by body index (the broad phase's order varies by type).
@@ -170,18 +175,27 @@ std::optional<ShapeCastResult> castAgainst(const BodyStorage& bodies, std::uint3
   return best;
 }
 
-void checkCast(const Shape& shape, const Transform& pose, const Vec3& translation, const char* query) {
+// The query shape: without exceptions a Shape can carry a bad value (collide/error.h).
+bool checkQueryShape(const Shape& shape, const char* query) {
+  return withErrorContext(std::string("world: ") + query + ": shape: ", [&] { return validateShape(shape); });
+}
+
+bool checkCast(const Shape& shape, const Transform& pose, const Vec3& translation, const char* query) {
   if (!shape.isConvex()) {
-    throw Error(std::string("world: ") + query +
-                ": the cast shape must be convex (sphere, capsule, box, k-DOP, ellipsoid, cylinder or convex "
-                "hull), got " +
-                std::string(toString(shape.type())));
+    COLLIDE_FAIL(
+        std::string("world: ") + query +
+            ": the cast shape must be convex (sphere, capsule, box, k-DOP, ellipsoid, cylinder or convex "
+            "hull), got " +
+            std::string(toString(shape.type())),
+        false);
   }
-  checkPose(pose, query);
+  if (!checkQueryShape(shape, query) || !checkPose(pose, query)) return false;
   if (!isFinite(translation)) {
-    throw Error(std::string("world: ") + query + ": translation must be finite, got " +
-                formatVec(translation));
+    COLLIDE_FAIL(
+        std::string("world: ") + query + ": translation must be finite, got " + formatVec(translation),
+        false);
   }
+  return true;
 }
 
 // The cast's broad phase: the proxies the shape's box meets on its way (BroadPhase::boxCast: the
@@ -205,7 +219,7 @@ template <typename Visit>
 void visitShapeCast(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
                     const Transform& pose, const Vec3& translation, const QueryFilter& filter,
                     const char* query, Visit&& visit) {
-  checkCast(shape, pose, translation, query);
+  if (!checkCast(shape, pose, translation, query)) return;
   const Sweep sweep = castSweep(pose, translation);
   std::vector<std::uint32_t> indices;
   castCandidates(broadPhase, shape, pose, translation, filter.mask, [&](std::uint32_t index, float) {
@@ -248,7 +262,9 @@ bool touches(const Shape& a, const Transform& poseA, const Shape& b, const Trans
 
 std::optional<RayCastResult> castRayClosest(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                             const Ray& ray, const QueryFilter& filter) {
-  const Ray unit = checkedUnitRay(ray, "castRay");
+  const std::optional<Ray> checked = checkedUnitRay(ray, "castRay");
+  if (!checked) return std::nullopt;
+  const Ray unit = *checked;
   std::optional<RayCastResult> best;
   // Each candidate's shape is cast over the whole ray (not clipped to the best so far), so that an
   // equal distance is seen and the tie goes to the lower index whatever order the boxes come in;
@@ -263,8 +279,10 @@ std::optional<RayCastResult> castRayClosest(const BodyStorage& bodies, const Bro
 
 void castRayCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Ray& ray,
                     const RayHitCollector& collector, const QueryFilter& filter) {
-  const Ray unit = checkedUnitRay(ray, "castRayCollect");
-  if (!collector) throw Error("world: castRayCollect: the collector must be set");
+  const std::optional<Ray> checked = checkedUnitRay(ray, "castRayCollect");
+  if (!checked) return;
+  const Ray unit = *checked;
+  if (!collector) COLLIDE_FAIL("world: castRayCollect: the collector must be set");
   float reach = unit.maxDistance;
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
     const auto hit = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), Ray{unit.origin, unit.direction, reach},
@@ -279,7 +297,9 @@ void castRayCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, con
 
 std::optional<RayCastResult> castRayAny(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                         const Ray& ray, const QueryFilter& filter) {
-  const Ray unit = checkedUnitRay(ray, "castRayAny");
+  const std::optional<Ray> checked = checkedUnitRay(ray, "castRayAny");
+  if (!checked) return std::nullopt;
+  const Ray unit = *checked;
   std::optional<RayCastResult> found;
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
     found = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), unit, unit.maxDistance, filter);
@@ -290,7 +310,9 @@ std::optional<RayCastResult> castRayAny(const BodyStorage& bodies, const BroadPh
 
 std::vector<RayCastResult> castRayAll(const BodyStorage& bodies, const BroadPhase& broadPhase, const Ray& ray,
                                       const QueryFilter& filter) {
-  const Ray unit = checkedUnitRay(ray, "castRayAll");
+  const std::optional<Ray> checked = checkedUnitRay(ray, "castRayAll");
+  if (!checked) return {};
+  const Ray unit = *checked;
   std::vector<RayCastResult> hits;
   broadPhase.rayCast(unit, filter.mask, [&](ProxyId proxy, float) {
     if (const auto hit = bodyRayHit(bodies, bodyIndex(broadPhase, proxy), unit, unit.maxDistance, filter))
@@ -304,7 +326,7 @@ std::vector<RayCastResult> castRayAll(const BodyStorage& bodies, const BroadPhas
 std::optional<ShapeCastResult> castShapeClosest(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                                 const Shape& shape, const Transform& pose,
                                                 const Vec3& translation, const QueryFilter& filter) {
-  checkCast(shape, pose, translation, "castShape");
+  if (!checkCast(shape, pose, translation, "castShape")) return std::nullopt;
   const Sweep sweep = castSweep(pose, translation);
   const float length = glm::length(translation);
   // Twice the time of impact's tolerance: a contact it reports that much early must not hide a body
@@ -339,9 +361,9 @@ template <typename Visit>
 void visitOverlaps(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
                    const Transform& pose, const QueryFilter& filter, const char* query, Visit&& visit) {
   if (shape.type() == ShapeType::Plane) {
-    throw Error(std::string("world: ") + query + ": a plane has no finite extent to query with; use a box");
+    COLLIDE_FAIL(std::string("world: ") + query + ": a plane has no finite extent to query with; use a box");
   }
-  checkPose(pose, query);
+  if (!checkQueryShape(shape, query) || !checkPose(pose, query)) return;
   for (const std::uint32_t index : candidates(broadPhase, worldBounds(shape, pose), filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
     const BodyRecord& r = bodies.records[index];
@@ -374,7 +396,7 @@ template <typename Visit>
 void visitPoint(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
                 const QueryFilter& filter, const char* query, Visit&& visit) {
   if (!isFinite(point))
-    throw Error(std::string("world: ") + query + ": point must be finite, got " + formatVec(point));
+    COLLIDE_FAIL(std::string("world: ") + query + ": point must be finite, got " + formatVec(point));
   for (const std::uint32_t index : candidates(broadPhase, Aabb{point, point}, filter.mask)) {
     if (!passes(filter, bodies, index)) continue;
     const BodyRecord& r = bodies.records[index];
@@ -404,7 +426,7 @@ std::vector<OverlapResult> overlapShape(const BodyStorage& bodies, const BroadPh
 void overlapShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
                          const Transform& pose, const OverlapCollector& collector,
                          const QueryFilter& filter) {
-  if (!collector) throw Error("world: overlapShapeCollect: the collector must be set");
+  if (!collector) COLLIDE_FAIL("world: overlapShapeCollect: the collector must be set");
   visitOverlaps(bodies, broadPhase, shape, pose, filter, "overlapShapeCollect", collector);
 }
 
@@ -420,14 +442,14 @@ std::vector<BodyId> overlapPoint(const BodyStorage& bodies, const BroadPhase& br
 
 void overlapPointCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& point,
                          const PointCollector& collector, const QueryFilter& filter) {
-  if (!collector) throw Error("world: overlapPointCollect: the collector must be set");
+  if (!collector) COLLIDE_FAIL("world: overlapPointCollect: the collector must be set");
   visitPoint(bodies, broadPhase, point, filter, "overlapPointCollect", collector);
 }
 
 void castShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, const Shape& shape,
                       const Transform& pose, const Vec3& translation, const ShapeCastCollector& collector,
                       const QueryFilter& filter) {
-  if (!collector) throw Error("world: castShapeCollect: the collector must be set");
+  if (!collector) COLLIDE_FAIL("world: castShapeCollect: the collector must be set");
   float reach = 1.0f;
   visitShapeCast(bodies, broadPhase, shape, pose, translation, filter, "castShapeCollect",
                  [&](const ShapeCastResult& hit) {
@@ -442,11 +464,12 @@ void castShapeCollect(const BodyStorage& bodies, const BroadPhase& broadPhase, c
 bool hasLineOfSight(const BodyStorage& bodies, const BroadPhase& broadPhase, const Vec3& from, const Vec3& to,
                     const QueryFilter& filter) {
   if (!isFinite(from) || !isFinite(to))
-    throw Error("world: hasLineOfSight: from and to must be finite, got " + formatVec(from) + " and " +
-                formatVec(to));
+    COLLIDE_FAIL(
+        "world: hasLineOfSight: from and to must be finite, got " + formatVec(from) + " and " + formatVec(to),
+        false);
   const Vec3 d = to - from;
   const float length = glm::length(d);
-  if (!std::isfinite(length)) throw Error("world: hasLineOfSight: the segment is too long for float");
+  if (!std::isfinite(length)) COLLIDE_FAIL("world: hasLineOfSight: the segment is too long for float", false);
   if (length == 0.0f) return overlapPoint(bodies, broadPhase, from, filter).empty();
   return !castRayAny(bodies, broadPhase, Ray{from, d / length, length}, filter).has_value();
 }

@@ -1,5 +1,6 @@
 // Viscous and damping friction at one contact (friction.h).
 #include "response/friction.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 
@@ -27,11 +28,10 @@ Tangential tangentialRelativeVelocity(const ImpactBody& a, const ImpactBody& b, 
   return {tangential / speed, speed};
 }
 
-void validateFrictionContact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal,
+bool validateFrictionContact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal,
                              const char* context) {
-  validateImpactBody(a, context, "A");
-  validateImpactBody(b, context, "B");
-  validateContact(point, normal, context);
+  return validateImpactBody(a, context, "A") && validateImpactBody(b, context, "B") &&
+         validateContact(point, normal, context);
 }
 
 void applyPair(ImpactBody& a, ImpactBody& b, const Vec3& impulseOnB, const Vec3& point) {
@@ -44,13 +44,14 @@ void applyPair(ImpactBody& a, ImpactBody& b, const Vec3& impulseOnB, const Vec3&
 Vec3 applyViscousFriction(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
                           float coefficient, float dt) {
   const char* context = "applyViscousFriction";
-  validateFrictionContact(a, b, point, normalAToB, context);
+  if (!validateFrictionContact(a, b, point, normalAToB, context)) return Vec3(0.0f);
   if (!std::isfinite(coefficient) || coefficient < 0.0f) {
-    throw Error(std::string(context) + ": coefficient must be finite and >= 0, got " +
-                std::to_string(coefficient));
+    COLLIDE_FAIL(
+        std::string(context) + ": coefficient must be finite and >= 0, got " + std::to_string(coefficient),
+        Vec3(0.0f));
   }
   if (!std::isfinite(dt) || dt <= 0.0f) {
-    throw Error(std::string(context) + ": dt must be finite and > 0, got " + std::to_string(dt));
+    COLLIDE_FAIL(std::string(context) + ": dt must be finite and > 0, got " + std::to_string(dt), Vec3(0.0f));
   }
   if (hasInfiniteMass(a) && hasInfiniteMass(b)) return Vec3(0.0f);
   const Tangential slip = tangentialRelativeVelocity(a, b, point, normalAToB);
@@ -68,9 +69,9 @@ Vec3 applyViscousFriction(ImpactBody& a, ImpactBody& b, const Vec3& point, const
 Vec3 applyDampingFriction(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
                           float tax) {
   const char* context = "applyDampingFriction";
-  validateFrictionContact(a, b, point, normalAToB, context);
+  if (!validateFrictionContact(a, b, point, normalAToB, context)) return Vec3(0.0f);
   if (!std::isfinite(tax) || tax < 0.0f || tax > 1.0f) {
-    throw Error(std::string(context) + ": tax must be in [0, 1], got " + std::to_string(tax));
+    COLLIDE_FAIL(std::string(context) + ": tax must be in [0, 1], got " + std::to_string(tax), Vec3(0.0f));
   }
   if (hasInfiniteMass(a) && hasInfiniteMass(b)) return Vec3(0.0f);
   const Tangential slip = tangentialRelativeVelocity(a, b, point, normalAToB);

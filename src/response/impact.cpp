@@ -1,5 +1,6 @@
 // The lecture's interpolated impact at one contact (impact.h).
 #include "response/impact.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 
@@ -14,18 +15,18 @@ namespace {
 using DVec3 = glm::dvec3;
 using DMat3 = glm::dmat3;
 
-void validateBounciness(float bounciness, const char* context) {
+bool validateBounciness(float bounciness, const char* context) {
   if (!std::isfinite(bounciness) || bounciness < 0.0f || bounciness > 1.0f) {
-    throw Error(std::string(context) + ": bounciness must be in [0, 1], got " + std::to_string(bounciness));
+    COLLIDE_FAIL(std::string(context) + ": bounciness must be in [0, 1], got " + std::to_string(bounciness),
+                 false);
   }
+  return true;
 }
 
-void validateImpact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal,
+bool validateImpact(const ImpactBody& a, const ImpactBody& b, const Vec3& point, const Vec3& normal,
                     float bounciness, const char* context) {
-  validateImpactBody(a, context, "A");
-  validateImpactBody(b, context, "B");
-  validateContact(point, normal, context);
-  validateBounciness(bounciness, context);
+  return validateImpactBody(a, context, "A") && validateImpactBody(b, context, "B") &&
+         validateContact(point, normal, context) && validateBounciness(bounciness, context);
 }
 
 // The inertia tensor from the inverse one, in double: the glued body needs inertias, which add,
@@ -37,9 +38,10 @@ DMat3 inertiaOf(const ImpactBody& body, const char* name) {
   const DMat3 inertia = glm::inverse(inverseInertia);
   if (det == 0.0 || !std::isfinite(det) || !isFinite(Vec3(inertia[0])) || !isFinite(Vec3(inertia[1])) ||
       !isFinite(Vec3(inertia[2]))) {
-    throw Error(std::string("impact: body ") + name +
-                " inverse inertia must be zero (a particle) or invertible, got determinant " +
-                std::to_string(det));
+    COLLIDE_FAIL(std::string("impact: body ") + name +
+                     " inverse inertia must be zero (a particle) or invertible, got determinant " +
+                     std::to_string(det),
+                 DMat3(0.0));
   }
   return inertia;
 }
@@ -75,6 +77,7 @@ void glueTwoWay(ImpactBody& a, ImpactBody& b) {
   const DVec3 rb = DVec3(b.centerOfMass) - centre;
   const DMat3 inertiaA = inertiaOf(a, "A");
   const DMat3 inertiaB = inertiaOf(b, "B");
+  COLLIDE_RETURN_IF_FAILED();
   const DVec3 angularMomentum =
       inertiaA * DVec3(a.angularVelocity) + glm::cross(ra, massA * DVec3(a.linearVelocity)) +
       inertiaB * DVec3(b.angularVelocity) + glm::cross(rb, massB * DVec3(b.linearVelocity));
@@ -115,7 +118,8 @@ void elasticUnchecked(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec
 
 Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, const Vec3& normalAToB,
                                float bounciness) {
-  validateImpact(a, b, point, normalAToB, bounciness, "resolveImpactInterpolated");
+  const ErrorScope scope;
+  if (!validateImpact(a, b, point, normalAToB, bounciness, "resolveImpactInterpolated")) return Vec3(0.0f);
   if (hasInfiniteMass(a) && hasInfiniteMass(b)) return Vec3(0.0f);
   if (!(glm::dot(velocityAt(b, point) - velocityAt(a, point), normalAToB) < 0.0f)) return Vec3(0.0f);
 
@@ -127,6 +131,7 @@ Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, 
   elasticUnchecked(elasticA, elasticB, point, normalAToB);
   ImpactBody inelasticA = a, inelasticB = b;
   glueUnchecked(inelasticA, inelasticB);
+  COLLIDE_RETURN_IF_FAILED(Vec3(0.0f));
 
   const Vec3 oldVelocityA = a.linearVelocity;
   const Vec3 oldVelocityB = b.linearVelocity;
@@ -140,8 +145,8 @@ Vec3 resolveImpactInterpolated(ImpactBody& a, ImpactBody& b, const Vec3& point, 
 }
 
 void glueVelocities(ImpactBody& a, ImpactBody& b) {
-  validateImpactBody(a, "glueVelocities", "A");
-  validateImpactBody(b, "glueVelocities", "B");
+  const ErrorScope scope;
+  if (!validateImpactBody(a, "glueVelocities", "A") || !validateImpactBody(b, "glueVelocities", "B")) return;
   glueUnchecked(a, b);
 }
 

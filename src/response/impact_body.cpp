@@ -1,6 +1,7 @@
 // A body as one contact's response sees it: velocities at a point, impulses, validation
 // (impact_body.h).
 #include "response/impact_body.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 
@@ -79,32 +80,35 @@ bool canApplyImpact(const ImpactBody& a, const ImpactBody& b, const Vec3& point,
   return hasInfiniteMass(a) || hasInfiniteMass(b) || (hasUsableInertia(a) && hasUsableInertia(b));
 }
 
-void validateImpactBody(const ImpactBody& body, const char* context, const char* name) {
+bool validateImpactBody(const ImpactBody& body, const char* context, const char* name) {
   const std::string prefix = std::string(context) + ": body " + name + " ";
   if (!std::isfinite(body.inverseMass) || body.inverseMass < 0.0f) {
-    throw Error(prefix + "inverse mass must be finite and >= 0, got " + std::to_string(body.inverseMass));
+    COLLIDE_FAIL(prefix + "inverse mass must be finite and >= 0, got " + std::to_string(body.inverseMass),
+                 false);
   }
-  if (!isFiniteMatrix(body.inverseInertia)) throw Error(prefix + "inverse inertia must be finite");
+  if (!isFiniteMatrix(body.inverseInertia)) COLLIDE_FAIL(prefix + "inverse inertia must be finite", false);
   if (hasInfiniteMass(body) && !isZeroMatrix(body.inverseInertia)) {
-    throw Error(prefix + "has infinite mass (inverse mass 0) but a non-zero inverse inertia");
+    COLLIDE_FAIL(prefix + "has infinite mass (inverse mass 0) but a non-zero inverse inertia", false);
   }
   if (!isFinite(body.linearVelocity)) {
-    throw Error(prefix + "linear velocity must be finite, got " + toText(body.linearVelocity));
+    COLLIDE_FAIL(prefix + "linear velocity must be finite, got " + toText(body.linearVelocity), false);
   }
   if (!isFinite(body.angularVelocity)) {
-    throw Error(prefix + "angular velocity must be finite, got " + toText(body.angularVelocity));
+    COLLIDE_FAIL(prefix + "angular velocity must be finite, got " + toText(body.angularVelocity), false);
   }
   if (!isFinite(body.centerOfMass)) {
-    throw Error(prefix + "centre of mass must be finite, got " + toText(body.centerOfMass));
+    COLLIDE_FAIL(prefix + "centre of mass must be finite, got " + toText(body.centerOfMass), false);
   }
+  return true;
 }
 
-void validateContact(const Vec3& point, const Vec3& normal, const char* context) {
+bool validateContact(const Vec3& point, const Vec3& normal, const char* context) {
   if (!isFinite(point))
-    throw Error(std::string(context) + ": contact point must be finite, got " + toText(point));
+    COLLIDE_FAIL(std::string(context) + ": contact point must be finite, got " + toText(point), false);
   if (!isFinite(normal) || std::abs(glm::length(normal) - 1.0f) > 1e-3f) {
-    throw Error(std::string(context) + ": contact normal must be unit length, got " + toText(normal));
+    COLLIDE_FAIL(std::string(context) + ": contact normal must be unit length, got " + toText(normal), false);
   }
+  return true;
 }
 
 }  // namespace collide::detail

@@ -36,8 +36,8 @@ Mat3 contactInverseMassMatrix(const ImpactBody& a, const ImpactBody& b, const Ve
 // Throw collide::Error naming the function (context), the problem and the value: a body needs
 // finite values, a non-negative inverse mass, and a zero inverse inertia when its mass is infinite;
 // a contact needs a finite point and a unit normal (within 1e-3).
-void validateImpactBody(const ImpactBody& body, const char* context, const char* name);
-void validateContact(const Vec3& point, const Vec3& normal, const char* context);
+bool validateImpactBody(const ImpactBody& body, const char* context, const char* name);
+bool validateContact(const Vec3& point, const Vec3& normal, const char* context);
 
 // Whether the impact and friction laws accept these bodies and contact, without throwing: what
 // validateImpactBody and validateContact require, and, for two finite masses, inverse inertias that

@@ -1,5 +1,6 @@
 // The lecture's projection of two bodies apart, mass-weighted (penetration.h).
 #include "response/penetration.h"
+#include "base/fail.h"
 
 #include <collide/error.h>
 
@@ -10,17 +11,20 @@ namespace collide::detail {
 
 Displacements projectApart(float inverseMassA, float inverseMassB, const Vec3& normalAToB, float depth) {
   if (!std::isfinite(inverseMassA) || inverseMassA < 0.0f) {
-    throw Error("projectApart: inverse mass A must be finite and >= 0, got " + std::to_string(inverseMassA));
+    COLLIDE_FAIL("projectApart: inverse mass A must be finite and >= 0, got " + std::to_string(inverseMassA),
+                 {});
   }
   if (!std::isfinite(inverseMassB) || inverseMassB < 0.0f) {
-    throw Error("projectApart: inverse mass B must be finite and >= 0, got " + std::to_string(inverseMassB));
+    COLLIDE_FAIL("projectApart: inverse mass B must be finite and >= 0, got " + std::to_string(inverseMassB),
+                 {});
   }
   if (!isFinite(normalAToB) || std::abs(glm::length(normalAToB) - 1.0f) > 1e-3f) {
-    throw Error("projectApart: normal must be unit length, got length " +
-                std::to_string(glm::length(normalAToB)));
+    COLLIDE_FAIL(
+        "projectApart: normal must be unit length, got length " + std::to_string(glm::length(normalAToB)),
+        {});
   }
   if (!std::isfinite(depth) || depth < 0.0f) {
-    throw Error("projectApart: depth must be finite and >= 0, got " + std::to_string(depth));
+    COLLIDE_FAIL("projectApart: depth must be finite and >= 0, got " + std::to_string(depth), {});
   }
   return projectApartUnchecked(inverseMassA, inverseMassB, normalAToB, depth);
 }

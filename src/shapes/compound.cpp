@@ -3,6 +3,8 @@
 // proxy (a nested compound too) can be a child.
 #include "shapes/shape_functions.h"
 
+#include "base/fail.h"
+
 #include <limits>
 #include <sstream>
 #include <string>
@@ -10,13 +12,18 @@
 namespace collide {
 
 Compound Compound::fromChildren(std::vector<Child> children) {
-  if (children.empty()) throw Error("compound: needs at least one child, got 0");
+  const detail::ErrorScope scope;
+  if (children.empty()) COLLIDE_FAIL("compound: needs at least one child, got 0", {});
   Compound compound;
   for (std::size_t i = 0; i < children.size(); ++i) {
     const Child& child = children[i];
+    detail::withErrorContext("compound: child " + std::to_string(i) + ": ",
+                             [&] { detail::validateShape(child.shape); });
+    COLLIDE_RETURN_IF_FAILED({});
     if (child.shape.type() == ShapeType::Plane) {
-      throw Error("compound: child " + std::to_string(i) +
-                  " is a plane; a half-space cannot be part of a compound");
+      COLLIDE_FAIL(
+          "compound: child " + std::to_string(i) + " is a plane; a half-space cannot be part of a compound",
+          {});
     }
     if (!isValid(child.transform)) {
       const Transform& t = child.transform;
@@ -27,7 +34,7 @@ Compound Compound::fromChildren(std::vector<Child> children) {
               << t.position.x << ", " << t.position.y << ", " << t.position.z << "], rotation [w "
               << t.rotation.w << ", " << t.rotation.x << ", " << t.rotation.y << ", " << t.rotation.z
               << "], scale " << t.scale;
-      throw Error(message.str());
+      COLLIDE_FAIL(message.str(), {});
     }
     compound.bounds_.grow(worldBounds(child.shape, child.transform));
   }
@@ -65,12 +72,10 @@ MassProperties computeMassProperties(const Compound& s, float density) {
   Vec3 weightedCenter(0.0f);
   for (std::size_t i = 0; i < s.children().size(); ++i) {
     const Compound::Child& child = s.children()[i];
-    MassProperties m;
-    try {
-      m = massProperties(child.shape, density, child.transform.scale);
-    } catch (const Error& error) {
-      throw Error("compound: child " + std::to_string(i) + " has no mass properties: " + error.what());
-    }
+    const MassProperties m =
+        withErrorContext("compound: child " + std::to_string(i) + " has no mass properties: ",
+                         [&] { return massProperties(child.shape, density, child.transform.scale); });
+    COLLIDE_RETURN_IF_FAILED({});
     const Mat3 rotation = glm::mat3_cast(child.transform.rotation);
     // massProperties already scaled the centre of mass; only rotation and offset remain.
     const Vec3 center = child.transform.position + rotation * m.centerOfMass;

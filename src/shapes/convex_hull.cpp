@@ -1,7 +1,8 @@
 // Convex hull proxy (lecture, slide 51): the queries on a finished half-edge polyhedron. Building it
 // from points is shapes/hull_builder.cpp.
-#include "shapes/hull_builder.h"
+#include "base/fail.h"
 #include "geometry/support_scan.h"
+#include "shapes/hull_builder.h"
 #include "shapes/shape_functions.h"
 
 #include <algorithm>
@@ -14,8 +15,9 @@ ConvexHull ConvexHull::fromPoints(std::span<const Vec3> points) { return HullBui
 
 std::vector<Vec3> ConvexHull::faceVertices(std::uint32_t face) const {
   if (face >= faces_.size()) {
-    throw Error("convex_hull: face index " + std::to_string(face) + " out of range, the hull has " +
-                std::to_string(faces_.size()) + " faces");
+    COLLIDE_FAIL("convex_hull: face index " + std::to_string(face) + " out of range, the hull has " +
+                     std::to_string(faces_.size()) + " faces",
+                 {});
   }
   std::vector<Vec3> loop;
   loop.reserve(faces_[face].edgeCount);

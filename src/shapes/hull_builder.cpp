@@ -3,6 +3,7 @@
 // half-edge polyhedron of shapes.h (Gregorius, "Implementing Quickhull", GDC 2014, explains why
 // merged faces and twin half-edges are what SAT and contact clipping want).
 #include "shapes/hull_builder.h"
+#include "base/fail.h"
 #include "geometry/support_scan.h"
 
 #include "shapes/shape_functions.h"
@@ -133,8 +134,9 @@ Array<RawFace> runQhull(std::span<const Vec3> points, double mergeDistance) {
                                     options, nullptr, errors.file());
   if (exitCode != 0) {
     const std::string detail = errors.firstLine();
-    throw Error("convex_hull: Qhull failed with code " + std::to_string(exitCode) +
-                (detail.empty() ? std::string() : ": " + detail));
+    COLLIDE_FAIL("convex_hull: Qhull failed with code " + std::to_string(exitCode) +
+                     (detail.empty() ? std::string() : ": " + detail),
+                 {});
   }
   Array<RawFace> faces;
   facetT* facet;
@@ -165,12 +167,14 @@ std::atomic<void*> gHullTriangleFinderContext{nullptr};
 Array<RawFace> mergeHullTriangles(std::span<const Vec3> points, std::span<const std::uint32_t> indices,
                                   double mergeDistance) {
   if (indices.size() < 12 || indices.size() % 3 != 0)
-    throw Error("convex_hull: the hull triangle finder returned " + std::to_string(indices.size()) +
-                " indices, not 3 per triangle for at least 4 triangles");
+    COLLIDE_FAIL("convex_hull: the hull triangle finder returned " + std::to_string(indices.size()) +
+                     " indices, not 3 per triangle for at least 4 triangles",
+                 {});
   for (std::uint32_t index : indices) {
     if (index >= points.size())
-      throw Error("convex_hull: the hull triangle finder returned the index " + std::to_string(index) +
-                  " for " + std::to_string(points.size()) + " points");
+      COLLIDE_FAIL("convex_hull: the hull triangle finder returned the index " + std::to_string(index) +
+                       " for " + std::to_string(points.size()) + " points",
+                   {});
   }
   DVec3 centroid(0.0);
   for (std::uint32_t index : indices) centroid += DVec3(points[index]);
@@ -191,7 +195,7 @@ Array<RawFace> mergeHullTriangles(std::span<const Vec3> points, std::span<const 
     DVec3 normal = glm::cross(b - a, c - a);
     const double length = glm::length(normal);
     if (!(length > 0.0))
-      throw Error("convex_hull: the hull triangle finder returned a triangle of zero area");
+      COLLIDE_FAIL("convex_hull: the hull triangle finder returned a triangle of zero area", {});
     normal /= length;
     if (glm::dot(normal, centroid - a) > 0.0) {
       std::swap(tri.v[1], tri.v[2]);
@@ -202,16 +206,19 @@ Array<RawFace> mergeHullTriangles(std::span<const Vec3> points, std::span<const 
     for (int i = 0; i < 3; ++i) {
       if (!triangleByEdge.try_emplace(edgeKey(tri.v[i], tri.v[(i + 1) % 3]), static_cast<std::uint32_t>(t))
                .second)
-        throw Error(
-            "convex_hull: the hull triangle finder returned an edge shared by more than two triangles");
+        COLLIDE_FAIL(
+            "convex_hull: the hull triangle finder returned an edge shared by more than two triangles", {});
+    }
+  }
+  for (const Triangle& tri : triangles) {  // every edge has its twin: the surface is closed
+    for (int i = 0; i < 3; ++i) {
+      if (!triangleByEdge.contains(edgeKey(tri.v[(i + 1) % 3], tri.v[i])))
+        COLLIDE_FAIL(
+            "convex_hull: the hull triangle finder returned an open surface (an edge with one triangle)", {});
     }
   }
   const auto neighbour = [&](std::uint32_t from, std::uint32_t to) {
-    const auto it = triangleByEdge.find(edgeKey(to, from));
-    if (it == triangleByEdge.end())
-      throw Error(
-          "convex_hull: the hull triangle finder returned an open surface (an edge with one triangle)");
-    return it->second;
+    return triangleByEdge.find(edgeKey(to, from))->second;
   };
 
   constexpr std::uint32_t kNone = 0xFFFFFFFFu;
@@ -292,16 +299,18 @@ Array<RawFace> findFaces(std::span<const Vec3> points, double size) {
     for (const Vec3& p : points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
     std::vector<std::uint32_t> indices;
     if (!finder(xyz.data(), points.size(), indices, gHullTriangleFinderContext.load()))
-      throw Error("convex_hull: the hull triangle finder found no hull for " + std::to_string(points.size()) +
-                  " points");
+      COLLIDE_FAIL("convex_hull: the hull triangle finder found no hull for " +
+                       std::to_string(points.size()) + " points",
+                   {});
     return mergeHullTriangles(points, indices, mergeDistance);
   }
 #if COLLIDE_WITH_QHULL
   return runQhull(points, mergeDistance);
 #else
-  throw Error(
+  COLLIDE_FAIL(
       "convex_hull: this build of collide has no Qhull (COLLIDE_WITH_QHULL=OFF) and no hull triangle "
-      "finder is installed (setHullTriangleFinder)");
+      "finder is installed (setHullTriangleFinder)",
+      {});
 #endif
 }
 
@@ -346,7 +355,7 @@ void addFaces(std::span<const Vec3> points, const Array<RawFace>& rawFaces, Arra
       normal = -normal;
     }
     const double length = glm::length(normal);
-    if (!(length > 0.0)) throw Error("convex_hull: Qhull returned a face of zero area");
+    if (!(length > 0.0)) COLLIDE_FAIL("convex_hull: Qhull returned a face of zero area");
     normal /= length;
     double offset = 0.0;
     for (const DVec3& p : polygon) offset += glm::dot(normal, p);
@@ -359,7 +368,7 @@ void addFaces(std::span<const Vec3> points, const Array<RawFace>& rawFaces, Arra
     for (std::uint32_t i = 0; i < count; ++i) {
       const std::uint32_t from = loop[i], to = loop[(i + 1) % count];
       if (!edgeByEndpoints.try_emplace(edgeKey(from, to), first + i).second) {
-        throw Error("convex_hull: Qhull returned an edge walked twice in the same direction");
+        COLLIDE_FAIL("convex_hull: Qhull returned an edge walked twice in the same direction");
       }
       halfEdges.push_back({from, 0, first + (i + 1) % count, faceIndex});
     }
@@ -384,13 +393,13 @@ void fillVertexFaces(std::size_t vertexCount, const Array<ConvexHull::HalfEdge>&
 double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) {
   const std::string prefix(who);
   if (points.size() < 4) {
-    throw Error(prefix + ": need at least 4 points to enclose a volume, got " +
-                std::to_string(points.size()));
+    COLLIDE_FAIL(
+        prefix + ": need at least 4 points to enclose a volume, got " + std::to_string(points.size()), 0.0);
   }
   double largestCoordinate = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!isFinite(points[i])) {
-      throw Error(prefix + ": point " + std::to_string(i) + " is not finite, got " + format(points[i]));
+      COLLIDE_FAIL(prefix + ": point " + std::to_string(i) + " is not finite, got " + format(points[i]), 0.0);
     }
     for (int axis = 0; axis < 3; ++axis)
       largestCoordinate = std::max(largestCoordinate, std::abs(double(points[i][axis])));
@@ -410,8 +419,9 @@ double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) 
   const DVec3 a(points[farthestFrom(b)]);
   const double diameter = glm::length(b - a);  // within a factor 2 of the true diameter
   if (diameter == 0.0 || diameter <= HullBuilder::kFlatness * largestCoordinate) {
-    throw Error(prefix + ": points are all identical (within " + format(diameter) + " of " + format(Vec3(a)) +
-                ")");
+    COLLIDE_FAIL(
+        prefix + ": points are all identical (within " + format(diameter) + " of " + format(Vec3(a)) + ")",
+        0.0);
   }
   const double tolerance = HullBuilder::kFlatness * diameter;
   const DVec3 axis = (b - a) / diameter;
@@ -423,16 +433,18 @@ double requireSolidPointSet(std::string_view who, std::span<const Vec3> points) 
     if (d > lineDistance) lineDistance = d, c = DVec3(p);
   }
   if (lineDistance <= tolerance) {
-    throw Error(prefix + ": points are collinear (all within " + format(lineDistance) +
-                " of a line, tolerance " + format(tolerance) + ")");
+    COLLIDE_FAIL(prefix + ": points are collinear (all within " + format(lineDistance) +
+                     " of a line, tolerance " + format(tolerance) + ")",
+                 0.0);
   }
   const DVec3 normal = glm::normalize(glm::cross(b - a, c - a));
   double planeDistance = 0.0;
   for (const Vec3& p : points)
     planeDistance = std::max(planeDistance, std::abs(glm::dot(DVec3(p) - a, normal)));
   if (planeDistance <= tolerance) {
-    throw Error(prefix + ": points are coplanar (all within " + format(planeDistance) +
-                " of a plane, tolerance " + format(tolerance) + ")");
+    COLLIDE_FAIL(prefix + ": points are coplanar (all within " + format(planeDistance) +
+                     " of a plane, tolerance " + format(tolerance) + ")",
+                 0.0);
   }
   return diameter;
 }
@@ -445,22 +457,28 @@ void setHullTriangleFinder(HullTriangleFinder finder, void* context) {
 bool canBuildHulls() { return COLLIDE_WITH_QHULL != 0 || gHullTriangleFinder.load() != nullptr; }
 
 ConvexHull HullBuilder::build(std::span<const Vec3> points) {
+  const detail::ErrorScope scope;
   const double size = requireSolidPointSet("convex_hull", points);
+  COLLIDE_RETURN_IF_FAILED({});
   const Array<RawFace> rawFaces = findFaces(points, size);
+  COLLIDE_RETURN_IF_FAILED({});
 
   ConvexHull hull;
   static std::atomic<std::uint64_t> builtHulls{0};
   hull.serial_ = ++builtHulls;
   EdgeMap edgeByEndpoints;
   addFaces(points, rawFaces, hull.vertices_, hull.faces_, hull.halfEdges_, edgeByEndpoints);
+  COLLIDE_RETURN_IF_FAILED({});
   for (std::uint32_t h = 0; h < hull.halfEdges_.size(); ++h) {
     ConvexHull::HalfEdge& edge = hull.halfEdges_[h];
     const std::uint32_t to = hull.halfEdges_[edge.next].origin;
     const auto twin = edgeByEndpoints.find(edgeKey(to, edge.origin));
-    if (twin == edgeByEndpoints.end()) throw Error("convex_hull: Qhull returned an edge with only one face");
+    if (twin == edgeByEndpoints.end())
+      COLLIDE_FAIL("convex_hull: Qhull returned an edge with only one face", {});
     edge.twin = twin->second;
   }
   finish(hull);
+  COLLIDE_RETURN_IF_FAILED({});
   return hull;
 }
 
@@ -492,7 +510,8 @@ void HullBuilder::finish(ConvexHull& hull) {
   }
   integrals.finish(hull.volume_, hull.centroid_, hull.unitInertia_);
   hull.centroid_ += reference;
-  if (!(hull.volume_ > 0.0f)) throw Error("convex_hull: the hull has no volume, got " + format(hull.volume_));
+  if (!(hull.volume_ > 0.0f))
+    COLLIDE_FAIL("convex_hull: the hull has no volume, got " + format(hull.volume_));
 }
 
 ConvexHull HullBuilder::restore(std::span<const Vec3> vertices, std::span<const ConvexHull::Face> faces,
@@ -500,24 +519,29 @@ ConvexHull HullBuilder::restore(std::span<const Vec3> vertices, std::span<const 
   const std::uint32_t vertexCount = static_cast<std::uint32_t>(vertices.size());
   const std::uint32_t faceCount = static_cast<std::uint32_t>(faces.size());
   const std::uint32_t edgeCount = static_cast<std::uint32_t>(halfEdges.size());
-  const auto fail = [](const std::string& what) { throw Error("convex_hull: " + what); };
+  const detail::ErrorScope scope;
+  const auto fail = [](const std::string& what) {
+    detail::raiseError("convex_hull: " + what);
+    return ConvexHull();
+  };
   if (vertexCount < 4 || faceCount < 4 || edgeCount < 12 || edgeCount % 2 != 0)
-    fail("a hull needs at least 4 vertices, 4 faces and 12 half-edges, got " + std::to_string(vertexCount) +
-         ", " + std::to_string(faceCount) + " and " + std::to_string(edgeCount));
+    return fail("a hull needs at least 4 vertices, 4 faces and 12 half-edges, got " +
+                std::to_string(vertexCount) + ", " + std::to_string(faceCount) + " and " +
+                std::to_string(edgeCount));
   for (std::uint32_t v = 0; v < vertexCount; ++v) {
-    if (!isFinite(vertices[v])) fail("vertex " + std::to_string(v) + " is not finite");
+    if (!isFinite(vertices[v])) return fail("vertex " + std::to_string(v) + " is not finite");
   }
   for (std::uint32_t h = 0; h < edgeCount; ++h) {
     const ConvexHull::HalfEdge& e = halfEdges[h];
     if (e.origin >= vertexCount || e.twin >= edgeCount || e.next >= edgeCount || e.face >= faceCount ||
         e.twin == h)
-      fail("half-edge " + std::to_string(h) + " refers outside the hull");
+      return fail("half-edge " + std::to_string(h) + " refers outside the hull");
   }
   for (std::uint32_t h = 0; h < edgeCount; ++h) {  // every index in range now
     const ConvexHull::HalfEdge& e = halfEdges[h];
     const ConvexHull::HalfEdge& twin = halfEdges[e.twin];
     if (twin.twin != h || twin.origin != halfEdges[e.next].origin || halfEdges[twin.next].origin != e.origin)
-      fail("half-edge " + std::to_string(h) + " and its twin do not join the same two vertices");
+      return fail("half-edge " + std::to_string(h) + " and its twin do not join the same two vertices");
   }
   // Each face a loop of its own half-edges: walking `next` from the first comes back after edgeCount,
   // and every half-edge is walked once.
@@ -526,20 +550,21 @@ ConvexHull HullBuilder::restore(std::span<const Vec3> vertices, std::span<const 
     const ConvexHull::Face& face = faces[f];
     if (!isFinite(face.plane.normal) || !std::isfinite(face.plane.distance) ||
         std::abs(glm::length(face.plane.normal) - 1.0f) > 1e-3f)
-      fail("face " + std::to_string(f) + " has no unit normal");
+      return fail("face " + std::to_string(f) + " has no unit normal");
     if (face.firstEdge >= edgeCount || face.edgeCount < 3 || face.edgeCount > edgeCount ||
         face.firstVertex != halfEdges[face.firstEdge].origin)
-      fail("face " + std::to_string(f) + " refers outside the hull");
+      return fail("face " + std::to_string(f) + " refers outside the hull");
     std::uint32_t h = face.firstEdge;
     for (std::uint32_t i = 0; i < face.edgeCount; ++i) {
-      if (halfEdges[h].face != f || walked[h]) fail("face " + std::to_string(f) + "'s loop leaves the face");
+      if (halfEdges[h].face != f || walked[h])
+        return fail("face " + std::to_string(f) + "'s loop leaves the face");
       walked[h] = 1;
       h = halfEdges[h].next;
     }
-    if (h != face.firstEdge) fail("face " + std::to_string(f) + "'s loop does not close");
+    if (h != face.firstEdge) return fail("face " + std::to_string(f) + "'s loop does not close");
   }
   if (std::find(walked.begin(), walked.end(), 0) != walked.end())
-    fail("a half-edge belongs to no face's loop");
+    return fail("a half-edge belongs to no face's loop");
   ConvexHull hull;
   static std::atomic<std::uint64_t> restoredHulls{0};
   hull.serial_ = (std::uint64_t{1} << 63) | ++restoredHulls;  // apart from the serials of built hulls
@@ -547,11 +572,12 @@ ConvexHull HullBuilder::restore(std::span<const Vec3> vertices, std::span<const 
   hull.faces_.assign(faces.begin(), faces.end());
   hull.halfEdges_.assign(halfEdges.begin(), halfEdges.end());
   finish(hull);
+  COLLIDE_RETURN_IF_FAILED({});
   for (const Vec3& v : hull.vertices_) {
     for (const ConvexHull::Face& face : hull.faces_) {
       if (face.plane.signedDistance(v) >
           1e-3f * std::max(1.0f, glm::length(hull.bounds_.max - hull.bounds_.min)))
-        fail("a vertex lies outside a face's plane: not convex");
+        return fail("a vertex lies outside a face's plane: not convex");
     }
   }
   return hull;

@@ -1,6 +1,7 @@
 // k-DOP proxy (lecture, slide 51; Klosowski et al., "Efficient collision detection using bounding
 // volume hierarchies of k-DOPs", IEEE TVCG 1998): k/2 slabs along fixed axes. Point and ray tests
 // use the slabs, which is exact and cheap; support and mass use the polytope the slabs enclose.
+#include "base/fail.h"
 #include "shapes/hull_builder.h"
 #include "shapes/shape_functions.h"
 
@@ -88,28 +89,29 @@ std::shared_ptr<const ConvexHull> enclosedPolytope(int k, const std::array<float
     }
   }
   if (candidates.size() < 4) {
-    throw Error("kdop: the slabs enclose no volume (" + std::to_string(candidates.size()) +
-                " corner points satisfy every slab)");
+    COLLIDE_FAIL("kdop: the slabs enclose no volume (" + std::to_string(candidates.size()) +
+                     " corner points satisfy every slab)",
+                 nullptr);
   }
   Array<Vec3> points(candidates.begin(), candidates.end());
-  try {
-    return std::make_shared<const ConvexHull>(ConvexHull::fromPoints(points));
-  } catch (const Error& e) {
-    throw Error(std::string("kdop: the slabs enclose a flat polytope (") + e.what() + ")");
-  }
+  ConvexHull hull = detail::withErrorContext(
+      "kdop: the slabs enclose a flat polytope (", [&] { return ConvexHull::fromPoints(points); }, ")");
+  COLLIDE_RETURN_IF_FAILED(nullptr);
+  return std::make_shared<const ConvexHull>(std::move(hull));
 }
 
-int requireSupportedK(int k) {
-  if (k != 6 && k != 14 && k != 18 && k != 26) {
-    throw Error("kdop: k must be 6, 14, 18 or 26, got " + std::to_string(k));
-  }
-  return k;
+bool supportedK(int k) { return k == 6 || k == 14 || k == 18 || k == 26; }
+
+bool requireSupportedK(int k) {
+  if (!supportedK(k)) COLLIDE_FAIL("kdop: k must be 6, 14, 18 or 26, got " + std::to_string(k), false);
+  return true;
 }
 
 }  // namespace
 
 std::span<const Vec3> Kdop::axes(int k) {
-  switch (requireSupportedK(k)) {
+  if (!requireSupportedK(k)) return {};
+  switch (k) {
     case 6:
       return std::span<const Vec3>(kAxes26.data(), 3);
     case 14:
@@ -122,8 +124,11 @@ std::span<const Vec3> Kdop::axes(int k) {
 }
 
 Kdop Kdop::fromPoints(int k, std::span<const Vec3> points) {
+  const detail::ErrorScope scope;
   const std::span<const Vec3> axes = Kdop::axes(k);
+  COLLIDE_RETURN_IF_FAILED({});
   requireSolidPointSet("kdop", points);
+  COLLIDE_RETURN_IF_FAILED({});
   Kdop kdop;
   kdop.k_ = k;
   for (std::size_t i = 0; i < axes.size(); ++i) {
@@ -136,31 +141,38 @@ Kdop Kdop::fromPoints(int k, std::span<const Vec3> points) {
     }
   }
   kdop.polytope_ = enclosedPolytope(k, kdop.min_, kdop.max_);
+  COLLIDE_RETURN_IF_FAILED({});
   return kdop;
 }
 
 Kdop Kdop::fromSlabs(int k, std::span<const float> slabMin, std::span<const float> slabMax) {
+  const detail::ErrorScope scope;
   const std::size_t count = Kdop::axes(k).size();
+  COLLIDE_RETURN_IF_FAILED({});
   if (slabMin.size() != count || slabMax.size() != count) {
-    throw Error("kdop: a " + std::to_string(k) + "-DOP needs " + std::to_string(count) +
-                " slab minima and maxima, got " + std::to_string(slabMin.size()) + " and " +
-                std::to_string(slabMax.size()));
+    COLLIDE_FAIL("kdop: a " + std::to_string(k) + "-DOP needs " + std::to_string(count) +
+                     " slab minima and maxima, got " + std::to_string(slabMin.size()) + " and " +
+                     std::to_string(slabMax.size()),
+                 {});
   }
   Kdop kdop;
   kdop.k_ = k;
   for (std::size_t i = 0; i < count; ++i) {
     if (!isFinite(slabMin[i]) || !isFinite(slabMax[i])) {
-      throw Error("kdop: slab " + std::to_string(i) + " must be finite, got [" + format(slabMin[i]) + ", " +
-                  format(slabMax[i]) + "]");
+      COLLIDE_FAIL("kdop: slab " + std::to_string(i) + " must be finite, got [" + format(slabMin[i]) + ", " +
+                       format(slabMax[i]) + "]",
+                   {});
     }
     if (!(slabMin[i] < slabMax[i])) {
-      throw Error("kdop: slab " + std::to_string(i) + " must have min < max, got [" + format(slabMin[i]) +
-                  ", " + format(slabMax[i]) + "]");
+      COLLIDE_FAIL("kdop: slab " + std::to_string(i) + " must have min < max, got [" + format(slabMin[i]) +
+                       ", " + format(slabMax[i]) + "]",
+                   {});
     }
     kdop.min_[i] = slabMin[i];
     kdop.max_[i] = slabMax[i];
   }
   kdop.polytope_ = enclosedPolytope(k, kdop.min_, kdop.max_);
+  COLLIDE_RETURN_IF_FAILED({});
   return kdop;
 }
 

@@ -2,6 +2,8 @@
 // have an inside (lecture, slide 51: "triangle mesh").
 #include "geometry/triangle.h"
 #include "shapes/shape_functions.h"
+
+#include "base/fail.h"
 #include "shapes/triangle_bvh.h"
 
 #include <algorithm>
@@ -160,13 +162,14 @@ Adjacency buildAdjacency(std::span<const Vec3> vertices, std::span<const MeshTri
 }  // namespace
 
 TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
-  if (triangles.empty()) throw Error("mesh: needs at least one triangle, got 0");
+  if (triangles.empty()) COLLIDE_FAIL("mesh: needs at least one triangle, got 0", {});
   if (triangles.size() > std::numeric_limits<std::uint32_t>::max() / 2) {
-    throw Error("mesh: too many triangles, got " + std::to_string(triangles.size()));
+    COLLIDE_FAIL("mesh: too many triangles, got " + std::to_string(triangles.size()), {});
   }
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     if (!isFinite(vertices[i])) {
-      throw Error("mesh: vertex " + std::to_string(i) + " is not finite, got " + formatVec3(vertices[i]));
+      COLLIDE_FAIL("mesh: vertex " + std::to_string(i) + " is not finite, got " + formatVec3(vertices[i]),
+                   {});
     }
   }
   Aabb used;
@@ -174,15 +177,17 @@ TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector
     const MeshTriangle& t = triangles[i];
     for (std::uint32_t index : t.v) {
       if (index >= vertices.size()) {
-        throw Error("mesh: triangle " + std::to_string(i) + " index " + std::to_string(index) +
-                    " out of range (" + std::to_string(vertices.size()) + " vertices)");
+        COLLIDE_FAIL("mesh: triangle " + std::to_string(i) + " index " + std::to_string(index) +
+                         " out of range (" + std::to_string(vertices.size()) + " vertices)",
+                     {});
       }
       used.grow(vertices[index]);
     }
     if (t.v[0] == t.v[1] || t.v[1] == t.v[2] || t.v[2] == t.v[0]) {
-      throw Error("mesh: triangle " + std::to_string(i) + " has zero area: it repeats a vertex index (" +
-                  std::to_string(t.v[0]) + ", " + std::to_string(t.v[1]) + ", " + std::to_string(t.v[2]) +
-                  ")");
+      COLLIDE_FAIL("mesh: triangle " + std::to_string(i) + " has zero area: it repeats a vertex index (" +
+                       std::to_string(t.v[0]) + ", " + std::to_string(t.v[1]) + ", " +
+                       std::to_string(t.v[2]) + ")",
+                   {});
     }
   }
   const double meshSize = glm::length(glm::dvec3(used.max) - glm::dvec3(used.min));
@@ -198,7 +203,7 @@ TriangleMesh TriangleMesh::fromTriangles(std::vector<Vec3> vertices, std::vector
       message << "mesh: triangle " << i << " has zero area (area " << 0.5 * doubleArea << "; its height "
               << doubleArea / longestEdge << " is below " << kDegenerateRelativeHeight << " of the mesh size "
               << meshSize << ")";
-      throw Error(message.str());
+      COLLIDE_FAIL(message.str(), {});
     }
   }
 
@@ -359,7 +364,7 @@ Aabb computeWorldBounds(const TriangleMesh& s, const Transform& t) { return tran
 
 MassProperties computeMassProperties(const TriangleMesh& s, float density) {
   if (!s.isClosed()) {
-    throw Error("mesh: an open triangle mesh encloses no volume and has no mass properties");
+    COLLIDE_FAIL("mesh: an open triangle mesh encloses no volume and has no mass properties", {});
   }
   // An inside-out closed mesh integrates to minus the solid's moments; flip them back.
   const float sign = outwardSign(s);

@@ -2,6 +2,7 @@
 // functions of shape_functions.h.
 #include "shapes/shape_functions.h"
 
+#include "base/fail.h"
 #include "memory/prefetch.h"
 
 #include <algorithm>
@@ -51,17 +52,30 @@ std::string formatValue(const Vec3& v) {
   return out.str();
 }
 
-void requirePositive(const char* shape, const char* field, float value) {
+bool requirePositive(const char* shape, const char* field, float value) {
   if (!isFinite(value) || value <= 0.0f) {
-    throw Error(std::string(shape) + ": " + field + " must be finite and > 0, got " + formatValue(value));
+    COLLIDE_FAIL(std::string(shape) + ": " + field + " must be finite and > 0, got " + formatValue(value),
+                 false);
   }
+  return true;
 }
 
-void requirePositive(const char* shape, const char* field, const Vec3& value) {
+bool requirePositive(const char* shape, const char* field, const Vec3& value) {
   if (!isFinite(value) || value.x <= 0.0f || value.y <= 0.0f || value.z <= 0.0f) {
-    throw Error(std::string(shape) + ": " + field + " must be finite and > 0 in every axis, got " +
-                formatValue(value));
+    COLLIDE_FAIL(std::string(shape) + ": " + field + " must be finite and > 0 in every axis, got " +
+                     formatValue(value),
+                 false);
   }
+  return true;
+}
+
+bool validPlane(const Plane& plane) {
+  if (!isFinite(plane.normal) || std::abs(glm::length(plane.normal) - 1.0f) > 1e-3f) {
+    COLLIDE_FAIL("plane: normal must be a finite unit vector, got " + formatValue(plane.normal), false);
+  }
+  if (!isFinite(plane.distance))
+    COLLIDE_FAIL("plane: distance must be finite, got " + formatValue(plane.distance), false);
+  return true;
 }
 
 template <class T>
@@ -71,20 +85,55 @@ std::shared_ptr<const T> share(T&& value) {
 
 }  // namespace
 
-Shape::Shape(const Sphere& sphere) : data_(sphere) { requirePositive("sphere", "radius", sphere.radius); }
+namespace detail {
 
-Shape::Shape(const Capsule& capsule) : data_(capsule) {
-  requirePositive("capsule", "radius", capsule.radius);
-  requirePositive("capsule", "half_height", capsule.halfHeight);
+// Polyhedra, meshes and compounds are validated by their factories, the only way to make them; a
+// factory that failed without exceptions returned an empty one, refused here.
+bool validateShape(const Shape& shape) {
+  switch (shape.type()) {
+    case ShapeType::Sphere:
+      return requirePositive("sphere", "radius", shape.sphere().radius);
+    case ShapeType::Capsule:
+      return requirePositive("capsule", "radius", shape.capsule().radius) &&
+             requirePositive("capsule", "half_height", shape.capsule().halfHeight);
+    case ShapeType::Plane:
+      return validPlane(shape.plane());
+    case ShapeType::Box:
+      return requirePositive("box", "half_extents", shape.box().halfExtents);
+    case ShapeType::Ellipsoid:
+      return requirePositive("ellipsoid", "radii", shape.ellipsoid().radii);
+    case ShapeType::Cylinder:
+      return requirePositive("cylinder", "radius", shape.cylinder().radius) &&
+             requirePositive("cylinder", "half_height", shape.cylinder().halfHeight);
+    case ShapeType::Kdop:
+      if (shape.kdop().isEmpty()) COLLIDE_FAIL("kdop: empty (Kdop::fromPoints or fromSlabs failed)", false);
+      return true;
+    case ShapeType::ConvexHull:
+      if (!std::get<std::shared_ptr<const ConvexHull>>(shape.data_))
+        COLLIDE_FAIL("convex_hull: null hull", false);
+      if (shape.convexHull().isEmpty())
+        COLLIDE_FAIL("convex_hull: empty (ConvexHull::fromPoints failed)", false);
+      return true;
+    case ShapeType::Mesh:
+      if (!std::get<std::shared_ptr<const TriangleMesh>>(shape.data_)) COLLIDE_FAIL("mesh: null mesh", false);
+      if (shape.mesh().isEmpty()) COLLIDE_FAIL("mesh: empty (TriangleMesh::fromTriangles failed)", false);
+      return true;
+    case ShapeType::Compound:
+      if (shape.compound().isEmpty()) COLLIDE_FAIL("compound: empty (Compound::fromChildren failed)", false);
+      return true;
+  }
+  return true;
 }
 
+}  // namespace detail
+
+// Each constructor checks its value; without exceptions a bad one is kept as it is, reported, and
+// refused again by whatever uses the shape (detail::validateShape).
+Shape::Shape(const Sphere& sphere) : data_(sphere) { detail::validateShape(*this); }
+Shape::Shape(const Capsule& capsule) : data_(capsule) { detail::validateShape(*this); }
+
 Shape::Shape(const Plane& plane) : data_(plane) {
-  if (!isFinite(plane.normal) || std::abs(glm::length(plane.normal) - 1.0f) > 1e-3f) {
-    throw Error("plane: normal must be a finite unit vector, got " + formatValue(plane.normal));
-  }
-  if (!isFinite(plane.distance)) {
-    throw Error("plane: distance must be finite, got " + formatValue(plane.distance));
-  }
+  if (!detail::validateShape(*this)) return;
   // (normal, distance) is one 4-vector (lecture, slide 58): normalise both parts, so that the
   // surface normal·x = distance stays where the caller put it.
   const float length = glm::length(plane.normal);
@@ -92,29 +141,18 @@ Shape::Shape(const Plane& plane) : data_(plane) {
   std::get<Plane>(data_).distance = plane.distance / length;
 }
 
-Shape::Shape(const Box& box) : data_(box) { requirePositive("box", "half_extents", box.halfExtents); }
-
-Shape::Shape(const Ellipsoid& ellipsoid) : data_(ellipsoid) {
-  requirePositive("ellipsoid", "radii", ellipsoid.radii);
-}
-
-Shape::Shape(const Cylinder& cylinder) : data_(cylinder) {
-  requirePositive("cylinder", "radius", cylinder.radius);
-  requirePositive("cylinder", "half_height", cylinder.halfHeight);
-}
-
-// Polyhedra, meshes and compounds are validated by their factories, the only way to make them.
-Shape::Shape(Kdop kdop) : data_(share(std::move(kdop))) {}
-Shape::Shape(ConvexHull hull) : data_(share(std::move(hull))) {}
-Shape::Shape(TriangleMesh mesh) : data_(share(std::move(mesh))) {}
-Shape::Shape(Compound compound) : data_(share(std::move(compound))) {}
-
+Shape::Shape(const Box& box) : data_(box) { detail::validateShape(*this); }
+Shape::Shape(const Ellipsoid& ellipsoid) : data_(ellipsoid) { detail::validateShape(*this); }
+Shape::Shape(const Cylinder& cylinder) : data_(cylinder) { detail::validateShape(*this); }
+Shape::Shape(Kdop kdop) : data_(share(std::move(kdop))) { detail::validateShape(*this); }
+Shape::Shape(ConvexHull hull) : data_(share(std::move(hull))) { detail::validateShape(*this); }
+Shape::Shape(TriangleMesh mesh) : data_(share(std::move(mesh))) { detail::validateShape(*this); }
+Shape::Shape(Compound compound) : data_(share(std::move(compound))) { detail::validateShape(*this); }
 Shape::Shape(std::shared_ptr<const ConvexHull> hull) : data_(std::move(hull)) {
-  if (!std::get<std::shared_ptr<const ConvexHull>>(data_)) throw Error("convex_hull: null hull");
+  detail::validateShape(*this);
 }
-
 Shape::Shape(std::shared_ptr<const TriangleMesh> mesh) : data_(std::move(mesh)) {
-  if (!std::get<std::shared_ptr<const TriangleMesh>>(data_)) throw Error("mesh: null mesh");
+  detail::validateShape(*this);
 }
 
 bool Shape::isConvex() const {
@@ -132,21 +170,25 @@ bool Shape::isConvex() const {
 
 namespace {
 
-void requireValid(const Transform& transform, const char* query) {
+bool requireValid(const Transform& transform, const char* query) {
   if (!isValid(transform)) {
-    throw Error(std::string(query) +
-                ": transform must have a finite position, a unit rotation and a "
-                "finite scale > 0, got position " +
-                formatValue(transform.position) + ", rotation (w " + formatValue(transform.rotation.w) +
-                ", " + formatValue(Vec3(transform.rotation.x, transform.rotation.y, transform.rotation.z)) +
-                "), scale " + formatValue(transform.scale));
+    COLLIDE_FAIL(std::string(query) +
+                     ": transform must have a finite position, a unit rotation and a "
+                     "finite scale > 0, got position " +
+                     formatValue(transform.position) + ", rotation (w " + formatValue(transform.rotation.w) +
+                     ", " +
+                     formatValue(Vec3(transform.rotation.x, transform.rotation.y, transform.rotation.z)) +
+                     "), scale " + formatValue(transform.scale),
+                 false);
   }
+  return true;
 }
 
-void requireFinite(const Vec3& value, const char* query, const char* field = "point") {
+bool requireFinite(const Vec3& value, const char* query, const char* field = "point") {
   if (!isFinite(value)) {
-    throw Error(std::string(query) + ": " + field + " must be finite, got " + formatValue(value));
+    COLLIDE_FAIL(std::string(query) + ": " + field + " must be finite, got " + formatValue(value), false);
   }
+  return true;
 }
 
 }  // namespace
@@ -156,7 +198,7 @@ Aabb localBounds(const Shape& shape) {
 }
 
 Aabb worldBounds(const Shape& shape, const Transform& transform) {
-  requireValid(transform, "worldBounds");
+  if (!requireValid(transform, "worldBounds")) return {};
   return shape.visit([&](const auto& s) { return detail::computeWorldBounds(s, transform); });
 }
 
@@ -245,14 +287,16 @@ BoundingSphere localBoundingSphere(const Shape& shape) {
 
 Vec3 support(const Shape& shape, const Vec3& direction) {
   if (!shape.isConvex()) {
-    throw Error("support: a " + std::string(toString(shape.type())) +
-                " is not convex and has no support function");
+    COLLIDE_FAIL(
+        "support: a " + std::string(toString(shape.type())) + " is not convex and has no support function",
+        Vec3(0.0f));
   }
-  requireFinite(direction, "support", "direction");
+  if (!requireFinite(direction, "support", "direction")) return Vec3(0.0f);
   // Only the direction matters. Dividing by the largest component keeps tiny (or huge) directions
   // from underflowing (overflowing) when a proxy normalises them; a zero one has no direction.
   const float largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
-  if (largest == 0.0f) throw Error("support: direction must be non-zero, got " + formatValue(direction));
+  if (largest == 0.0f)
+    COLLIDE_FAIL("support: direction must be non-zero, got " + formatValue(direction), Vec3(0.0f));
   const Vec3 unitish = direction / largest;
   return shape.visit([&](const auto& s) -> Vec3 {
     using T = std::decay_t<decltype(s)>;
@@ -267,16 +311,16 @@ Vec3 support(const Shape& shape, const Vec3& direction) {
 
 MassProperties massProperties(const Shape& shape, float density, float scale) {
   if (!isFinite(density) || density <= 0.0f) {
-    throw Error("mass properties: density must be finite and > 0, got " + formatValue(density));
+    COLLIDE_FAIL("mass properties: density must be finite and > 0, got " + formatValue(density), {});
   }
   if (!isFinite(scale) || scale <= 0.0f) {
-    throw Error("mass properties: scale must be finite and > 0, got " + formatValue(scale));
+    COLLIDE_FAIL("mass properties: scale must be finite and > 0, got " + formatValue(scale), {});
   }
   if (shape.type() == ShapeType::Plane) {
-    throw Error("mass properties: a plane is an infinite half-space and has no mass; make it static");
+    COLLIDE_FAIL("mass properties: a plane is an infinite half-space and has no mass; make it static", {});
   }
   if (shape.type() == ShapeType::Mesh && !shape.mesh().isClosed()) {
-    throw Error("mass properties: an open triangle mesh encloses no volume; close it or make it static");
+    COLLIDE_FAIL("mass properties: an open triangle mesh encloses no volume; close it or make it static", {});
   }
   MassProperties m = shape.visit([&](const auto& s) -> MassProperties {
     using T = std::decay_t<decltype(s)>;
@@ -296,15 +340,13 @@ MassProperties massProperties(const Shape& shape, float density, float scale) {
 }
 
 bool containsPoint(const Shape& shape, const Transform& transform, const Vec3& point) {
-  requireValid(transform, "containsPoint");
-  requireFinite(point, "containsPoint");
+  if (!requireValid(transform, "containsPoint") || !requireFinite(point, "containsPoint")) return false;
   const Vec3 local = transform.inverseApplyToPoint(point);
   return shape.visit([&](const auto& s) { return detail::localContains(s, local); });
 }
 
 SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const Vec3& point) {
-  requireValid(transform, "closestPoint");
-  requireFinite(point, "closestPoint");
+  if (!requireValid(transform, "closestPoint") || !requireFinite(point, "closestPoint")) return {};
   const Vec3 local = transform.inverseApplyToPoint(point);
   SurfacePoint result = shape.visit([&](const auto& s) { return detail::localClosestPoint(s, local); });
   result.point = transform.applyToPoint(result.point);
@@ -314,15 +356,17 @@ SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const 
 }
 
 std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, const Ray& ray) {
-  requireValid(transform, "rayCast");
+  if (!requireValid(transform, "rayCast")) return std::nullopt;
   if (!isFinite(ray.origin) || !isFinite(ray.direction) || std::isnan(ray.maxDistance) ||
       ray.maxDistance < 0.0f) {
-    throw Error("rayCast: ray must have a finite origin and direction and maxDistance >= 0, got origin " +
-                formatValue(ray.origin) + ", direction " + formatValue(ray.direction) + ", maxDistance " +
-                formatValue(ray.maxDistance));
+    COLLIDE_FAIL("rayCast: ray must have a finite origin and direction and maxDistance >= 0, got origin " +
+                     formatValue(ray.origin) + ", direction " + formatValue(ray.direction) +
+                     ", maxDistance " + formatValue(ray.maxDistance),
+                 std::nullopt);
   }
   if (std::abs(glm::dot(ray.direction, ray.direction) - 1.0f) > 1e-3f) {
-    throw Error("rayCast: ray direction must be unit length, got " + formatValue(ray.direction));
+    COLLIDE_FAIL("rayCast: ray direction must be unit length, got " + formatValue(ray.direction),
+                 std::nullopt);
   }
   Ray local;
   local.origin = transform.inverseApplyToPoint(ray.origin);

@@ -6,12 +6,14 @@
 #include <collide/hooks.h>
 
 #include "dynamics/constraint_graph.h"
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <mutex>
@@ -36,7 +38,11 @@ thread_local bool tInTestAllocator = false;  // the test's own allocator keeps i
 void* operator new(std::size_t bytes) {
   if (gCountGlobalNew.load(std::memory_order_relaxed) && !tInTestAllocator) gGlobalNews.fetch_add(1);
   if (void* p = std::malloc(bytes ? bytes : 1)) return p;
+#if COLLIDE_EXCEPTIONS
   throw std::bad_alloc();
+#else
+  std::abort();
+#endif
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
@@ -168,9 +174,10 @@ TEST(AllocatorHook, HalfAnAllocatorIsRefused) {
   Allocator half;
   half.allocate = [](std::size_t, std::size_t, void*) -> void* { return nullptr; };
   EXPECT_THAT([&] { setAllocator(half); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("both be set")));
+              ::collide::test::ReportsError(::testing::HasSubstr("both be set")));
 }
 
+#if COLLIDE_EXCEPTIONS
 TEST(AllocatorHook, AnAllocatorWithoutMemoryIsBadAlloc) {
   const std::size_t liveBefore = liveAllocations();
   setAllocator({[](std::size_t, std::size_t, void*) -> void* { return nullptr; },
@@ -180,6 +187,21 @@ TEST(AllocatorHook, AnAllocatorWithoutMemoryIsBadAlloc) {
   setAllocator(Allocator{});
   EXPECT_EQ(liveAllocations(), liveBefore);
 }
+#else
+// Without exceptions an allocator with no memory left is fatal, as operator new is: the error
+// handler hears of it, then the process aborts.
+TEST(AllocatorHookDeathTest, AnAllocatorWithoutMemoryAbortsAfterTellingTheHandler) {
+  EXPECT_DEATH(
+      {
+        setErrorHandler([](const char* message, void*) { std::fprintf(stderr, "handler: %s\n", message); });
+        setAllocator({[](std::size_t, std::size_t, void*) -> void* { return nullptr; },
+                      [](void*, std::size_t, std::size_t, void*) {}, nullptr});
+        World world;
+        world.createBody(test::groundBox());
+      },
+      "handler: out of memory");
+}
+#endif
 
 // The handler gets the failed condition with its file and line, in builds that check assertions.
 struct AssertRecord {

@@ -4,6 +4,7 @@
 #include <collide/bounding.h>
 #include <gtest/gtest.h>
 
+#include "support/collide_error.h"
 #include "support/point_clouds.h"
 
 #include <cmath>
@@ -220,23 +221,16 @@ TEST(MinimalSphere, IsDeterministicAndIndependentOfInputOrder) {
 }
 
 TEST(MinimalSphere, RejectsEmptyAndNonFiniteInput) {
-  EXPECT_THROW(
-      {
-        try {
-          minimalBoundingSphere({});
-        } catch (const Error& e) {
-          EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos) << e.what();
-          throw;
-        }
-      },
-      Error);
+  EXPECT_THAT([] { minimalBoundingSphere({}); },
+              ::collide::test::ReportsError(::testing::HasSubstr("empty")));
   const std::vector<Vec3> withNan = {{0, 0, 0}, {1, NAN, 0}};
-  try {
-    minimalBoundingSphere(withNan);
+  if (const std::optional<std::string> error =
+          ::collide::test::errorOf([&] { minimalBoundingSphere(withNan); });
+      !error) {
     FAIL() << "NaN accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("point 1 is not finite"), std::string::npos) << e.what();
+  } else {
+    EXPECT_NE((*error).find("point 1 is not finite"), std::string::npos) << *error;
   }
   const std::vector<Vec3> withInf = {{INFINITY, 0, 0}};
-  EXPECT_THROW(minimalBoundingSphere(withInf), Error);
+  EXPECT_COLLIDE_ERROR(minimalBoundingSphere(withInf));
 }

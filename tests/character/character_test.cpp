@@ -6,6 +6,7 @@
 #include <collide/character.h>
 #include <collide/world.h>
 
+#include "support/collide_error.h"
 #include "support/test_random.h"
 #include "support/world_helpers.h"
 
@@ -366,7 +367,7 @@ TEST(Character, ReportsTheWallItWalksInto) {
 
 TEST(Character, BadDefinitionsAreRefusedNamingTheField) {
   const auto refused = [](CharacterDef def, const char* field) {
-    EXPECT_THAT([&] { Character c(def); }, ::testing::ThrowsMessage<Error>(::testing::HasSubstr(field)))
+    EXPECT_THAT([&] { Character c(def); }, ::collide::test::ReportsError(::testing::HasSubstr(field)))
         << field;
   };
   CharacterDef def;
@@ -390,7 +391,7 @@ TEST(Character, BadDefinitionsAreRefusedNamingTheField) {
   World world;
   Character character(CharacterDef{});
   EXPECT_THAT([&] { character.update(world, Vec3(0.0f), 0.0f); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("dt must be finite and > 0")));
+              ::collide::test::ReportsError(::testing::HasSubstr("dt must be finite and > 0")));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // and the friction patch (static friction that holds on a slope, sliding at the Coulomb rate, twist).
 #include "dynamics/contact_solver.h"
 #include "dynamics/constraint_graph.h"
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -132,8 +133,8 @@ TEST(ContactSolver, EveryLaneWidthGivesTheSameResult) {
 }
 
 TEST(ContactSolver, AnUnavailableLaneWidthIsRefused) {
-  EXPECT_THROW(detail::ContactSolver(3), Error);
-  EXPECT_THROW(detail::ContactSolver(16), Error);
+  EXPECT_COLLIDE_ERROR(detail::ContactSolver(3));
+  EXPECT_COLLIDE_ERROR(detail::ContactSolver(16));
 }
 
 // A static ramp of slope theta (the reference scenes' ground box, turned about z) and a unit cube

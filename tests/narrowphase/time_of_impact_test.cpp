@@ -3,6 +3,7 @@
 #include <collide/narrowphase.h>
 #include <gtest/gtest.h>
 
+#include "support/collide_error.h"
 #include "support/narrowphase_helpers.h"
 
 #include <cmath>
@@ -93,7 +94,7 @@ TEST(TimeOfImpact, NearlyUnitPlaneRotationGivesAUnitNormal) {
   if (collide::collide(plane, planeAt, flat, from, m)) {
     EXPECT_NEAR(glm::length(m.normal), 1.0f, 1e-5f);
   }
-  EXPECT_THROW(timeOfImpact(plane, Sweep::fixed(outside), flat, Sweep::between(from, to)), Error);
+  EXPECT_COLLIDE_ERROR(timeOfImpact(plane, Sweep::fixed(outside), flat, Sweep::between(from, to)));
 }
 
 TEST(TimeOfImpact, MissesAndStartsOverlapping) {
@@ -297,26 +298,26 @@ TEST(TimeOfImpact, BadInputThrows) {
   const Shape plane(Plane{});
   Sweep bad = Sweep::fixed({});
   bad.center1 = Vec3(std::nanf(""), 0, 0);
-  EXPECT_THROW(timeOfImpact(sphere, bad, sphere, Sweep::fixed({})), Error);
+  EXPECT_COLLIDE_ERROR(timeOfImpact(sphere, bad, sphere, Sweep::fixed({})));
   bad = Sweep::fixed({});
   bad.rotation1 = Quat(2.0f, 0, 0, 0);
-  EXPECT_THROW(timeOfImpact(sphere, Sweep::fixed({}), sphere, bad), Error);
+  EXPECT_COLLIDE_ERROR(timeOfImpact(sphere, Sweep::fixed({}), sphere, bad));
   bad = Sweep::fixed({});
   bad.scale = 0.0f;
-  EXPECT_THROW(timeOfImpact(sphere, bad, sphere, Sweep::fixed({})), Error);
-  EXPECT_THROW(timeOfImpact(plane, Sweep::fixed({}), plane, Sweep::fixed(at(Vec3(0, -1, 0)))), Error);
+  EXPECT_COLLIDE_ERROR(timeOfImpact(sphere, bad, sphere, Sweep::fixed({})));
+  EXPECT_COLLIDE_ERROR(timeOfImpact(plane, Sweep::fixed({}), plane, Sweep::fixed(at(Vec3(0, -1, 0)))));
   const Sweep turning = Sweep::between(at(Vec3(0.0f)), at(Vec3(0.0f), axisAngle(Vec3(1, 0, 0), 10.0f)));
-  EXPECT_THROW(timeOfImpact(plane, turning, sphere, Sweep::fixed(at(Vec3(0, 3, 0)))), Error);
+  EXPECT_COLLIDE_ERROR(timeOfImpact(plane, turning, sphere, Sweep::fixed(at(Vec3(0, 3, 0)))));
   ToiSettings settings;
   settings.targetSeparation = std::nanf("");
-  EXPECT_THROW(timeOfImpact(sphere, Sweep::fixed({}), sphere, Sweep::fixed(at(Vec3(3, 0, 0))), settings),
-               Error);
+  EXPECT_COLLIDE_ERROR(
+      timeOfImpact(sphere, Sweep::fixed({}), sphere, Sweep::fixed(at(Vec3(3, 0, 0))), settings));
   settings = {};
   settings.tolerance = 0.0f;
-  EXPECT_THROW(timeOfImpact(sphere, Sweep::fixed({}), sphere, Sweep::fixed(at(Vec3(3, 0, 0))), settings),
-               Error);
+  EXPECT_COLLIDE_ERROR(
+      timeOfImpact(sphere, Sweep::fixed({}), sphere, Sweep::fixed(at(Vec3(3, 0, 0))), settings));
   settings = {};
   settings.maxIterations = 0;
-  EXPECT_THROW(timeOfImpact(sphere, Sweep::fixed({}), sphere, Sweep::fixed(at(Vec3(3, 0, 0))), settings),
-               Error);
+  EXPECT_COLLIDE_ERROR(
+      timeOfImpact(sphere, Sweep::fixed({}), sphere, Sweep::fixed(at(Vec3(3, 0, 0))), settings));
 }

@@ -3,6 +3,7 @@
 #include <collide/world.h>
 #include <gtest/gtest.h>
 
+#include "support/collide_error.h"
 #include "support/test_random.h"
 #include "support/world_helpers.h"
 
@@ -169,11 +170,11 @@ TEST_P(WorldRayCast, BadRaysAreRefused) {
   world.createBody(sphereBody(Vec3(0.0f), 0.5f, 1.0f));
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
-  EXPECT_THROW((void)world.castRay(Ray{Vec3(nan, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 1.0f)}), Error);
-  EXPECT_THROW((void)world.castRay(Ray{Vec3(0.0f), Vec3(0.0f)}), Error);
-  EXPECT_THROW((void)world.castRay(Ray{Vec3(0.0f), Vec3(inf, 0.0f, 0.0f)}), Error);
-  EXPECT_THROW((void)world.castRay(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), -1.0f}), Error);
-  EXPECT_THROW((void)world.castRay(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), nan}), Error);
+  EXPECT_COLLIDE_ERROR((void)world.castRay(Ray{Vec3(nan, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 1.0f)}));
+  EXPECT_COLLIDE_ERROR((void)world.castRay(Ray{Vec3(0.0f), Vec3(0.0f)}));
+  EXPECT_COLLIDE_ERROR((void)world.castRay(Ray{Vec3(0.0f), Vec3(inf, 0.0f, 0.0f)}));
+  EXPECT_COLLIDE_ERROR((void)world.castRay(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), -1.0f}));
+  EXPECT_COLLIDE_ERROR((void)world.castRay(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), nan}));
   // An infinite reach is fine, as is a ray starting inside a body (distance 0).
   const std::optional<RayCastResult> inside = world.castRay(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), inf});
   ASSERT_TRUE(inside.has_value());

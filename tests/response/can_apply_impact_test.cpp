@@ -3,6 +3,7 @@
 // laws never throw inside the step and never skip a body they would have resolved.
 #include "response/impact.h"
 #include "response/impact_body.h"
+#include "support/collide_error.h"
 
 #include <collide/error.h>
 
@@ -37,12 +38,7 @@ ImpactBody approaching(ImpactBody b) {
 // Whether the interpolated impact (which validates the bodies and the contact, and inverts the
 // inertias to glue two finite masses) accepts the case.
 bool lawsAccept(ImpactBody a, ImpactBody b, const Vec3& point, const Vec3& normal) {
-  try {
-    (void)resolveImpactInterpolated(a, b, point, normal, 0.5f);
-    return true;
-  } catch (const Error&) {
-    return false;
-  }
+  return !::collide::test::errorOf([&] { (void)resolveImpactInterpolated(a, b, point, normal, 0.5f); });
 }
 
 TEST(CanApplyImpact, AgreesWithTheImpactLawsOnEveryKindOfBadBody) {

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "response/friction.h"
+#include "support/collide_error.h"
 #include "support/response_test_helpers.h"
 #include "support/test_assertions.h"
 
@@ -132,17 +133,17 @@ TEST(Friction, BadInputThrows) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   ImpactBody a = makeParticle(1.0f, Vec3(0, -1, 0), Vec3(0.0f)).body;
   ImpactBody b = makeParticle(1.0f, Vec3(0, 1, 0), Vec3(1, 0, 0)).body;
-  EXPECT_THROW(applyViscousFriction(a, b, kPoint, kNormal, -1.0f, 0.1f), Error);
-  EXPECT_THROW(applyViscousFriction(a, b, kPoint, kNormal, nan, 0.1f), Error);
-  EXPECT_THROW(applyViscousFriction(a, b, kPoint, kNormal, 1.0f, 0.0f), Error);
-  EXPECT_THROW(applyViscousFriction(a, b, kPoint, kNormal, 1.0f, -0.1f), Error);
-  EXPECT_THROW(applyViscousFriction(a, b, kPoint, Vec3(0, 3, 0), 1.0f, 0.1f), Error);
-  EXPECT_THROW(applyDampingFriction(a, b, kPoint, kNormal, 1.5f), Error);
-  EXPECT_THROW(applyDampingFriction(a, b, kPoint, kNormal, -0.5f), Error);
-  EXPECT_THROW(applyDampingFriction(a, b, kPoint, kNormal, nan), Error);
-  EXPECT_THROW(applyDampingFriction(a, b, Vec3(nan), kNormal, 0.5f), Error);
+  EXPECT_COLLIDE_ERROR(applyViscousFriction(a, b, kPoint, kNormal, -1.0f, 0.1f));
+  EXPECT_COLLIDE_ERROR(applyViscousFriction(a, b, kPoint, kNormal, nan, 0.1f));
+  EXPECT_COLLIDE_ERROR(applyViscousFriction(a, b, kPoint, kNormal, 1.0f, 0.0f));
+  EXPECT_COLLIDE_ERROR(applyViscousFriction(a, b, kPoint, kNormal, 1.0f, -0.1f));
+  EXPECT_COLLIDE_ERROR(applyViscousFriction(a, b, kPoint, Vec3(0, 3, 0), 1.0f, 0.1f));
+  EXPECT_COLLIDE_ERROR(applyDampingFriction(a, b, kPoint, kNormal, 1.5f));
+  EXPECT_COLLIDE_ERROR(applyDampingFriction(a, b, kPoint, kNormal, -0.5f));
+  EXPECT_COLLIDE_ERROR(applyDampingFriction(a, b, kPoint, kNormal, nan));
+  EXPECT_COLLIDE_ERROR(applyDampingFriction(a, b, Vec3(nan), kNormal, 0.5f));
   ImpactBody bad = b;
   bad.inverseMass = nan;
-  EXPECT_THROW(applyDampingFriction(a, bad, kPoint, kNormal, 0.5f), Error);
+  EXPECT_COLLIDE_ERROR(applyDampingFriction(a, bad, kPoint, kNormal, 0.5f));
   EXPECT_EQ(b.linearVelocity, Vec3(1, 0, 0));
 }

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "response/impact.h"
+#include "support/collide_error.h"
 #include "support/response_test_helpers.h"
 #include "support/test_assertions.h"
 
@@ -325,27 +326,27 @@ TEST(Impact, BadInputThrows) {
   const Vec3 p(0.5f, 0, 0), n(1, 0, 0);
   {
     ImpactBody x = a.body, y = b.body;
-    EXPECT_THROW(resolveImpactInterpolated(x, y, p, n, -0.1f), Error);  // bounciness out of [0, 1]
-    EXPECT_THROW(resolveImpactInterpolated(x, y, p, n, 1.5f), Error);
-    EXPECT_THROW(resolveImpactInterpolated(x, y, p, n, nan), Error);
-    EXPECT_THROW(resolveImpactInterpolated(x, y, p, Vec3(2, 0, 0), 0.5f), Error);  // normal not unit
-    EXPECT_THROW(resolveImpactInterpolated(x, y, p, Vec3(0.0f), 0.5f), Error);
-    EXPECT_THROW(resolveImpactInterpolated(x, y, Vec3(nan, 0, 0), n, 0.5f), Error);  // point
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, y, p, n, -0.1f));  // bounciness out of [0, 1]
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, y, p, n, 1.5f));
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, y, p, n, nan));
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, y, p, Vec3(2, 0, 0), 0.5f));  // normal not unit
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, y, p, Vec3(0.0f), 0.5f));
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, y, Vec3(nan, 0, 0), n, 0.5f));  // point
     ImpactBody negative = a.body;
     negative.inverseMass = -1.0f;
-    EXPECT_THROW(resolveImpactInterpolated(negative, y, p, n, 0.5f), Error);
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(negative, y, p, n, 0.5f));
     ImpactBody infiniteSpinning = makeStatic(Vec3(0.0f)).body;
     infiniteSpinning.inverseInertia = Mat3(1.0f);  // infinite mass but finite inertia
-    EXPECT_THROW(resolveImpactInterpolated(infiniteSpinning, y, p, n, 0.5f), Error);
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(infiniteSpinning, y, p, n, 0.5f));
     ImpactBody badVelocity = b.body;
     badVelocity.linearVelocity.y = nan;
-    EXPECT_THROW(resolveImpactInterpolated(x, badVelocity, p, n, 0.5f), Error);
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, badVelocity, p, n, 0.5f));
     badVelocity = b.body;
     badVelocity.angularVelocity.z = std::numeric_limits<float>::infinity();
-    EXPECT_THROW(resolveImpactInterpolated(x, badVelocity, p, n, 0.5f), Error);
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, badVelocity, p, n, 0.5f));
     ImpactBody badInertia = b.body;
     badInertia.inverseInertia[1][1] = nan;
-    EXPECT_THROW(resolveImpactInterpolated(x, badInertia, p, n, 0.5f), Error);
+    EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, badInertia, p, n, 0.5f));
     // The bodies are left untouched when the input is rejected.
     expectVecNear(x.linearVelocity, a.body.linearVelocity, 0.0f);
   }
@@ -353,5 +354,5 @@ TEST(Impact, BadInputThrows) {
   ImpactBody x = a.body, singular = b.body;
   singular.inverseInertia = Mat3(1.0f);
   singular.inverseInertia[2][2] = 0.0f;
-  EXPECT_THROW(resolveImpactInterpolated(x, singular, p, n, 0.5f), Error);
+  EXPECT_COLLIDE_ERROR(resolveImpactInterpolated(x, singular, p, n, 0.5f));
 }

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "response/penetration.h"
+#include "support/collide_error.h"
 #include "support/test_assertions.h"
 #include "support/test_random.h"
 
@@ -71,11 +72,11 @@ TEST(Penetration, NothingToDoForStaticPairsOrZeroDepth) {
 TEST(Penetration, BadInputThrows) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const Vec3 n(1, 0, 0);
-  EXPECT_THROW(projectApart(-1.0f, 1.0f, n, 0.1f), Error);
-  EXPECT_THROW(projectApart(1.0f, nan, n, 0.1f), Error);
-  EXPECT_THROW(projectApart(1.0f, std::numeric_limits<float>::infinity(), n, 0.1f), Error);
-  EXPECT_THROW(projectApart(1.0f, 1.0f, Vec3(0.5f, 0, 0), 0.1f), Error);
-  EXPECT_THROW(projectApart(1.0f, 1.0f, Vec3(nan, 0, 0), 0.1f), Error);
-  EXPECT_THROW(projectApart(1.0f, 1.0f, n, -0.1f), Error);
-  EXPECT_THROW(projectApart(1.0f, 1.0f, n, nan), Error);
+  EXPECT_COLLIDE_ERROR(projectApart(-1.0f, 1.0f, n, 0.1f));
+  EXPECT_COLLIDE_ERROR(projectApart(1.0f, nan, n, 0.1f));
+  EXPECT_COLLIDE_ERROR(projectApart(1.0f, std::numeric_limits<float>::infinity(), n, 0.1f));
+  EXPECT_COLLIDE_ERROR(projectApart(1.0f, 1.0f, Vec3(0.5f, 0, 0), 0.1f));
+  EXPECT_COLLIDE_ERROR(projectApart(1.0f, 1.0f, Vec3(nan, 0, 0), 0.1f));
+  EXPECT_COLLIDE_ERROR(projectApart(1.0f, 1.0f, n, -0.1f));
+  EXPECT_COLLIDE_ERROR(projectApart(1.0f, 1.0f, n, nan));
 }

@@ -1,5 +1,6 @@
 // Hull building: the half-edge structure Qhull's facets turn into, on inputs with known answers.
 #include "shapes/hull_builder.h"
+#include "support/collide_error.h"
 
 #include "support/hull_invariants.h"
 #include "support/simple_geometry.h"
@@ -100,8 +101,8 @@ TEST(HullBuilder, QhullPrintsNothing) {
   ::testing::internal::CaptureStdout();
   ::testing::internal::CaptureStderr();
   const ConvexHull hull = HullBuilder::build(points);
-  EXPECT_THROW(HullBuilder::build(std::vector<Vec3>{Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}),
-               Error);
+  EXPECT_COLLIDE_ERROR(
+      HullBuilder::build(std::vector<Vec3>{Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}));
   const std::string out = ::testing::internal::GetCapturedStdout();
   const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(out, "");
@@ -112,5 +113,5 @@ TEST(HullBuilder, QhullPrintsNothing) {
 TEST(HullBuilder, SolidPointSetCheckNamesTheCaller) {
   const std::vector<Vec3> three = {Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   EXPECT_THAT([&] { requireSolidPointSet("kdop", three); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("kdop: need at least 4 points")));
+              ::collide::test::ReportsError(HasSubstr("kdop: need at least 4 points")));
 }

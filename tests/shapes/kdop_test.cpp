@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "support/collide_error.h"
 #include "support/test_random.h"
 
 #include "support/hull_invariants.h"
@@ -17,7 +18,6 @@ using namespace collide;
 using collide::testing_support::isValidHalfEdgeHull;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using ::testing::ThrowsMessage;
 
 namespace {
 
@@ -194,42 +194,45 @@ TEST(Kdop, QueriesMatchThePolytope) {
 TEST(Kdop, RejectsBadInput) {
   const std::vector<Vec3> cube = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 1)};
   EXPECT_THAT([] { Kdop::axes(8); },
-              ThrowsMessage<Error>(HasSubstr("kdop: k must be 6, 14, 18 or 26, got 8")));
-  EXPECT_THAT([&] { Kdop::fromPoints(8, cube); }, ThrowsMessage<Error>(HasSubstr("got 8")));
-  EXPECT_THAT([&] { Kdop::fromPoints(-1, cube); }, ThrowsMessage<Error>(HasSubstr("got -1")));
+              ::collide::test::ReportsError(HasSubstr("kdop: k must be 6, 14, 18 or 26, got 8")));
+  EXPECT_THAT([&] { Kdop::fromPoints(8, cube); }, ::collide::test::ReportsError(HasSubstr("got 8")));
+  EXPECT_THAT([&] { Kdop::fromPoints(-1, cube); }, ::collide::test::ReportsError(HasSubstr("got -1")));
   const std::vector<Vec3> three(cube.begin(), cube.begin() + 3);
-  EXPECT_THAT([&] { Kdop::fromPoints(14, three); },
-              ThrowsMessage<Error>(AllOf(HasSubstr("kdop: need at least 4 points"), HasSubstr("got 3"))));
+  EXPECT_THAT(
+      [&] { Kdop::fromPoints(14, three); },
+      ::collide::test::ReportsError(AllOf(HasSubstr("kdop: need at least 4 points"), HasSubstr("got 3"))));
   std::vector<Vec3> bad = cube;
   bad[2].z = std::numeric_limits<float>::quiet_NaN();
   EXPECT_THAT([&] { Kdop::fromPoints(18, bad); },
-              ThrowsMessage<Error>(HasSubstr("kdop: point 2 is not finite")));
+              ::collide::test::ReportsError(HasSubstr("kdop: point 2 is not finite")));
   bad[2].z = -std::numeric_limits<float>::infinity();
   EXPECT_THAT([&] { Kdop::fromPoints(18, bad); },
-              ThrowsMessage<Error>(HasSubstr("kdop: point 2 is not finite")));
+              ::collide::test::ReportsError(HasSubstr("kdop: point 2 is not finite")));
   const std::vector<Vec3> flat = {Vec3(0, 0, 2), Vec3(1, 0, 2), Vec3(0, 1, 2), Vec3(1, 1, 2),
                                   Vec3(0.5f, 0.2f, 2)};
   EXPECT_THAT([&] { Kdop::fromPoints(26, flat); },
-              ThrowsMessage<Error>(HasSubstr("kdop: points are coplanar")));
+              ::collide::test::ReportsError(HasSubstr("kdop: points are coplanar")));
   const std::vector<Vec3> line = {Vec3(0), Vec3(1), Vec3(2), Vec3(3)};
   EXPECT_THAT([&] { Kdop::fromPoints(6, line); },
-              ThrowsMessage<Error>(HasSubstr("kdop: points are collinear")));
+              ::collide::test::ReportsError(HasSubstr("kdop: points are collinear")));
   const std::vector<Vec3> same(4, Vec3(1, 2, 3));
   EXPECT_THAT([&] { Kdop::fromPoints(6, same); },
-              ThrowsMessage<Error>(HasSubstr("kdop: points are all identical")));
+              ::collide::test::ReportsError(HasSubstr("kdop: points are all identical")));
 
   const std::vector<float> lo = {-1, -1, -1}, hi = {1, 1, 1};
-  EXPECT_THAT([&] { Kdop::fromSlabs(8, lo, hi); }, ThrowsMessage<Error>(HasSubstr("got 8")));
-  EXPECT_THAT([&] { Kdop::fromSlabs(14, lo, hi); }, ThrowsMessage<Error>(HasSubstr("needs 7 slab minima")));
+  EXPECT_THAT([&] { Kdop::fromSlabs(8, lo, hi); }, ::collide::test::ReportsError(HasSubstr("got 8")));
+  EXPECT_THAT([&] { Kdop::fromSlabs(14, lo, hi); },
+              ::collide::test::ReportsError(HasSubstr("needs 7 slab minima")));
   const std::vector<float> flipped = {1, 2, 3}, inverted = {-1, 1, 1};
   EXPECT_THAT([&] { Kdop::fromSlabs(6, flipped, hi); },
-              ThrowsMessage<Error>(HasSubstr("kdop: slab 0 must have min < max, got [1, 1]")));
+              ::collide::test::ReportsError(HasSubstr("kdop: slab 0 must have min < max, got [1, 1]")));
   EXPECT_THAT([&] { Kdop::fromSlabs(6, inverted, lo); },
-              ThrowsMessage<Error>(HasSubstr("slab 0 must have min < max, got [-1, -1]")));
+              ::collide::test::ReportsError(HasSubstr("slab 0 must have min < max, got [-1, -1]")));
   const std::vector<float> nan = {-1, std::numeric_limits<float>::quiet_NaN(), -1};
-  EXPECT_THAT([&] { Kdop::fromSlabs(6, nan, hi); }, ThrowsMessage<Error>(HasSubstr("slab 1 must be finite")));
+  EXPECT_THAT([&] { Kdop::fromSlabs(6, nan, hi); },
+              ::collide::test::ReportsError(HasSubstr("slab 1 must be finite")));
   // Non-empty slabs whose intersection is empty: the diagonal slab lies beyond the cube's corner.
   const std::vector<float> lo14 = {-1, -1, -1, 5, -1, -1, -1}, hi14 = {1, 1, 1, 6, 1, 1, 1};
   EXPECT_THAT([&] { Kdop::fromSlabs(14, lo14, hi14); },
-              ThrowsMessage<Error>(HasSubstr("kdop: the slabs enclose no volume")));
+              ::collide::test::ReportsError(HasSubstr("kdop: the slabs enclose no volume")));
 }

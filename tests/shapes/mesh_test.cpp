@@ -1,4 +1,5 @@
 #include "geometry/triangle.h"
+#include "support/collide_error.h"
 #include "support/test_meshes.h"
 
 #include <collide/shapes.h>
@@ -17,12 +18,9 @@ namespace {
 using test::expectMatNear;
 
 std::string meshError(std::vector<Vec3> vertices, std::vector<MeshTriangle> triangles) {
-  try {
-    TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles));
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return ::collide::test::errorOf(
+             [&] { TriangleMesh::fromTriangles(std::move(vertices), std::move(triangles)); })
+      .value_or("no error");
 }
 
 const std::vector<Vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}};
@@ -75,7 +73,7 @@ TEST(TriangleMesh, OpenMeshesAreNotClosedAndContainNothing) {
   EXPECT_FALSE(quad.isClosed());
   EXPECT_FALSE(containsPoint(Shape(quad), Transform{}, {0.5f, 0.0f, 0.5f}));
   EXPECT_FALSE(containsPoint(Shape(quad), Transform{}, {0.5f, -0.1f, 0.5f}));
-  EXPECT_THROW(massProperties(Shape(quad), 1.0f), Error);
+  EXPECT_COLLIDE_ERROR(massProperties(Shape(quad), 1.0f));
 
   const TriangleMesh ground = test::terrain(16, 1.0f, 2.0f, 1);
   EXPECT_FALSE(ground.isClosed());
@@ -368,7 +366,8 @@ TEST(TriangleMesh, RejectsBadInputWithMessages) {
   EXPECT_NE(meshError(sliver, withSliver).find("triangle 12 has zero area"), std::string::npos);
 
   // A small triangle in a small mesh is fine: the tolerance is relative.
-  EXPECT_NO_THROW(TriangleMesh::fromTriangles({{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0}}, {{{0, 1, 2}}}));
+  EXPECT_NO_COLLIDE_ERROR(
+      TriangleMesh::fromTriangles({{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0}}, {{{0, 1, 2}}}));
 }
 
 namespace {

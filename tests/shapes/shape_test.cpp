@@ -7,13 +7,13 @@
 #include <cmath>
 #include <limits>
 
+#include "support/collide_error.h"
 #include "support/test_assertions.h"
 
 namespace collide {
 namespace {
 
 using ::testing::HasSubstr;
-using ::testing::ThrowsMessage;
 
 using test::kInf;
 using test::kNan;
@@ -21,14 +21,24 @@ const float kBadSizes[] = {0.0f, -1.0f, kNan, kInf, -kInf};
 
 TEST(ShapeValidation, SphereRejectsBadRadius) {
   for (float bad : kBadSizes) {
-    EXPECT_THAT([&] { Shape(Sphere{bad}); }, ThrowsMessage<Error>(HasSubstr("radius"))) << bad;
+    EXPECT_THAT([&] { Shape(Sphere{bad}); }, ::collide::test::ReportsError(HasSubstr("radius"))) << bad;
   }
 }
 
 TEST(ShapeValidation, CapsuleRejectsBadRadiusAndHalfHeight) {
   for (float bad : kBadSizes) {
-    EXPECT_THAT([&] { Shape(Capsule{bad, 1.0f}); }, ThrowsMessage<Error>(HasSubstr("radius"))) << bad;
-    EXPECT_THAT([&] { Shape(Capsule{1.0f, bad}); }, ThrowsMessage<Error>(HasSubstr("half_height"))) << bad;
+    EXPECT_THAT(
+        [&] {
+          Shape(Capsule{bad, 1.0f});
+        },
+        ::collide::test::ReportsError(HasSubstr("radius")))
+        << bad;
+    EXPECT_THAT(
+        [&] {
+          Shape(Capsule{1.0f, bad});
+        },
+        ::collide::test::ReportsError(HasSubstr("half_height")))
+        << bad;
   }
 }
 
@@ -37,7 +47,8 @@ TEST(ShapeValidation, BoxRejectsABadHalfExtentInAnyAxis) {
     for (int axis = 0; axis < 3; ++axis) {
       Vec3 halfExtents(1.0f);
       halfExtents[axis] = bad;
-      EXPECT_THAT([&] { Shape(Box{halfExtents}); }, ThrowsMessage<Error>(HasSubstr("half_extents"))) << bad;
+      EXPECT_THAT([&] { Shape(Box{halfExtents}); }, ::collide::test::ReportsError(HasSubstr("half_extents")))
+          << bad;
     }
   }
 }
@@ -47,34 +58,44 @@ TEST(ShapeValidation, EllipsoidRejectsABadRadiusInAnyAxis) {
     for (int axis = 0; axis < 3; ++axis) {
       Vec3 radii(1.0f);
       radii[axis] = bad;
-      EXPECT_THAT([&] { Shape(Ellipsoid{radii}); }, ThrowsMessage<Error>(HasSubstr("radii"))) << bad;
+      EXPECT_THAT([&] { Shape(Ellipsoid{radii}); }, ::collide::test::ReportsError(HasSubstr("radii"))) << bad;
     }
   }
 }
 
 TEST(ShapeValidation, CylinderRejectsBadRadiusAndHalfHeight) {
   for (float bad : kBadSizes) {
-    EXPECT_THAT([&] { Shape(Cylinder{bad, 1.0f}); }, ThrowsMessage<Error>(HasSubstr("radius"))) << bad;
-    EXPECT_THAT([&] { Shape(Cylinder{1.0f, bad}); }, ThrowsMessage<Error>(HasSubstr("half_height"))) << bad;
+    EXPECT_THAT(
+        [&] {
+          Shape(Cylinder{bad, 1.0f});
+        },
+        ::collide::test::ReportsError(HasSubstr("radius")))
+        << bad;
+    EXPECT_THAT(
+        [&] {
+          Shape(Cylinder{1.0f, bad});
+        },
+        ::collide::test::ReportsError(HasSubstr("half_height")))
+        << bad;
   }
 }
 
 TEST(ShapeValidation, PlaneRejectsZeroNonUnitOrNonFiniteNormalAndBadDistance) {
   for (const Vec3& bad : {Vec3(0.0f), Vec3(0.0f, 2.0f, 0.0f), Vec3(0.5f, 0.5f, 0.0f), Vec3(kNan, 1.0f, 0.0f),
                           Vec3(0.0f, kInf, 0.0f)}) {
-    EXPECT_THAT([&] { Shape(Plane{bad, 0.0f}); }, ThrowsMessage<Error>(HasSubstr("normal")));
+    EXPECT_THAT([&] { Shape(Plane{bad, 0.0f}); }, ::collide::test::ReportsError(HasSubstr("normal")));
   }
   for (float bad : {kNan, kInf}) {
     EXPECT_THAT(
         [&] {
           Shape(Plane{Vec3(0.0f, 1.0f, 0.0f), bad});
         },
-        ThrowsMessage<Error>(HasSubstr("distance")));
+        ::collide::test::ReportsError(HasSubstr("distance")));
   }
 }
 
 TEST(ShapeValidation, MessageNamesTheValue) {
-  EXPECT_THAT([] { Shape(Sphere{-2.5f}); }, ThrowsMessage<Error>(HasSubstr("-2.5")));
+  EXPECT_THAT([] { Shape(Sphere{-2.5f}); }, ::collide::test::ReportsError(HasSubstr("-2.5")));
 }
 
 TEST(QueryValidation, RayWithZeroNonUnitOrNonFiniteDirectionIsRejected) {
@@ -85,23 +106,23 @@ TEST(QueryValidation, RayWithZeroNonUnitOrNonFiniteDirectionIsRejected) {
         [&] {
           rayCast(s, Transform{}, Ray{Vec3(0.0f, 0.0f, -5.0f), bad});
         },
-        ThrowsMessage<Error>(HasSubstr("direction")));
+        ::collide::test::ReportsError(HasSubstr("direction")));
   }
   EXPECT_THAT(
       [&] {
         rayCast(s, Transform{}, Ray{Vec3(kNan, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 1.0f)});
       },
-      ThrowsMessage<Error>(HasSubstr("origin")));
+      ::collide::test::ReportsError(HasSubstr("origin")));
   EXPECT_THAT(
       [&] {
         rayCast(s, Transform{}, Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), -1.0f});
       },
-      ThrowsMessage<Error>(HasSubstr("maxDistance")));
+      ::collide::test::ReportsError(HasSubstr("maxDistance")));
   EXPECT_THAT(
       [&] {
         rayCast(s, Transform{}, Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), kNan});
       },
-      ThrowsMessage<Error>(HasSubstr("maxDistance")));
+      ::collide::test::ReportsError(HasSubstr("maxDistance")));
 }
 
 TEST(QueryValidation, InvalidTransformIsRejectedByEveryWorldQuery) {
@@ -121,39 +142,47 @@ TEST(QueryValidation, InvalidTransformIsRejectedByEveryWorldQuery) {
   const Ray ray{Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, 0.0f, 1.0f)};
   for (const Transform& bad :
        {nanPosition, zeroScale, negativeScale, infiniteScale, nonUnitRotation, nanRotation}) {
-    EXPECT_THAT([&] { containsPoint(s, bad, Vec3(0.0f)); }, ThrowsMessage<Error>(HasSubstr("transform")));
-    EXPECT_THAT([&] { closestPoint(s, bad, Vec3(0.0f)); }, ThrowsMessage<Error>(HasSubstr("transform")));
-    EXPECT_THAT([&] { rayCast(s, bad, ray); }, ThrowsMessage<Error>(HasSubstr("transform")));
+    EXPECT_THAT([&] { containsPoint(s, bad, Vec3(0.0f)); },
+                ::collide::test::ReportsError(HasSubstr("transform")));
+    EXPECT_THAT([&] { closestPoint(s, bad, Vec3(0.0f)); },
+                ::collide::test::ReportsError(HasSubstr("transform")));
+    EXPECT_THAT([&] { rayCast(s, bad, ray); }, ::collide::test::ReportsError(HasSubstr("transform")));
     // A bad transform would give NaN or inside-out boxes: worldBounds refuses it like the rest.
-    EXPECT_THAT([&] { worldBounds(s, bad); }, ThrowsMessage<Error>(HasSubstr("transform")));
+    EXPECT_THAT([&] { worldBounds(s, bad); }, ::collide::test::ReportsError(HasSubstr("transform")));
   }
-  EXPECT_THAT([&] { worldBounds(s, nonUnitRotation); }, ThrowsMessage<Error>(HasSubstr("rotation (w 2")));
-  EXPECT_THAT([&] { worldBounds(s, zeroScale); }, ThrowsMessage<Error>(HasSubstr("scale 0")));
+  EXPECT_THAT([&] { worldBounds(s, nonUnitRotation); },
+              ::collide::test::ReportsError(HasSubstr("rotation (w 2")));
+  EXPECT_THAT([&] { worldBounds(s, zeroScale); }, ::collide::test::ReportsError(HasSubstr("scale 0")));
 }
 
 TEST(QueryValidation, NonFinitePointIsRejected) {
   const Shape s(Sphere{1.0f});
-  EXPECT_THAT([&] { containsPoint(s, Transform{}, Vec3(kNan)); }, ThrowsMessage<Error>(HasSubstr("point")));
-  EXPECT_THAT([&] { closestPoint(s, Transform{}, Vec3(kInf)); }, ThrowsMessage<Error>(HasSubstr("point")));
+  EXPECT_THAT([&] { containsPoint(s, Transform{}, Vec3(kNan)); },
+              ::collide::test::ReportsError(HasSubstr("point")));
+  EXPECT_THAT([&] { closestPoint(s, Transform{}, Vec3(kInf)); },
+              ::collide::test::ReportsError(HasSubstr("point")));
 }
 
 TEST(QueryValidation, MassPropertiesRejectBadDensityScaleAndPlanes) {
   const Shape s(Sphere{1.0f});
   for (float bad : kBadSizes) {
-    EXPECT_THAT([&] { massProperties(s, bad); }, ThrowsMessage<Error>(HasSubstr("density"))) << bad;
-    EXPECT_THAT([&] { massProperties(s, 1.0f, bad); }, ThrowsMessage<Error>(HasSubstr("scale"))) << bad;
+    EXPECT_THAT([&] { massProperties(s, bad); }, ::collide::test::ReportsError(HasSubstr("density"))) << bad;
+    EXPECT_THAT([&] { massProperties(s, 1.0f, bad); }, ::collide::test::ReportsError(HasSubstr("scale")))
+        << bad;
   }
-  EXPECT_THAT([] { massProperties(Plane{}, 1.0f); }, ThrowsMessage<Error>(HasSubstr("plane")));
+  EXPECT_THAT([] { massProperties(Plane{}, 1.0f); }, ::collide::test::ReportsError(HasSubstr("plane")));
 }
 
 TEST(QueryValidation, SupportRejectsPlanesAndZeroOrNonFiniteDirections) {
-  EXPECT_THAT([] { support(Plane{}, Vec3(0.0f, 1.0f, 0.0f)); }, ThrowsMessage<Error>(HasSubstr("plane")));
+  EXPECT_THAT([] { support(Plane{}, Vec3(0.0f, 1.0f, 0.0f)); },
+              ::collide::test::ReportsError(HasSubstr("plane")));
   // A zero direction has no farthest point (the sphere's, capsule's and ellipsoid's would be NaN).
   for (const Shape& s :
        {Shape(Sphere{1.0f}), Shape(Capsule{}), Shape(Box{}), Shape(Ellipsoid{}), Shape(Cylinder{})}) {
-    EXPECT_THAT([&] { support(s, Vec3(0.0f)); }, ThrowsMessage<Error>(HasSubstr("direction")))
+    EXPECT_THAT([&] { support(s, Vec3(0.0f)); }, ::collide::test::ReportsError(HasSubstr("direction")))
         << toString(s.type());
-    EXPECT_THAT([&] { support(s, Vec3(kNan, 0.0f, 0.0f)); }, ThrowsMessage<Error>(HasSubstr("direction")));
+    EXPECT_THAT([&] { support(s, Vec3(kNan, 0.0f, 0.0f)); },
+                ::collide::test::ReportsError(HasSubstr("direction")));
   }
 }
 

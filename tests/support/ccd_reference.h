@@ -6,9 +6,6 @@
 
 #include "narrowphase/convex_support.h"
 
-#if defined(COLLIDE_HAVE_CCD)
-#include <ccd/ccd.h>
-
 namespace collide::test {
 
 // The full shape's support (core plus radius), as libccd wants it.
@@ -17,6 +14,18 @@ inline Vec3 fullSupport(const detail::ConvexSupport& s, const Vec3& d) {
   if (s.radius > 0.0f) p += s.radius * glm::normalize(d);
   return p;
 }
+
+// How far B must move along unit u to leave A: the support of A - B along u.
+inline float directionalDepth(const detail::ConvexSupport& a, const detail::ConvexSupport& b, const Vec3& u) {
+  return glm::dot(fullSupport(a, u) - fullSupport(b, -u), u);
+}
+
+}  // namespace collide::test
+
+#if defined(COLLIDE_HAVE_CCD)
+#include <ccd/ccd.h>
+
+namespace collide::test {
 
 inline void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
   const auto& s = *static_cast<const detail::ConvexSupport*>(object);
@@ -41,11 +50,6 @@ inline ccd_t makeCcd() {
   ccd.epa_tolerance = 1e-7;
   ccd.dist_tolerance = 1e-8;
   return ccd;
-}
-
-// How far B must move along unit u to leave A: the support of A - B along u.
-inline float directionalDepth(const detail::ConvexSupport& a, const detail::ConvexSupport& b, const Vec3& u) {
-  return glm::dot(fullSupport(a, u) - fullSupport(b, -u), u);
 }
 
 }  // namespace collide::test

@@ -5,6 +5,8 @@
 #include <collide/math.h>
 #include <gtest/gtest.h>
 
+#include "support/collide_error.h"
+
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -30,13 +32,12 @@ inline void expectMatNear(const Mat3& a, const Mat3& b, float tolerance) {
   }
 }
 
-// f throws collide::Error, and its message names `word`.
+// f reports a collide::Error (support/collide_error.h), and its message names `word`.
 inline void expectErrorMentions(const std::function<void()>& f, const std::string& word) {
-  try {
-    f();
-    FAIL() << "no Error thrown (expected one naming \"" << word << "\")";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  if (const std::optional<std::string> error = ::collide::test::errorOf([&] { f(); }); !error) {
+    FAIL() << "no Error reported (expected one naming \"" << word << "\")";
+  } else {
+    EXPECT_NE((*error).find(word), std::string::npos) << *error;
   }
 }
 

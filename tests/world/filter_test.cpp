@@ -2,6 +2,7 @@
 // constraints that keep their bodies apart, and filters changed at run time. A box is dropped on
 // another resting on the ground: it rests on it if the pair collides, and falls through to the ground
 // if not.
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -149,7 +150,7 @@ TEST(Filtering, AFilterChangedAtRunTimeCountsFromTheNextStep) {
   ASSERT_TRUE(drop.world.castRay(down, 4).has_value());
   EXPECT_EQ(drop.world.castRay(down, 4)->body, drop.upper);
   EXPECT_EQ(drop.world.castRay(down, 2)->body, drop.lower);
-  EXPECT_THROW(drop.world.setCollisionFilter(BodyId{}, 1, 1, 0), Error);
+  EXPECT_COLLIDE_ERROR(drop.world.setCollisionFilter(BodyId{}, 1, 1, 0));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Hinge (revolute) joints against known answers: the physical pendulum's period and energy, a
 // door held at its limit, a motor at its speed and at its torque, a spring at its frequency.
+#include "support/collide_error.h"
 #include "support/test_assertions.h"
 #include "support/world_helpers.h"
 
@@ -215,19 +216,19 @@ TEST(HingeJoint, SettersTakeEffectAndRefuseWhatDoesNotApply) {
       [&] {
         w.world.setJointLimits(w.joint, {true, 1.0f, -1.0f});
       },
-      ::testing::ThrowsMessage<Error>(HasSubstr("lower <= upper")));
+      ::collide::test::ReportsError(HasSubstr("lower <= upper")));
   EXPECT_THAT(
       [&] {
         w.world.setJointLimits(w.joint, {true, -4.0f, 1.0f});
       },
-      ::testing::ThrowsMessage<Error>(HasSubstr("within [-pi, pi]")));
+      ::collide::test::ReportsError(HasSubstr("within [-pi, pi]")));
   EXPECT_THAT(
       [&] {
         w.world.setJointMotor(w.joint, {true, 1.0f, -1.0f});
       },
-      ::testing::ThrowsMessage<Error>(HasSubstr("motor.maxForce")));
+      ::collide::test::ReportsError(HasSubstr("motor.maxForce")));
   EXPECT_THAT([&] { w.world.setConeSwingLimit(w.joint, 1.0f); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("does not apply to a hinge joint")));
+              ::collide::test::ReportsError(HasSubstr("does not apply to a hinge joint")));
   EXPECT_EQ(w.world.jointMotor(w.joint), (JointMotor{true, -2.0f, 50.0f}));  // unchanged
 }
 
@@ -236,8 +237,7 @@ TEST(HingeJoint, BadDefinitionsAreRefusedNamingTheField) {
   const BodyId post = test::staticAnchor(world, Vec3(0.0f));
   const BodyId box = world.createBody(test::boxBody(Vec3(1.0f, 0.0f, 0.0f), Vec3(0.1f), 1.0f));
   const auto refused = [&](HingeJointDef def, const char* text) {
-    EXPECT_THAT([&] { world.createHingeJoint(def); }, ::testing::ThrowsMessage<Error>(HasSubstr(text)))
-        << text;
+    EXPECT_THAT([&] { world.createHingeJoint(def); }, ::collide::test::ReportsError(HasSubstr(text))) << text;
   };
   refused({.a = post, .b = box, .anchor = Vec3(0.0f), .axis = Vec3(0.0f)},
           "hinge joint: axis must be finite and non-zero");

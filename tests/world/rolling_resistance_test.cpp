@@ -1,5 +1,6 @@
 // Rolling resistance (BodyDef::rollingResistance): a rolling ball slows at the rate a resisting
 // torque of that lever times the normal force gives, and a rocking ellipsoid comes to rest.
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -72,9 +73,9 @@ TEST(RollingResistance, NegativeOrNonFiniteIsRefused) {
   World world;
   BodyDef def = test::sphereBody(Vec3(0.0f), 0.5f, 1.0f);
   def.rollingResistance = -0.1f;
-  EXPECT_THROW(world.createBody(def), Error);
+  EXPECT_COLLIDE_ERROR(world.createBody(def));
   def.rollingResistance = std::nanf("");
-  EXPECT_THROW(world.createBody(def), Error);
+  EXPECT_COLLIDE_ERROR(world.createBody(def));
 }
 
 }  // namespace

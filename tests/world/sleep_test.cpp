@@ -1,5 +1,6 @@
 // Islands and sleeping: resting islands sleep after timeToSleep and then do not move at all;
 // contacts, the API and destruction wake them.
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -38,13 +39,13 @@ float timeToSleep(World& world, const std::vector<BodyId>& ids, float maxSeconds
 TEST(Sleep, BadSleepTuningIsAnError) {
   WorldDef def = sleepingWorld();
   def.sleep.timeToSleep = 0.0f;
-  EXPECT_THROW(World w(def), Error);
+  EXPECT_COLLIDE_ERROR(World w(def));
   def = sleepingWorld();
   def.sleep.linearSpeed = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW(World w(def), Error);
+  EXPECT_COLLIDE_ERROR(World w(def));
   def = sleepingWorld();
   def.sleep.angularSpeed = -1.0f;
-  EXPECT_THROW(World w(def), Error);
+  EXPECT_COLLIDE_ERROR(World w(def));
 }
 
 TEST(Sleep, DroppedBoxFallsAsleepAndItsPoseStaysBitIdentical) {

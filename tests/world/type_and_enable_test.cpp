@@ -2,6 +2,7 @@
 // back (World::setEnabled), each checked against what the type or state means: a body made static
 // stops and holds what rests on it, a static body made dynamic falls with the mass of its shape, a
 // disabled body is found by nothing and moves not at all.
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -71,13 +72,13 @@ TEST(SetType, AKinematicBodyKeepsItsVelocityAndPushes) {
 TEST(SetType, ImpossibleTypesAreRefusedAndChangeNothing) {
   World world;
   const BodyId ground = world.createBody(test::groundPlane());
-  EXPECT_THROW(world.setType(ground, BodyType::Dynamic), Error);
-  EXPECT_THROW(world.setType(ground, BodyType::Kinematic), Error);
+  EXPECT_COLLIDE_ERROR(world.setType(ground, BodyType::Dynamic));
+  EXPECT_COLLIDE_ERROR(world.setType(ground, BodyType::Kinematic));
   EXPECT_EQ(world.type(ground), BodyType::Static);
   BodyDef particle = test::sphereBody(Vec3(0.0f, 1.0f, 0.0f), 0.1f, 1.0f);
   particle.particle = true;
   const BodyId p = world.createBody(particle);
-  EXPECT_THROW(world.setType(p, BodyType::Static), Error);
+  EXPECT_COLLIDE_ERROR(world.setType(p, BodyType::Static));
   EXPECT_EQ(world.type(p), BodyType::Dynamic);
   EXPECT_FLOAT_EQ(world.mass(p), 1.0f);
 }

@@ -1,6 +1,7 @@
 // The world at several workers (WorldDef::workerCount, include/collide/tasks.h): bad counts are
 // refused; one worker starts no thread; and a pile of boxes and spheres stepped on one worker, on
 // the world's own threads or on an engine's job system ends bit for bit in the same state.
+#include "support/collide_error.h"
 #include "support/test_job_system.h"
 #include "support/world_helpers.h"
 
@@ -82,19 +83,18 @@ std::vector<unsigned char> runPile(WorldDef def, int steps, int switchWorkersAt 
 TEST(Workers, BadCountsAndHalfAJobSystemAreRefused) {
   WorldDef def;
   def.workerCount = 0;
-  EXPECT_THROW(World{def}, Error);
+  EXPECT_COLLIDE_ERROR(World{def});
   def.workerCount = kMaxWorkers + 1;
-  try {
-    World world(def);
+  if (const std::optional<std::string> error = ::collide::test::errorOf([&] { World world(def); }); !error) {
     ADD_FAILURE() << "65 workers accepted";
-  } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "world: workerCount must be 1 to 64, got 65");
+  } else {
+    EXPECT_STREQ(error->c_str(), "world: workerCount must be 1 to 64, got 65");
   }
   def.workerCount = 2;
   def.enqueueTask = &test::TestJobSystem::enqueue;
-  EXPECT_THROW(World{def}, Error);
+  EXPECT_COLLIDE_ERROR(World{def});
   World world;
-  EXPECT_THROW(world.setDef(def), Error);
+  EXPECT_COLLIDE_ERROR(world.setDef(def));
   EXPECT_EQ(world.def().workerCount, 1);  // unchanged
 }
 

@@ -1,0 +1,256 @@
+// Bad input in both builds (collide/error.h): with exceptions a collide::Error is thrown; without
+// them the error handler hears the same message once per call, lastError() keeps it, nothing
+// changes, and the call returns a result that says so.
+#include <collide/collide.h>
+#include <collide/error.h>
+
+#include "support/collide_error.h"
+#include "support/world_helpers.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace collide {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Each message the handler got during f (a build without exceptions; with them, none).
+std::vector<std::string> handled(const std::function<void()>& f) {
+  std::vector<std::string> messages;
+  setErrorHandler([](const char* message,
+                     void* context) { static_cast<std::vector<std::string>*>(context)->push_back(message); },
+                  &messages);
+#if COLLIDE_EXCEPTIONS
+  try {
+    f();
+  } catch (const Error&) {
+  }
+#else
+  f();
+#endif
+  setErrorHandler(nullptr);
+  return messages;
+}
+
+TEST(ErrorReporting, TheBuildSaysHowItReports) { EXPECT_EQ(exceptionsEnabled(), COLLIDE_EXCEPTIONS != 0); }
+
+TEST(ErrorReporting, ABadBodyIsRefusedWholeWithItsFieldNamed) {
+  World world;
+  BodyDef def = test::boxBody(Vec3(0.0f), Vec3(0.5f), 1.0f);
+  def.name = "crate";
+  def.linearDamping = -1.0f;
+  BodyId id{};
+  const std::vector<std::string> messages = handled([&] { id = world.createBody(def); });
+  EXPECT_EQ(world.bodyCount(), 0u);
+  EXPECT_TRUE(id.isNull());
+  EXPECT_THAT([&] { world.createBody(def); },
+              test::ReportsError("body \"crate\": linearDamping must be finite and >= 0, got -1"));
+  if (!exceptionsEnabled()) {
+    ASSERT_EQ(messages.size(), 1u);  // once per call, with the whole context
+    EXPECT_EQ(messages[0], "body \"crate\": linearDamping must be finite and >= 0, got -1");
+    EXPECT_EQ(std::string(lastError()), messages[0]);
+  } else {
+    EXPECT_TRUE(messages.empty());  // thrown instead
+  }
+  // The world goes on: a good body after a refused one.
+  def.linearDamping = 0.0f;
+  const BodyId good = world.createBody(def);
+  EXPECT_TRUE(world.isValid(good));
+  EXPECT_EQ(world.bodyCount(), 1u);
+}
+
+TEST(ErrorReporting, AFailureDeepInsideCarriesEveryLayersContext) {
+  // The part's mass properties fail inside the body's: the message names the body, the part and
+  // the shape, in both builds.
+  World world;
+  BodyDef def;
+  def.name = "table";
+  def.type = BodyType::Dynamic;
+  PartDef top;
+  top.shape = Shape(Box{Vec3(1e30f, 0.1f, 1e30f)});
+  def.parts = {top};
+  EXPECT_THAT([&] { world.createBody(def); }, test::ReportsError(HasSubstr("body \"table\": ")));
+  EXPECT_EQ(world.bodyCount(), 0u);
+}
+
+TEST(ErrorReporting, StaleIdsAreReportedAndChangeNothing) {
+  World world;
+  const BodyId id = world.createBody(test::boxBody(Vec3(0.0f), Vec3(0.5f), 1.0f));
+  world.destroyBody(id);
+  EXPECT_THAT([&] { world.setLinearVelocity(id, Vec3(1.0f)); },
+              test::ReportsError(HasSubstr("setLinearVelocity: invalid or stale body id")));
+  EXPECT_THAT([&] { static_cast<void>(world.mass(id)); },
+              test::ReportsError(HasSubstr("mass: invalid or stale")));
+  if (!exceptionsEnabled()) {
+    float mass = -1.0f;
+    handled([&] { mass = world.mass(id); });
+    EXPECT_EQ(mass, 0.0f);  // a default body's
+    std::uint32_t part = 0;
+    handled([&] { part = world.addPart(id, PartDef{}); });
+    EXPECT_EQ(part, World::kNoPart);
+  }
+}
+
+TEST(ErrorReporting, FactoriesReturnEmptyShapesThatTheWorldRefuses) {
+  const std::vector<Vec3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}};
+  EXPECT_THAT([&] { ConvexHull::fromPoints(flat); }, test::ReportsError(HasSubstr("points are coplanar")));
+  EXPECT_THAT([&] { TriangleMesh::fromTriangles({}, {}); },
+              test::ReportsError(HasSubstr("mesh: needs at least one triangle")));
+  if (exceptionsEnabled()) return;
+  ConvexHull hull;
+  handled([&] { hull = ConvexHull::fromPoints(flat); });
+  EXPECT_TRUE(hull.isEmpty());
+  // A Shape of it is reported when made, and refused by whatever uses it, with the context.
+  std::vector<std::string> messages;
+  std::optional<Shape> shape;
+  messages = handled([&] { shape.emplace(std::move(hull)); });
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_THAT(messages[0], HasSubstr("convex_hull: empty"));
+  World world;
+  BodyDef def;
+  def.shape = *shape;
+  BodyId id{};
+  messages = handled([&] { id = world.createBody(def); });
+  EXPECT_TRUE(id.isNull());
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_EQ(messages[0], "body: shape: convex_hull: empty (ConvexHull::fromPoints failed)");
+  std::optional<ShapeCastResult> hit;
+  messages = handled([&] { hit = world.castShape(*shape, Transform{}, Vec3(1.0f)); });
+  EXPECT_FALSE(hit.has_value());
+  ASSERT_EQ(messages.size(), 1u);
+  EXPECT_EQ(messages[0], "world: castShape: shape: convex_hull: empty (ConvexHull::fromPoints failed)");
+}
+
+TEST(ErrorReporting, ABadPrimitiveIsKeptReportedAndRefusedAgain) {
+  EXPECT_THAT([] { Shape(Sphere{-1.0f}); },
+              test::ReportsError("sphere: radius must be finite and > 0, got -1"));
+  if (exceptionsEnabled()) return;
+  std::optional<Shape> bad;
+  handled([&] { bad.emplace(Sphere{-1.0f}); });
+  World world;
+  BodyDef def;
+  def.type = BodyType::Dynamic;
+  def.shape = *bad;
+  EXPECT_THAT([&] { world.createBody(def); },
+              test::ReportsError("body: shape: sphere: radius must be finite and > 0, got -1"));
+  EXPECT_THAT(
+      [&] { world.overlapShape(*bad, Transform{}); },
+      test::ReportsError("world: overlapShape: shape: sphere: radius must be finite and > 0, got -1"));
+  EXPECT_EQ(world.bodyCount(), 0u);
+}
+
+TEST(ErrorReporting, ABadWorldDefinitionGivesNoWorldFromCreate) {
+  WorldDef def;
+  def.substeps = 0;
+  EXPECT_THAT([&] { World::create(def); }, test::ReportsError("world: substeps must be >= 1, got 0"));
+  if (exceptionsEnabled()) return;
+  std::unique_ptr<World> world;
+  handled([&] { world = World::create(def); });
+  EXPECT_EQ(world, nullptr);
+  // The constructor, which cannot return nothing, takes the default definition instead.
+  std::optional<World> fallback;
+  handled([&] { fallback.emplace(def); });
+  EXPECT_EQ(fallback->def().substeps, WorldDef{}.substeps);
+  def.substeps = 2;
+  EXPECT_NE(World::create(def), nullptr);
+}
+
+TEST(ErrorReporting, ACorruptSnapshotLeavesTheWorldAsItWas) {
+  World world;
+  const BodyId id = world.createBody(test::boxBody(Vec3(0.0f, 2.0f, 0.0f), Vec3(0.5f), 1.0f));
+  std::vector<std::uint8_t> bytes = world.saveSnapshot();
+  world.step(1.0f / 60.0f);
+  bytes[bytes.size() / 2] ^= 0x5a;
+  EXPECT_THAT([&] { world.loadSnapshot(bytes); }, test::ReportsError(HasSubstr("snapshot: corrupt")));
+  EXPECT_TRUE(world.isValid(id));
+  EXPECT_LT(world.transform(id).position.y, 2.0f);  // still the stepped world
+}
+
+// A world with every kind of record a snapshot holds: shapes of each family, parts, contacts, joints.
+void buildBusyWorld(World& world) {
+  world.createBody(test::groundBox());
+  const BodyId a = world.createBody(test::boxBody(Vec3(0.0f, 0.6f, 0.0f), Vec3(0.5f), 1.0f));
+  const BodyId b = world.createBody(test::sphereBody(Vec3(0.0f, 1.8f, 0.0f), 0.5f, 1.0f));
+  BodyDef hull;
+  hull.type = BodyType::Dynamic;
+  hull.position = Vec3(2.0f, 1.0f, 0.0f);
+  hull.shape =
+      Shape(ConvexHull::fromPoints(std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}}));
+  world.createBody(hull);
+  BodyDef table;
+  table.type = BodyType::Dynamic;
+  table.position = Vec3(-2.0f, 1.0f, 0.0f);
+  PartDef top, leg;
+  top.shape = Shape(Box{Vec3(0.5f, 0.05f, 0.5f)});
+  leg.shape = Shape(Capsule{0.05f, 0.3f});
+  leg.position = Vec3(0.0f, -0.35f, 0.0f);
+  table.parts = {top, leg};
+  world.createBody(table);
+  BallJointDef ball;
+  ball.a = a;
+  ball.b = b;
+  ball.anchor = Vec3(0.0f, 1.2f, 0.0f);
+  world.createBallJoint(ball);
+  for (int i = 0; i < 30; ++i) world.step(1.0f / 60.0f);
+}
+
+// Bytes of a snapshot whose contents were changed, with a checksum that matches them again (the
+// header's layout: mark, format, library, layout, length, checksum), so that the reading itself
+// meets the damage.
+void resealSnapshot(std::vector<std::uint8_t>& bytes) {
+  constexpr std::size_t kHeader = 40;
+  const std::uint64_t length = bytes.size() - kHeader;
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (std::size_t i = kHeader; i < bytes.size(); ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull;
+  std::memcpy(bytes.data() + 24, &length, sizeof length);
+  std::memcpy(bytes.data() + 32, &hash, sizeof hash);
+}
+
+TEST(ErrorReporting, DamagedSnapshotsAreRefusedOrLoadWithoutHarm) {
+  // Every change a reader can meet mid-way (a flipped bit in any field, a count, an index, a cut
+  // short payload): refused with an Error that leaves the world as it was, or, where the bytes
+  // still make a world, loaded and stepped. In the build without exceptions this walks the reader's
+  // failure paths, which go on reading zeros to the end instead of unwinding.
+  World source;
+  buildBusyWorld(source);
+  const std::vector<std::uint8_t> good = source.saveSnapshot();
+  std::mt19937 rng(20261206);
+  int loaded = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    std::vector<std::uint8_t> bytes = good;
+    const bool cut = trial % 4 == 3;
+    if (cut) {
+      bytes.resize(40 + std::uniform_int_distribution<std::size_t>(0, good.size() - 41)(rng));
+    } else {
+      for (int flips = 1 + trial % 3; flips > 0; --flips) {
+        const std::size_t at = std::uniform_int_distribution<std::size_t>(40, bytes.size() - 1)(rng);
+        bytes[at] ^= static_cast<std::uint8_t>(1u << std::uniform_int_distribution<int>(0, 7)(rng));
+      }
+    }
+    resealSnapshot(bytes);
+    World target;
+    target.createBody(test::boxBody(Vec3(0.0f, 5.0f, 0.0f), Vec3(1.0f), 2.0f));
+    const std::vector<std::uint8_t> before = target.saveSnapshot();
+    const std::optional<std::string> error = test::errorOf([&] { target.loadSnapshot(bytes); });
+    if (cut) {
+      EXPECT_TRUE(error.has_value()) << "trial " << trial << ": a payload cut short was loaded";
+    }
+    if (error) {
+      EXPECT_THAT(*error, HasSubstr("snapshot: ")) << "trial " << trial;
+      ASSERT_EQ(target.saveSnapshot(), before) << "trial " << trial << ": " << *error;
+    } else {
+      ++loaded;
+      for (int i = 0; i < 5; ++i) target.step(1.0f / 60.0f);
+    }
+  }
+  RecordProperty("loaded", loaded);
+}
+
+}  // namespace
+}  // namespace collide
