@@ -173,10 +173,11 @@ TEST(FaultGuard, SettersRefuseNonFiniteValues) {
       {"applyTorque", [&](const Vec3& v) { world.applyTorque(id, v); }},
   };
   for (const float bad : {kNan, kInf, -kInf}) {
-    for (const auto& [name, call] : calls) {
-      SCOPED_TRACE(std::string(name) + " with " + std::to_string(bad));
+    for (const auto& entry : calls) {
+      const std::string name = entry.first;
+      SCOPED_TRACE(name + " with " + std::to_string(bad));
       if (const std::optional<std::string> error =
-              ::collide::test::errorOf([&] { call(Vec3(0.0f, bad, 0.0f)); });
+              ::collide::test::errorOf([&] { entry.second(Vec3(0.0f, bad, 0.0f)); });
           !error) {
         ADD_FAILURE() << "no Error";
       } else {
