@@ -328,11 +328,15 @@ bool World::isValid(JointId id) const {
 }
 std::size_t World::constraintCount() const { return impl_->jointCount; }
 JointType World::jointType(JointId id) const { return impl_->jointOf(id, "jointType").type; }
+// The getters that read the joint's bodies: nothing to read for a stale id (Error; without
+// exceptions a default value).
 BodyId World::jointBodyA(JointId id) const {
-  return impl_->bodies.idOf(impl_->jointOf(id, "jointBodyA").bodyA);
+  const std::uint32_t i = impl_->resolve(id, "jointBodyA");
+  return i == Impl::kBadSlot ? BodyId{} : impl_->bodies.idOf(impl_->joints[i].bodyA);
 }
 BodyId World::jointBodyB(JointId id) const {
-  return impl_->bodies.idOf(impl_->jointOf(id, "jointBodyB").bodyB);
+  const std::uint32_t i = impl_->resolve(id, "jointBodyB");
+  return i == Impl::kBadSlot ? BodyId{} : impl_->bodies.idOf(impl_->joints[i].bodyB);
 }
 
 float World::constraintLength(JointId id) const {
@@ -340,26 +344,34 @@ float World::constraintLength(JointId id) const {
   return j.type == JointType::Distance ? j.length : 0.0f;
 }
 float World::constraintCurrentLength(JointId id) const {
-  const Joint& j = impl_->jointOf(id, "constraintCurrentLength");
+  const std::uint32_t i = impl_->resolve(id, "constraintCurrentLength");
+  if (i == Impl::kBadSlot) return 0.0f;
+  const Joint& j = impl_->joints[i];
   return glm::length(impl_->anchorWorld(j.bodyB, j.localAnchorB) -
                      impl_->anchorWorld(j.bodyA, j.localAnchorA));
 }
 
 Vec3 World::jointAnchorA(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointAnchorA")).anchorA;
+  const std::uint32_t i = impl_->resolve(id, "jointAnchorA");
+  return i == Impl::kBadSlot ? Vec3(0.0f) : detail::jointPose(impl_->bodies, impl_->joints[i]).anchorA;
 }
 Vec3 World::jointAnchorB(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointAnchorB")).anchorB;
+  const std::uint32_t i = impl_->resolve(id, "jointAnchorB");
+  return i == Impl::kBadSlot ? Vec3(0.0f) : detail::jointPose(impl_->bodies, impl_->joints[i]).anchorB;
 }
 Vec3 World::jointAxis(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointAxis")).axisA;
+  const std::uint32_t i = impl_->resolve(id, "jointAxis");
+  return i == Impl::kBadSlot ? Vec3(0.0f) : detail::jointPose(impl_->bodies, impl_->joints[i]).axisA;
 }
 float World::jointPosition(JointId id) const {
-  return detail::jointPose(impl_->bodies, impl_->jointOf(id, "jointPosition")).position;
+  const std::uint32_t i = impl_->resolve(id, "jointPosition");
+  return i == Impl::kBadSlot ? 0.0f : detail::jointPose(impl_->bodies, impl_->joints[i]).position;
 }
 
 float World::jointSpeed(JointId id) const {
-  const Joint& j = impl_->jointOf(id, "jointSpeed");
+  const std::uint32_t i = impl_->resolve(id, "jointSpeed");
+  if (i == Impl::kBadSlot) return 0.0f;
+  const Joint& j = impl_->joints[i];
   const detail::JointPose pose = detail::jointPose(impl_->bodies, j);
   const BodyState& a = impl_->bodies.states[j.bodyA];
   const BodyState& b = impl_->bodies.states[j.bodyB];

@@ -74,26 +74,31 @@ std::uint32_t World::partCount(BodyId id) const {
 }
 
 const Shape& World::partShape(BodyId id, std::uint32_t part) const {
+  const detail::ErrorScope scope;  // a stale id: one message, not one more for the part
   const BodyRecord& r = impl_->recordOf(id, "partShape");
   return detail::partShape(r, checkPart(r, part, "partShape"));
 }
 
 Transform World::partLocalPose(BodyId id, std::uint32_t part) const {
+  const detail::ErrorScope scope;  // a stale id: one message, not one more for the part
   const BodyRecord& r = impl_->recordOf(id, "partLocalPose");
   return detail::partLocalPose(r, checkPart(r, part, "partLocalPose"));
 }
 
 bool World::partIsSensor(BodyId id, std::uint32_t part) const {
+  const detail::ErrorScope scope;  // a stale id: one message, not one more for the part
   const BodyRecord& r = impl_->recordOf(id, "partIsSensor");
   return detail::partIsSensor(r, checkPart(r, part, "partIsSensor"));
 }
 
 std::uint64_t World::partUserData(BodyId id, std::uint32_t part) const {
+  const detail::ErrorScope scope;  // a stale id: one message, not one more for the part
   const BodyRecord& r = impl_->recordOf(id, "partUserData");
   return detail::partUserData(r, checkPart(r, part, "partUserData"));
 }
 
 BodyMaterial World::partMaterial(BodyId id, std::uint32_t part) const {
+  const detail::ErrorScope scope;  // a stale id: one message, not one more for the part
   const BodyRecord& r = impl_->recordOf(id, "partMaterial");
   return detail::partMaterial(r, checkPart(r, part, "partMaterial"));
 }
@@ -116,6 +121,7 @@ void World::setPartMaterial(BodyId id, std::uint32_t part, const BodyMaterial& m
 }
 
 CollisionFilter World::partFilter(BodyId id, std::uint32_t part) const {
+  const detail::ErrorScope scope;  // a stale id: one message, not one more for the part
   const BodyRecord& r = impl_->recordOf(id, "partFilter");
   const detail::PartFilter f = detail::partFilter(r, checkPart(r, part, "partFilter"));
   return {f.layer, f.mask, f.group};

@@ -70,6 +70,7 @@ std::vector<ProxyFit> fitAllProxies(std::span<const Vec3> points) {
 
   for (int k : {6, 14, 18, 26}) {
     Kdop kdop = Kdop::fromPoints(k, points);
+    COLLIDE_RETURN_IF_FAILED({});
     const float volume = kdop.polytope().volume();
     // The slabs are k floats; collide also keeps the polytope they enclose, for support mapping.
     const std::size_t bytes = std::size_t(k) * sizeof(float) + polytopeBytes(kdop.polytope());

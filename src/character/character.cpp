@@ -93,6 +93,13 @@ SegmentTriangle closestSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3&
 
 namespace {
 
+// The mover's solid: a capsule, or with a segment of length 0 (halfHeight 0, a crouch all the way
+// down) the sphere that capsule is, which a Capsule refuses to be.
+Shape bodyShape(float radius, float halfHeight) {
+  if (halfHeight == 0.0f) return Shape(Sphere{radius});
+  return Shape(Capsule{radius, halfHeight});
+}
+
 bool validCharacterDef(const CharacterDef& def) {
   const auto fail = [](const std::string& message) {
     detail::raiseError("character: " + message);
@@ -145,8 +152,8 @@ std::vector<Character::Plane> Character::planesNear(const World& world, const Ve
   const Vec3 p = position - def_.halfHeight * up;
   const Vec3 q = position + def_.halfHeight * up;
   const Transform pose{position, rotationFromY(up), 1.0f};
-  const Shape capsule(Capsule{radius, def_.halfHeight});
-  const Shape reach(Capsule{radius + margin, def_.halfHeight});
+  const Shape capsule = bodyShape(radius, def_.halfHeight);
+  const Shape reach = bodyShape(radius + margin, def_.halfHeight);
   Aabb reachBox = worldBounds(reach, pose);
 
   std::vector<Plane> planes;
@@ -256,7 +263,7 @@ std::vector<Character::Plane> Character::planesNear(const World& world, const Ve
 
 float Character::castFraction(const World& world, const Vec3& from, const Vec3& displacement) const {
   if (glm::length(displacement) < kMinMove) return 1.0f;
-  const Shape capsule(Capsule{def_.radius, def_.halfHeight});
+  const Shape capsule = bodyShape(def_.radius, def_.halfHeight);
   const Transform pose{from, rotationFromY(def_.up), 1.0f};
   float fraction = 1.0f;
   world.castShapeCollect(

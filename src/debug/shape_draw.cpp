@@ -3,6 +3,7 @@
 #include <collide/debug_draw.h>
 #include <collide/error.h>
 #include "base/fail.h"
+#include "shapes/shape_functions.h"
 
 #include <array>
 #include <cmath>
@@ -101,6 +102,7 @@ void drawPlane(DebugDraw& draw, const Plane& plane, const Transform& t, const De
 void drawShape(DebugDraw& draw, const Shape& shape, const Transform& t, const DebugColor& color,
                float planeSize, int segments) {
   if (segments < 3) COLLIDE_FAIL("drawShape: segments must be >= 3, got " + std::to_string(segments));
+  if (!detail::usableShape(shape)) return;
   const Vec3 ex(1.0f, 0.0f, 0.0f), ey(0.0f, 1.0f, 0.0f), ez(0.0f, 0.0f, 1.0f);
   switch (shape.type()) {
     case ShapeType::Sphere: {

@@ -78,6 +78,7 @@ bool convexSignedDistance(const ConvexSupport& a, const ConvexSupport& b, float 
 // ---- The generic table entry for every convex pair ----
 
 #include "narrowphase/pair_functions.h"
+#include "shapes/shape_functions.h"
 
 namespace collide::detail {
 
@@ -129,7 +130,8 @@ DistanceResult mirrored(DistanceResult result) {
 
 DistanceResult distance(const Shape& shapeA, const Transform& givenA, const Shape& shapeB,
                         const Transform& givenB) {
-  if (!detail::requireValidTransform(givenA, "distance", "A") ||
+  if (!detail::usableShape(shapeA) || !detail::usableShape(shapeB) ||
+      !detail::requireValidTransform(givenA, "distance", "A") ||
       !detail::requireValidTransform(givenB, "distance", "B"))
     return {};
   const Transform transformA = detail::withUnitRotation(givenA);

@@ -12,6 +12,7 @@
 
 #include "base/fail.h"
 #include "narrowphase/pair_functions.h"
+#include "shapes/shape_functions.h"
 
 namespace collide {
 
@@ -353,7 +354,8 @@ std::string describePairTable() {
 
 bool overlap(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
              const Transform& transformB) {
-  if (!detail::requireValid(transformA, "overlap", "A") || !detail::requireValid(transformB, "overlap", "B"))
+  if (!detail::usableShape(shapeA) || !detail::usableShape(shapeB) ||
+      !detail::requireValid(transformA, "overlap", "A") || !detail::requireValid(transformB, "overlap", "B"))
     return false;
   return detail::kPairTable[detail::index(shapeA.type())][detail::index(shapeB.type())].overlap(
       shapeA, detail::withUnitRotation(transformA), shapeB, detail::withUnitRotation(transformB));
@@ -362,7 +364,8 @@ bool overlap(const Shape& shapeA, const Transform& transformA, const Shape& shap
 bool collide(const Shape& shapeA, const Transform& transformA, const Shape& shapeB,
              const Transform& transformB, Manifold& out, float speculativeMargin) {
   out.count = 0;
-  if (!detail::requireValid(transformA, "collide", "A") || !detail::requireValid(transformB, "collide", "B"))
+  if (!detail::usableShape(shapeA) || !detail::usableShape(shapeB) ||
+      !detail::requireValid(transformA, "collide", "A") || !detail::requireValid(transformB, "collide", "B"))
     return false;
   if (!(speculativeMargin >= 0.0f) || !std::isfinite(speculativeMargin)) {
     std::ostringstream message;

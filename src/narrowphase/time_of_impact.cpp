@@ -14,6 +14,7 @@
 #include "narrowphase/convex_distance.h"
 #include "narrowphase/convex_support.h"
 #include "narrowphase/pair_functions.h"
+#include "shapes/shape_functions.h"
 
 #include <algorithm>
 #include <array>
@@ -626,7 +627,9 @@ bool validSweep(const Sweep& sweep, const char* which) {
 ToiResult timeOfImpact(const Shape& shapeA, const Sweep& sweepA, const Shape& shapeB, const Sweep& sweepB,
                        const ToiSettings& settings) {
   const ToiResult refused;  // without exceptions, what a refused query returns: separated, t = 1
-  if (!validSweep(sweepA, "A") || !validSweep(sweepB, "B")) return refused;
+  if (!detail::usableShape(shapeA) || !detail::usableShape(shapeB) || !validSweep(sweepA, "A") ||
+      !validSweep(sweepB, "B"))
+    return refused;
   if (!isFinite(settings.targetSeparation))
     COLLIDE_FAIL("timeOfImpact: targetSeparation must be finite, got " + describe(settings.targetSeparation),
                  refused);

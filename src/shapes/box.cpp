@@ -29,7 +29,8 @@ MassProperties computeMassProperties(const Box& s, float density) {
 }
 
 bool localContains(const Box& s, const Vec3& p) {
-  return std::abs(p.x) <= s.halfExtents.x && std::abs(p.y) <= s.halfExtents.y && std::abs(p.z) <= s.halfExtents.z;
+  return std::abs(p.x) <= s.halfExtents.x && std::abs(p.y) <= s.halfExtents.y &&
+         std::abs(p.z) <= s.halfExtents.z;
 }
 
 SurfacePoint localClosestPoint(const Box& s, const Vec3& p) {

@@ -32,8 +32,8 @@ MassProperties computeMassProperties(const Capsule& s, float density) {
   // Each hemisphere: 83/320 m r^2 about its own centre of mass, which lies 3r/8 from the flat face;
   // moved by the parallel-axis theorem to the capsule's centre, both add up to m_s (2r²/5 + h² + 3hr/4).
   const float axial = cylinderMass * r * r / 2.0f + sphereMass * 0.4f * r * r;
-  const float transverse = cylinderMass * (r * r / 4.0f + h * h / 3.0f) +
-                           sphereMass * (0.4f * r * r + h * h + 0.75f * h * r);
+  const float transverse =
+      cylinderMass * (r * r / 4.0f + h * h / 3.0f) + sphereMass * (0.4f * r * r + h * h + 0.75f * h * r);
   m.inertia = Mat3(0.0f);
   m.inertia[0][0] = transverse;
   m.inertia[1][1] = axial;

@@ -52,7 +52,10 @@ Aabb computeLocalBounds(const Compound& s) { return s.bounds(); }
 // since each child keeps its exact (or its own conservative) bound.
 Aabb computeWorldBounds(const Compound& s, const Transform& t) {
   Aabb box;
-  for (const Compound::Child& child : s.children()) box.grow(worldBounds(child.shape, t * child.transform));
+  for (const Compound::Child& child : s.children()) {
+    box.grow(worldBounds(child.shape, t * child.transform));
+    COLLIDE_RETURN_IF_FAILED({});
+  }
   return box;
 }
 

@@ -194,12 +194,16 @@ bool requireFinite(const Vec3& value, const char* query, const char* field = "po
 }  // namespace
 
 Aabb localBounds(const Shape& shape) {
+  if (!detail::usableShape(shape)) return {};
   return shape.visit([](const auto& s) { return detail::computeLocalBounds(s); });
 }
 
 Aabb worldBounds(const Shape& shape, const Transform& transform) {
-  if (!requireValid(transform, "worldBounds")) return {};
-  return shape.visit([&](const auto& s) { return detail::computeWorldBounds(s, transform); });
+  if (!detail::usableShape(shape) || !requireValid(transform, "worldBounds")) return {};
+  const detail::ErrorScope scope;  // a compound's children: one message, and no box short of one
+  const Aabb box = shape.visit([&](const auto& s) { return detail::computeWorldBounds(s, transform); });
+  COLLIDE_RETURN_IF_FAILED({});
+  return box;
 }
 
 namespace detail {
@@ -228,6 +232,7 @@ void prefetchShapeArrays(const Shape& shape) {
 }  // namespace detail
 
 BoundingSphere localBoundingSphere(const Shape& shape) {
+  if (!detail::usableShape(shape)) return {};
   switch (shape.type()) {
     case ShapeType::Sphere:
       return {Vec3(0.0f), shape.sphere().radius};
@@ -286,6 +291,7 @@ BoundingSphere localBoundingSphere(const Shape& shape) {
 }
 
 Vec3 support(const Shape& shape, const Vec3& direction) {
+  if (!detail::usableShape(shape)) return Vec3(0.0f);
   if (!shape.isConvex()) {
     COLLIDE_FAIL(
         "support: a " + std::string(toString(shape.type())) + " is not convex and has no support function",
@@ -310,6 +316,8 @@ Vec3 support(const Shape& shape, const Vec3& direction) {
 }
 
 MassProperties massProperties(const Shape& shape, float density, float scale) {
+  const detail::ErrorScope scope;  // a compound's children fail inside it: one message, no partial sum
+  if (!detail::usableShape(shape)) return {};
   if (!isFinite(density) || density <= 0.0f) {
     COLLIDE_FAIL("mass properties: density must be finite and > 0, got " + formatValue(density), {});
   }
@@ -330,6 +338,7 @@ MassProperties massProperties(const Shape& shape, float density, float scale) {
       return detail::computeMassProperties(s, density);
     }
   });
+  COLLIDE_RETURN_IF_FAILED({});
   // Uniform scale s: volume and mass grow as s^3, lengths as s, inertia as mass * length^2 = s^5.
   const float s3 = scale * scale * scale;
   m.mass *= s3;
@@ -340,13 +349,17 @@ MassProperties massProperties(const Shape& shape, float density, float scale) {
 }
 
 bool containsPoint(const Shape& shape, const Transform& transform, const Vec3& point) {
-  if (!requireValid(transform, "containsPoint") || !requireFinite(point, "containsPoint")) return false;
+  if (!detail::usableShape(shape) || !requireValid(transform, "containsPoint") ||
+      !requireFinite(point, "containsPoint"))
+    return false;
   const Vec3 local = transform.inverseApplyToPoint(point);
   return shape.visit([&](const auto& s) { return detail::localContains(s, local); });
 }
 
 SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const Vec3& point) {
-  if (!requireValid(transform, "closestPoint") || !requireFinite(point, "closestPoint")) return {};
+  if (!detail::usableShape(shape) || !requireValid(transform, "closestPoint") ||
+      !requireFinite(point, "closestPoint"))
+    return {};
   const Vec3 local = transform.inverseApplyToPoint(point);
   SurfacePoint result = shape.visit([&](const auto& s) { return detail::localClosestPoint(s, local); });
   result.point = transform.applyToPoint(result.point);
@@ -356,7 +369,7 @@ SurfacePoint closestPoint(const Shape& shape, const Transform& transform, const 
 }
 
 std::optional<RayHit> rayCast(const Shape& shape, const Transform& transform, const Ray& ray) {
-  if (!requireValid(transform, "rayCast")) return std::nullopt;
+  if (!detail::usableShape(shape) || !requireValid(transform, "rayCast")) return std::nullopt;
   if (!isFinite(ray.origin) || !isFinite(ray.direction) || std::isnan(ray.maxDistance) ||
       ray.maxDistance < 0.0f) {
     COLLIDE_FAIL("rayCast: ray must have a finite origin and direction and maxDistance >= 0, got origin " +

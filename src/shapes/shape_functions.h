@@ -5,9 +5,23 @@
 
 #include <collide/shapes.h>
 
+#include "base/fail.h"
+
 #include <optional>
 
 namespace collide::detail {
+
+// Whether a shape handed to a free function may be used. With exceptions every Shape is: its
+// constructor threw instead. Without them a Shape can carry a bad value or a failed factory's empty
+// polyhedron (collide/error.h): it is reported (again) and refused.
+inline bool usableShape(const Shape& shape) {
+#if COLLIDE_EXCEPTIONS
+  static_cast<void>(shape);
+  return true;
+#else
+  return validateShape(shape);
+#endif
+}
 
 // Bounds in the local frame.
 Aabb computeLocalBounds(const Sphere& s);

@@ -172,6 +172,93 @@ TEST(ErrorReporting, ACorruptSnapshotLeavesTheWorldAsItWas) {
   EXPECT_LT(world.transform(id).position.y, 2.0f);  // still the stepped world
 }
 
+TEST(ErrorReporting, StaleJointIdsReadNoBody) {
+  World world;
+  world.createBody(test::groundBox());
+  const BodyId a = world.createBody(test::sphereBody(Vec3(0.0f, 3.0f, 0.0f), 0.5f, 1.0f));
+  const BodyId b = world.createBody(test::sphereBody(Vec3(0.0f, 2.0f, 0.0f), 0.5f, 1.0f));
+  BallJointDef def;
+  def.a = a;
+  def.b = b;
+  def.anchor = Vec3(0.0f, 2.5f, 0.0f);
+  const JointId joint = world.createBallJoint(def);
+  world.destroyConstraint(joint);
+  EXPECT_THAT([&] { world.jointBodyA(joint); },
+              test::ReportsError(HasSubstr("jointBodyA: invalid or stale")));
+  EXPECT_THAT([&] { world.jointAnchorB(joint); },
+              test::ReportsError(HasSubstr("jointAnchorB: invalid or stale")));
+  EXPECT_THAT([&] { world.jointSpeed(joint); },
+              test::ReportsError(HasSubstr("jointSpeed: invalid or stale")));
+  if (exceptionsEnabled()) return;
+  BodyId body = a;
+  Vec3 anchor(1.0f);
+  const std::vector<std::string> messages = handled([&] {
+    body = world.jointBodyA(joint);
+    anchor = world.jointAnchorA(joint);
+  });
+  EXPECT_TRUE(body.isNull());  // not body 0 of the world
+  EXPECT_EQ(anchor, Vec3(0.0f));
+  EXPECT_EQ(messages.size(), 2u);
+  // A world without bodies: nothing to read at all.
+  World empty;
+  float speed = 1.0f;
+  handled([&] { speed = empty.jointSpeed(JointId{0, 0}); });
+  EXPECT_EQ(speed, 0.0f);
+}
+
+TEST(ErrorReporting, AStalePartGetterReportsOnce) {
+  World world;
+  const BodyId id = world.createBody(test::boxBody(Vec3(0.0f), Vec3(0.5f), 1.0f));
+  world.destroyBody(id);
+  EXPECT_THAT([&] { world.partMaterial(id, 3); },
+              test::ReportsError(HasSubstr("partMaterial: invalid or stale")));
+  if (!exceptionsEnabled()) {
+    EXPECT_EQ(handled([&] { world.partShape(id, 3); }).size(), 1u);
+  }
+}
+
+TEST(ErrorReporting, FreeFunctionsRefuseAShapeFromAFailedFactory) {
+  if (exceptionsEnabled()) GTEST_SKIP() << "with exceptions no such Shape can be made";
+  const std::vector<Vec3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}};
+  std::optional<Shape> empty;
+  handled([&] { empty.emplace(ConvexHull::fromPoints(flat)); });
+  const Shape ball(Sphere{1.0f});
+  const Transform at{};
+  Manifold manifold;
+  const std::vector<std::pair<const char*, std::function<void()>>> calls = {
+      {"localBounds", [&] { EXPECT_TRUE(localBounds(*empty).isEmpty()); }},
+      {"worldBounds", [&] { EXPECT_TRUE(worldBounds(*empty, at).isEmpty()); }},
+      {"support", [&] { EXPECT_EQ(support(*empty, Vec3(1.0f, 0.0f, 0.0f)), Vec3(0.0f)); }},
+      {"massProperties", [&] { EXPECT_EQ(massProperties(*empty, 1.0f).mass, 0.0f); }},
+      {"rayCast",
+       [&] {
+         EXPECT_FALSE(rayCast(*empty, at, Ray{Vec3(0.0f, 5.0f, 0.0f), Vec3(0, -1, 0), 10.0f}));
+       }},
+      {"containsPoint", [&] { EXPECT_FALSE(containsPoint(*empty, at, Vec3(0.1f))); }},
+      {"collide", [&] { EXPECT_FALSE(collide::collide(*empty, at, ball, at, manifold)); }},
+      {"overlap", [&] { EXPECT_FALSE(overlap(ball, at, *empty, at)); }},
+      {"distance", [&] { static_cast<void>(distance(*empty, at, ball, at)); }},
+  };
+  for (const auto& call : calls) {
+    const std::vector<std::string> messages = handled(call.second);
+    ASSERT_EQ(messages.size(), 1u) << call.first;
+    EXPECT_EQ(messages[0], "convex_hull: empty (ConvexHull::fromPoints failed)") << call.first;
+  }
+}
+
+TEST(ErrorReporting, ACompoundWithoutMassGivesNoPartialSum) {
+  // An open mesh is a fine child of a static compound, which then has no mass properties.
+  const Shape quad(TriangleMesh::fromTriangles({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}}, {{{0, 2, 1}}}));
+  const Shape compound(Compound::fromChildren({{Shape(Sphere{1.0f}), {}}, {quad, {{3, 0, 0}}}}));
+  EXPECT_THAT([&] { massProperties(compound, 1.0f); }, test::ReportsError(HasSubstr("child 1 has no mass")));
+  if (exceptionsEnabled()) return;
+  MassProperties m;
+  m.mass = -1.0f;
+  const std::vector<std::string> messages = handled([&] { m = massProperties(compound, 1.0f); });
+  EXPECT_EQ(messages.size(), 1u);
+  EXPECT_EQ(m.mass, 0.0f);  // not the sphere's alone
+}
+
 // A world with every kind of record a snapshot holds: shapes of each family, parts, contacts, joints.
 void buildBusyWorld(World& world) {
   world.createBody(test::groundBox());

@@ -63,6 +63,24 @@ TEST(Character, WalksFlatGroundAtTheSpeedAskedWithoutRisingOrSinking) {
   EXPECT_NEAR(character.velocity().x, 5.0f, 0.05f);
 }
 
+// halfHeight 0 (the def allows it, and setHalfHeight crouches to it) is a capsule of no length: the
+// mover is then a sphere, and walks as one instead of being refused (a Capsule's halfHeight must be
+// > 0).
+TEST(Character, ASegmentOfLengthZeroWalksAsASphere) {
+  World world;
+  world.createBody(test::groundBox());
+  CharacterDef def;
+  def.halfHeight = 0.0f;
+  def.position = Vec3(0.0f, def.skinWidth + def.radius, 0.0f);
+  Character character(def);
+  for (int i = 0; i < 60; ++i) {
+    ASSERT_NO_COLLIDE_ERROR(frame(world, character, Vec3(2.0f, 0.0f, 0.0f))) << "frame " << i;
+  }
+  EXPECT_EQ(character.groundState(), GroundState::OnGround);
+  EXPECT_NEAR(character.position().x, 2.0f, 0.05f);  // 2 m/s for 1 s
+  EXPECT_NEAR(feetHeight(character), 0.0f, def.skinWidth + 1e-3f);
+}
+
 // Stairs of `rise` per step, 0.5 m deep, from x = 2 on, up to 5 steps.
 void buildStairs(World& world, float rise) {
   for (int step = 0; step < 5; ++step) {
