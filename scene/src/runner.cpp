@@ -119,7 +119,11 @@ std::vector<std::string> faultFieldNames(std::uint8_t fields) {
   return out;
 }
 
-RunSummary runScene(const Scene& scene, const RunOptions& options) {
+namespace {
+
+// runScene; `owned`, when the caller handed the scene over, is `scene` itself, whose bodies go once
+// the run has taken what it reads of them.
+RunSummary runOwnedOrNot(const Scene& scene, Scene* owned, const RunOptions& options) {
   const int steps = options.steps.value_or(scene.steps);
   if (steps < 0) throw Error("run: steps must be >= 0, got " + std::to_string(steps));
   if (options.recordEvery < 1)
@@ -195,6 +199,7 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
     if (sw.bodies[i].index >= names.size()) names.resize(sw.bodies[i].index + 1);
     names[sw.bodies[i].index] = scene.bodies[i].def.name;
   }
+  if (owned) std::vector<Body>().swap(owned->bodies);  // freed: nothing below reads them
 
   // The scene's characters (our extension): after each step, each walks towards its next waypoint.
   struct Walker {
@@ -323,6 +328,16 @@ RunSummary runScene(const Scene& scene, const RunOptions& options) {
   if (snapshotFile) snapshotFile->commit();
   if (summaryFile) summaryFile->commit();
   return summary;
+}
+
+}  // namespace
+
+RunSummary runScene(const Scene& scene, const RunOptions& options) {
+  return runOwnedOrNot(scene, nullptr, options);
+}
+
+RunSummary runScene(Scene&& scene, const RunOptions& options) {
+  return runOwnedOrNot(scene, &scene, options);
 }
 
 }  // namespace collide::scene

@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 using namespace collide;
 
@@ -35,7 +36,7 @@ int runCommand(const RunArguments& arguments) {
   options.snapshotAt = arguments.snapshotAt;
   options.fromSnapshotPath = arguments.fromSnapshot;
   options.progress = isatty(STDERR_FILENO) != 0;
-  const scene::RunSummary summary = scene::runScene(loaded, options);
+  const scene::RunSummary summary = scene::runScene(std::move(loaded), options);
   std::printf("%s", scene::formatSummary(summary).c_str());
   if (!summary.faults.empty()) {
     // The outputs are written, but the run did not simulate every body to the end: a script that

@@ -80,6 +80,10 @@ struct RunSummary {
 // temporary file (OutputFile) and replaces its target only when every output is complete, so a run
 // that fails leaves the files at the targets as they were.
 RunSummary runScene(const Scene& scene, const RunOptions& options = {});
+// The same with the scene handed over: its body definitions (a pile's thousands of shapes, names
+// and settings) are freed once the world is built and what the run reads of them is taken (names,
+// break thresholds), so that the process does not hold every body twice while it steps.
+RunSummary runScene(Scene&& scene, const RunOptions& options = {});
 
 // FNV-1a over the bit patterns of every live body's position, rotation and velocities, in scene
 // order: equal hashes mean bit-identical final states.
