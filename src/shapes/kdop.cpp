@@ -100,10 +100,9 @@ std::shared_ptr<const ConvexHull> enclosedPolytope(int k, const std::array<float
   return std::make_shared<const ConvexHull>(std::move(hull));
 }
 
-bool supportedK(int k) { return k == 6 || k == 14 || k == 18 || k == 26; }
-
 bool requireSupportedK(int k) {
-  if (!supportedK(k)) COLLIDE_FAIL("kdop: k must be 6, 14, 18 or 26, got " + std::to_string(k), false);
+  if (k != 6 && k != 14 && k != 18 && k != 26)
+    COLLIDE_FAIL("kdop: k must be 6, 14, 18 or 26, got " + std::to_string(k), false);
   return true;
 }
 
