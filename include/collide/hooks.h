@@ -16,7 +16,8 @@ namespace collide {
 // solver's batches, the joints, shapes' vertices and faces, the step's scratch and each thread's
 // narrow-phase scratch) is an Array, whose memory comes from the installed allocator. allocate
 // returns `bytes` aligned to `alignment` (a power of two, at least alignof(std::max_align_t)), or
-// nullptr when it has none (the library then throws std::bad_alloc); free gets back the same bytes
+// nullptr when it has none (the library then throws std::bad_alloc, or in a build without
+// exceptions tells the error handler and aborts, as operator new would); free gets back the same bytes
 // and alignment. A block asks for a little more than its array needs: a header records which
 // allocator gave it, and the block goes back to that one even after another is installed (a
 // thread's scratch outlives the world that grew it). The allocator's functions must be callable from
