@@ -20,24 +20,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// Each message the handler got during f (a build without exceptions; with them, none).
-std::vector<std::string> handled(const std::function<void()>& f) {
-  std::vector<std::string> messages;
-  setErrorHandler([](const char* message,
-                     void* context) { static_cast<std::vector<std::string>*>(context)->push_back(message); },
-                  &messages);
-#if COLLIDE_EXCEPTIONS
-  try {
-    f();
-  } catch (const Error&) {
-  }
-#else
-  f();
-#endif
-  setErrorHandler(nullptr);
-  return messages;
-}
-
 TEST(ErrorReporting, TheBuildSaysHowItReports) { EXPECT_EQ(exceptionsEnabled(), COLLIDE_EXCEPTIONS != 0); }
 
 TEST(ErrorReporting, ABadBodyIsRefusedWholeWithItsFieldNamed) {
@@ -46,7 +28,7 @@ TEST(ErrorReporting, ABadBodyIsRefusedWholeWithItsFieldNamed) {
   def.name = "crate";
   def.linearDamping = -1.0f;
   BodyId id{};
-  const std::vector<std::string> messages = handled([&] { id = world.createBody(def); });
+  const std::vector<std::string> messages = test::handledErrors([&] { id = world.createBody(def); });
   EXPECT_EQ(world.bodyCount(), 0u);
   EXPECT_TRUE(id.isNull());
   EXPECT_THAT([&] { world.createBody(def); },
@@ -89,10 +71,10 @@ TEST(ErrorReporting, StaleIdsAreReportedAndChangeNothing) {
               test::ReportsError(HasSubstr("mass: invalid or stale")));
   if (!exceptionsEnabled()) {
     float mass = -1.0f;
-    handled([&] { mass = world.mass(id); });
+    test::handledErrors([&] { mass = world.mass(id); });
     EXPECT_EQ(mass, 0.0f);  // a default body's
     std::uint32_t part = 0;
-    handled([&] { part = world.addPart(id, PartDef{}); });
+    test::handledErrors([&] { part = world.addPart(id, PartDef{}); });
     EXPECT_EQ(part, World::kNoPart);
   }
 }
@@ -104,24 +86,24 @@ TEST(ErrorReporting, FactoriesReturnEmptyShapesThatTheWorldRefuses) {
               test::ReportsError(HasSubstr("mesh: needs at least one triangle")));
   if (exceptionsEnabled()) return;
   ConvexHull hull;
-  handled([&] { hull = ConvexHull::fromPoints(flat); });
+  test::handledErrors([&] { hull = ConvexHull::fromPoints(flat); });
   EXPECT_TRUE(hull.isEmpty());
   // A Shape of it is reported when made, and refused by whatever uses it, with the context.
   std::vector<std::string> messages;
   std::optional<Shape> shape;
-  messages = handled([&] { shape.emplace(std::move(hull)); });
+  messages = test::handledErrors([&] { shape.emplace(std::move(hull)); });
   ASSERT_EQ(messages.size(), 1u);
   EXPECT_THAT(messages[0], HasSubstr("convex_hull: empty"));
   World world;
   BodyDef def;
   def.shape = *shape;
   BodyId id{};
-  messages = handled([&] { id = world.createBody(def); });
+  messages = test::handledErrors([&] { id = world.createBody(def); });
   EXPECT_TRUE(id.isNull());
   ASSERT_EQ(messages.size(), 1u);
   EXPECT_EQ(messages[0], "body: shape: convex_hull: empty (ConvexHull::fromPoints failed)");
   std::optional<ShapeCastResult> hit;
-  messages = handled([&] { hit = world.castShape(*shape, Transform{}, Vec3(1.0f)); });
+  messages = test::handledErrors([&] { hit = world.castShape(*shape, Transform{}, Vec3(1.0f)); });
   EXPECT_FALSE(hit.has_value());
   ASSERT_EQ(messages.size(), 1u);
   EXPECT_EQ(messages[0], "world: castShape: shape: convex_hull: empty (ConvexHull::fromPoints failed)");
@@ -132,7 +114,7 @@ TEST(ErrorReporting, ABadPrimitiveIsKeptReportedAndRefusedAgain) {
               test::ReportsError("sphere: radius must be finite and > 0, got -1"));
   if (exceptionsEnabled()) return;
   std::optional<Shape> bad;
-  handled([&] { bad.emplace(Sphere{-1.0f}); });
+  test::handledErrors([&] { bad.emplace(Sphere{-1.0f}); });
   World world;
   BodyDef def;
   def.type = BodyType::Dynamic;
@@ -151,11 +133,11 @@ TEST(ErrorReporting, ABadWorldDefinitionGivesNoWorldFromCreate) {
   EXPECT_THAT([&] { World::create(def); }, test::ReportsError("world: substeps must be >= 1, got 0"));
   if (exceptionsEnabled()) return;
   std::unique_ptr<World> world;
-  handled([&] { world = World::create(def); });
+  test::handledErrors([&] { world = World::create(def); });
   EXPECT_EQ(world, nullptr);
   // The constructor, which cannot return nothing, takes the default definition instead.
   std::optional<World> fallback;
-  handled([&] { fallback.emplace(def); });
+  test::handledErrors([&] { fallback.emplace(def); });
   EXPECT_EQ(fallback->def().substeps, WorldDef{}.substeps);
   def.substeps = 2;
   EXPECT_NE(World::create(def), nullptr);
@@ -192,7 +174,7 @@ TEST(ErrorReporting, StaleJointIdsReadNoBody) {
   if (exceptionsEnabled()) return;
   BodyId body = a;
   Vec3 anchor(1.0f);
-  const std::vector<std::string> messages = handled([&] {
+  const std::vector<std::string> messages = test::handledErrors([&] {
     body = world.jointBodyA(joint);
     anchor = world.jointAnchorA(joint);
   });
@@ -202,7 +184,7 @@ TEST(ErrorReporting, StaleJointIdsReadNoBody) {
   // A world without bodies: nothing to read at all.
   World empty;
   float speed = 1.0f;
-  handled([&] { speed = empty.jointSpeed(JointId{0, 0}); });
+  test::handledErrors([&] { speed = empty.jointSpeed(JointId{0, 0}); });
   EXPECT_EQ(speed, 0.0f);
 }
 
@@ -213,7 +195,7 @@ TEST(ErrorReporting, AStalePartGetterReportsOnce) {
   EXPECT_THAT([&] { world.partMaterial(id, 3); },
               test::ReportsError(HasSubstr("partMaterial: invalid or stale")));
   if (!exceptionsEnabled()) {
-    EXPECT_EQ(handled([&] { world.partShape(id, 3); }).size(), 1u);
+    EXPECT_EQ(test::handledErrors([&] { world.partShape(id, 3); }).size(), 1u);
   }
 }
 
@@ -221,7 +203,7 @@ TEST(ErrorReporting, FreeFunctionsRefuseAShapeFromAFailedFactory) {
   if (exceptionsEnabled()) GTEST_SKIP() << "with exceptions no such Shape can be made";
   const std::vector<Vec3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}};
   std::optional<Shape> empty;
-  handled([&] { empty.emplace(ConvexHull::fromPoints(flat)); });
+  test::handledErrors([&] { empty.emplace(ConvexHull::fromPoints(flat)); });
   const Shape ball(Sphere{1.0f});
   const Transform at{};
   Manifold manifold;
@@ -240,7 +222,7 @@ TEST(ErrorReporting, FreeFunctionsRefuseAShapeFromAFailedFactory) {
       {"distance", [&] { static_cast<void>(distance(*empty, at, ball, at)); }},
   };
   for (const auto& call : calls) {
-    const std::vector<std::string> messages = handled(call.second);
+    const std::vector<std::string> messages = test::handledErrors(call.second);
     ASSERT_EQ(messages.size(), 1u) << call.first;
     EXPECT_EQ(messages[0], "convex_hull: empty (ConvexHull::fromPoints failed)") << call.first;
   }
@@ -254,7 +236,7 @@ TEST(ErrorReporting, ACompoundWithoutMassGivesNoPartialSum) {
   if (exceptionsEnabled()) return;
   MassProperties m;
   m.mass = -1.0f;
-  const std::vector<std::string> messages = handled([&] { m = massProperties(compound, 1.0f); });
+  const std::vector<std::string> messages = test::handledErrors([&] { m = massProperties(compound, 1.0f); });
   EXPECT_EQ(messages.size(), 1u);
   EXPECT_EQ(m.mass, 0.0f);  // not the sphere's alone
 }

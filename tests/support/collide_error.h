@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #ifndef COLLIDE_EXCEPTIONS
 #define COLLIDE_EXCEPTIONS 1
@@ -18,8 +19,28 @@
 
 namespace collide::test {
 
-// The message of the first error `f` reported, or nothing. Without exceptions the handler is
-// replaced for the call and put back after; an Error of another thread is not seen.
+// Each message the error handler got during f, in order: the handler is replaced for the call and
+// put back after (an Error of another thread is not seen). With exceptions the handler hears
+// nothing, and an Error f throws is caught and dropped.
+inline std::vector<std::string> handledErrors(const std::function<void()>& f) {
+  std::vector<std::string> messages;
+  setErrorHandler([](const char* message,
+                     void* context) { static_cast<std::vector<std::string>*>(context)->push_back(message); },
+                  &messages);
+#if COLLIDE_EXCEPTIONS
+  try {
+    f();
+  } catch (const Error&) {
+  }
+#else
+  f();
+#endif
+  setErrorHandler(nullptr);
+  return messages;
+}
+
+// The message of the first error `f` reported (the Error it threw, or without exceptions the first
+// message the handler got), or nothing.
 inline std::optional<std::string> errorOf(const std::function<void()>& f) {
 #if COLLIDE_EXCEPTIONS
   try {
@@ -29,18 +50,9 @@ inline std::optional<std::string> errorOf(const std::function<void()>& f) {
   }
   return std::nullopt;
 #else
-  struct Capture {
-    std::optional<std::string> message;
-  } capture;
-  setErrorHandler(
-      [](const char* message, void* context) {
-        auto& c = *static_cast<Capture*>(context);
-        if (!c.message) c.message = message;
-      },
-      &capture);
-  f();
-  setErrorHandler(nullptr);
-  return capture.message;
+  const std::vector<std::string> messages = handledErrors(f);
+  if (messages.empty()) return std::nullopt;
+  return messages.front();
 #endif
 }
 
