@@ -63,8 +63,10 @@ bool validateWorldDef(const WorldDef& def) {
   using detail::formatFloat;
   if (!isFinite(def.gravity))
     COLLIDE_FAIL("world: gravity must be finite, got " + detail::formatVec(def.gravity), false);
-  if (def.substeps < 1)
-    COLLIDE_FAIL("world: substeps must be >= 1, got " + std::to_string(def.substeps), false);
+  if (def.substeps < 1 || def.substeps > kMaxSubsteps)
+    COLLIDE_FAIL("world: substeps must be 1 to " + std::to_string(kMaxSubsteps) + ", got " +
+                     std::to_string(def.substeps),
+                 false);
   if (def.workerCount < 1 || def.workerCount > kMaxWorkers)
     COLLIDE_FAIL("world: workerCount must be 1 to " + std::to_string(kMaxWorkers) + ", got " +
                      std::to_string(def.workerCount),
@@ -88,10 +90,10 @@ bool validateWorldDef(const WorldDef& def) {
       check(t.frictionAnchorReach, t.frictionAnchorReach >= 0.0f, "frictionAnchorReach (must be >= 0)") &&
       check(t.manifoldCacheDistance, t.manifoldCacheDistance >= 0.0f, "manifoldCacheDistance (must be >= 0)");
   if (!contactValid) return false;
-  if (t.relaxPasses < 0)
-    COLLIDE_FAIL(
-        "world: contact.relaxPasses out of range (must be >= 0), got " + std::to_string(t.relaxPasses),
-        false);
+  if (t.relaxPasses < 0 || t.relaxPasses > kMaxRelaxPasses)
+    COLLIDE_FAIL("world: contact.relaxPasses out of range (must be 0 to " + std::to_string(kMaxRelaxPasses) +
+                     "), got " + std::to_string(t.relaxPasses),
+                 false);
   const SleepTuning& sleep = def.sleep;
   const auto checkSleep = [](float value, bool ok, const char* field) {
     if (!isFinite(value) || !ok)

@@ -46,6 +46,10 @@ constexpr float combine(CombineRule rule, float a, float b) {
   return a;
 }
 
+// The most relax passes a substep may take (ContactTuning::relaxPasses): more would only stall the
+// step, and are refused like any setting out of range.
+inline constexpr int kMaxRelaxPasses = 16;
+
 // The contact constraint's tuning (Catto, "Solver2D" 2024 / Box2D v3 soft step). Box2D's defaults
 // are 30 Hz and damping ratio 10 at 4 substeps; ours are stiffer so stacks stand (see below).
 struct ContactTuning {
@@ -61,7 +65,7 @@ struct ContactTuning {
   float linearSlop = 0.005f;          // m: the penetration allowed (and the "touching" tolerance of events)
   float speculativeDistance = 0.02f;  // m: contacts are created this far apart (plus the step's motion)
   // Passes without the position bias after each substep's position update (Box2D v3's relax), so
-  // that push-out does not turn into bounce.
+  // that push-out does not turn into bounce. 0 to kMaxRelaxPasses.
   int relaxPasses = 1;
   // In a stack that holds a heavier body on a lighter one, each body at rest appears to the contacts
   // that carry weight as heavy as itself plus its load (src/dynamics/support_masses.h): a heavy box

@@ -148,9 +148,13 @@ struct StepStats {
   }
 };
 
+// The most substeps a step may take: each costs a full solve, so a setting above this is a mistake
+// (or a hostile snapshot or scene file) that would stall the step, and is refused.
+inline constexpr int kMaxSubsteps = 64;
+
 struct WorldDef {
   Vec3 gravity{0.0f, -9.81f, 0.0f};
-  int substeps = 6;  // the contact stiffness cap is a quarter of the substep rate
+  int substeps = 6;  // 1 to kMaxSubsteps; the contact stiffness cap is a quarter of the substep rate
   BroadPhaseSettings broadPhase{};
   CombineRule bouncinessCombine = CombineRule::Max;
   CombineRule frictionCombine = CombineRule::Average;
@@ -181,7 +185,8 @@ struct WorldDef {
 
 class World {
  public:
-  // Throws Error on invalid settings (substeps < 1, non-finite gravity, bad tuning) and on
+  // Throws Error on invalid settings (substeps outside 1 to kMaxSubsteps, non-finite gravity, bad
+  // tuning) and on
   // settings not implemented yet.
   // Without exceptions (collide/error.h) a refused definition is reported and the world takes the
   // default one; create() returns null instead, the result to check.

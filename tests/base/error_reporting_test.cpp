@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <string>
@@ -130,7 +131,7 @@ TEST(ErrorReporting, ABadPrimitiveIsKeptReportedAndRefusedAgain) {
 TEST(ErrorReporting, ABadWorldDefinitionGivesNoWorldFromCreate) {
   WorldDef def;
   def.substeps = 0;
-  EXPECT_THAT([&] { World::create(def); }, test::ReportsError("world: substeps must be >= 1, got 0"));
+  EXPECT_THAT([&] { World::create(def); }, test::ReportsError("world: substeps must be 1 to 64, got 0"));
   if (exceptionsEnabled()) return;
   std::unique_ptr<World> world;
   test::handledErrors([&] { world = World::create(def); });
@@ -279,6 +280,51 @@ void resealSnapshot(std::vector<std::uint8_t>& bytes) {
   for (std::size_t i = kHeader; i < bytes.size(); ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull;
   std::memcpy(bytes.data() + 24, &length, sizeof length);
   std::memcpy(bytes.data() + 32, &hash, sizeof hash);
+}
+
+TEST(ErrorReporting, ASnapshotAskingForEndlessWorkIsRefused) {
+  // A snapshot carries the world's settings, and a hostile one could ask each step for a billion
+  // substeps or relax passes: a stalled program, not an error. The reader checks the loaded
+  // definition as World's constructor does, so these are refused by name.
+  WorldDef def;
+  def.substeps = 37;
+  def.contact.relaxPasses = 3;
+  World source(def);
+  buildBusyWorld(source);
+  const std::vector<std::uint8_t> good = source.saveSnapshot();
+  // The definition's substeps follow its gravity; its relax passes, the contact tuning's six floats.
+  std::vector<std::uint8_t> marker(sizeof(float) * 3 + sizeof(int));
+  std::memcpy(marker.data(), &def.gravity, sizeof(float) * 3);
+  std::memcpy(marker.data() + sizeof(float) * 3, &def.substeps, sizeof(int));
+  const auto at = std::search(good.begin() + 40, good.end(), marker.begin(), marker.end());
+  ASSERT_NE(at, good.end()) << "the world definition's gravity and substeps";
+  const std::size_t substepsAt = static_cast<std::size_t>(at - good.begin()) + sizeof(float) * 3;
+  const auto refusedWith = [&](std::size_t offset, int value, const std::string& message) {
+    std::vector<std::uint8_t> bytes = good;
+    std::memcpy(bytes.data() + offset, &value, sizeof value);
+    resealSnapshot(bytes);
+    World target;
+    EXPECT_THAT([&] { target.loadSnapshot(bytes); }, test::ReportsError(HasSubstr(message))) << value;
+    EXPECT_EQ(target.bodyCount(), 0u);
+  };
+  refusedWith(substepsAt, kMaxSubsteps + 1, "substeps must be 1 to 64, got 65");
+  refusedWith(substepsAt, 1'000'000'000, "substeps must be 1 to 64, got 1000000000");
+  // The relax passes: the first 3 after the substeps (BroadPhaseSettings and the enums lie between).
+  const int three = 3;
+  const auto relax = std::search(good.begin() + static_cast<std::ptrdiff_t>(substepsAt) + 4, good.end(),
+                                 reinterpret_cast<const std::uint8_t*>(&three),
+                                 reinterpret_cast<const std::uint8_t*>(&three) + sizeof three);
+  ASSERT_NE(relax, good.end());
+  refusedWith(static_cast<std::size_t>(relax - good.begin()), kMaxRelaxPasses + 1,
+              "relaxPasses out of range (must be 0 to 16), got 17");
+  // The largest counts allowed still load and step.
+  std::vector<std::uint8_t> bytes = good;
+  std::memcpy(bytes.data() + substepsAt, &kMaxSubsteps, sizeof(int));
+  resealSnapshot(bytes);
+  World target;
+  EXPECT_NO_COLLIDE_ERROR(target.loadSnapshot(bytes));
+  EXPECT_EQ(target.def().substeps, kMaxSubsteps);
+  target.step(1.0f / 60.0f);
 }
 
 TEST(ErrorReporting, DamagedSnapshotsAreRefusedOrLoadWithoutHarm) {

@@ -75,6 +75,11 @@ TEST(World, BadWorldDefsAreErrors) {
   WorldDef def;
   def.substeps = 0;
   expectErrorMentions([&] { World w(def); }, "substeps");
+  def.substeps = kMaxSubsteps + 1;  // each substep is a full solve: more would stall the step
+  expectErrorMentions([&] { World w(def); }, "substeps must be 1 to 64");
+  def = WorldDef{};
+  def.contact.relaxPasses = kMaxRelaxPasses + 1;
+  expectErrorMentions([&] { World w(def); }, "relaxPasses");
   def = WorldDef{};
   def.gravity.y = std::numeric_limits<float>::quiet_NaN();
   expectErrorMentions([&] { World w(def); }, "gravity");

@@ -3,6 +3,8 @@
 // file or field, the value and the limit, instead of exhausting memory or running for ever.
 #pragma once
 
+#include <collide/world.h>
+
 #include <cstddef>
 #include <cstdint>
 
@@ -24,8 +26,8 @@ inline constexpr int kMaxJsonDepth = 256;
 inline constexpr int kMaxCompoundDepth = 64;
 
 // Settings.
-inline constexpr int kMaxSubsteps = 64;
-inline constexpr float kMaxDt = 1.0f;  // s
+inline constexpr int kMaxSubsteps = collide::kMaxSubsteps;  // the world's own limit
+inline constexpr float kMaxDt = 1.0f;                       // s
 inline constexpr int kMaxSteps = 10'000'000;
 
 // Sizes.
