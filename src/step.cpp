@@ -108,9 +108,9 @@ void World::Impl::step(float dt) {
   if (def.sleeping) detail::wakeTouchedIslands(bodies, *broadPhase, pairs, tuning.speculativeDistance, dt);
   time.broadPhase = clock.lap("collide: narrow phase");
   const detail::PairFilters filters{&jointedApart, &pairFilter};
-  const detail::ContactUpdateCounts tested = contactUpdate.run(
-      bodies, *broadPhase, pairs, contacts, previousContacts, apartPairs, previousApartPairs,
-      contactSettings(def), dt, preSolve, filters, events, callbackError, tasks);
+  const detail::ContactUpdateCounts tested =
+      contactUpdate.run(bodies, *broadPhase, pairs, contacts, apartPairs, contactSettings(def), dt, preSolve,
+                        filters, events, callbackError, tasks);
   lastStats.filteredPairs = tested.filteredPairs;
   lastStats.narrowPhaseTests = tested.narrowPhaseTests;
   lastStats.reusedManifolds = tested.reusedManifolds;

@@ -552,8 +552,8 @@ WorldMemory World::Impl::memoryUse() const {
   WorldMemory memory;
   memory.bodies = w.bodies.memoryBytes() + w.proxyUpdate.memoryBytes();
   memory.broadPhase = w.broadPhase->memoryBytes() + heapBytes(w.pairs);
-  memory.contacts = heapBytes(w.contacts) + heapBytes(w.previousContacts) + heapBytes(w.apartPairs) +
-                    heapBytes(w.previousApartPairs) + w.contactUpdate.memoryBytes() + w.events.memoryBytes();
+  memory.contacts = heapBytes(w.contacts) + heapBytes(w.apartPairs) + w.contactUpdate.memoryBytes() +
+                    w.events.memoryBytes();
   memory.solver = w.stepSolver.memoryBytes() + w.impacts.memoryBytes() + w.revert.memoryBytes();
   memory.joints = heapBytes(w.joints) + heapBytes(w.jointGroups) + heapBytes(w.freeJoints) +
                   heapBytes(w.jointedApart) + w.stepSolver.jointMemoryBytes();

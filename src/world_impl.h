@@ -38,10 +38,8 @@ struct World::Impl {
   Array<ProxyPair> pairs;  // the broad phase's pairs of the last step
   detail::ProxyUpdate proxyUpdate;
   detail::ContactUpdate contactUpdate;
-  Array<detail::Contact> contacts;  // in pair order
-  Array<detail::Contact> previousContacts;
+  Array<detail::Contact> contacts;      // in pair order
   Array<detail::ApartPair> apartPairs;  // the pairs the narrow phase found apart, in pair order
-  Array<detail::ApartPair> previousApartPairs;
   detail::StepSolver stepSolver;
   Array<detail::Joint> joints;
   Array<std::uint32_t> jointGroups;  // the step's, for the continuous pass

@@ -39,7 +39,7 @@ static_assert(std::endian::native == std::endian::little,
               "snapshots are written little-endian, as this host is");
 
 constexpr char kMagic[8] = {'C', 'O', 'L', 'L', 'I', 'D', 'E', '\x1a'};
-constexpr std::uint32_t kFormatVersion = 1;
+constexpr std::uint32_t kFormatVersion = 2;
 constexpr std::uint32_t kLibraryVersion =
     (COLLIDE_VERSION_MAJOR << 16) | (COLLIDE_VERSION_MINOR << 8) | COLLIDE_VERSION_PATCH;
 constexpr std::size_t kHeaderBytes = sizeof(kMagic) + 4 + 4 + 8 + 8 + 8;
@@ -878,16 +878,12 @@ void checkWorld(Reader& r, const WorldImpl& w) {
   };
   checkContacts(w.contacts, "contacts");
   if (r.failed()) return;
-  checkContacts(w.previousContacts, "previous contacts");
-  if (r.failed()) return;
-  for (const auto* apart : {&w.apartPairs, &w.previousApartPairs}) {
-    r.section("pairs apart");
-    for (const detail::ApartPair& p : *apart) {
-      checkCache(p.cache);
-      if (!checkBody(r, records, p.bodyA, p.generationA, "a pair apart") ||
-          !checkBody(r, records, p.bodyB, p.generationB, "a pair apart"))
-        return;
-    }
+  r.section("pairs apart");
+  for (const detail::ApartPair& p : w.apartPairs) {
+    checkCache(p.cache);
+    if (!checkBody(r, records, p.bodyA, p.generationA, "a pair apart") ||
+        !checkBody(r, records, p.bodyB, p.generationB, "a pair apart"))
+      return;
   }
   r.section("joints");
   std::size_t alive = 0;
@@ -934,7 +930,7 @@ std::vector<std::uint8_t> World::saveSnapshot() const {
   payload(bodyShapes, w.bodies.records, w.bodies.states, w.bodies.freeSlots());
   payload(w.broadPhase->records(),
           std::vector<std::uint32_t>(w.broadPhase->freeSlots().begin(), w.broadPhase->freeSlots().end()));
-  payload(w.pairs, w.contacts, w.previousContacts, w.apartPairs, w.previousApartPairs);
+  payload(w.pairs, w.contacts, w.apartPairs);
   std::vector<std::pair<std::uint64_t, std::uint32_t>> apart(w.jointedApart.begin(), w.jointedApart.end());
   std::sort(apart.begin(), apart.end());  // the map's order is its own: the bytes must not depend on it
   payload(w.joints, w.freeJoints, static_cast<std::uint64_t>(w.jointCount));
@@ -1015,7 +1011,7 @@ void World::loadSnapshot(std::span<const std::uint8_t> snapshot) {
   });
   if (r.failed()) return;
   r.section("contacts");
-  r(w.pairs, w.contacts, w.previousContacts, w.apartPairs, w.previousApartPairs);
+  r(w.pairs, w.contacts, w.apartPairs);
   r.section("joints");
   std::uint64_t jointCount = 0;
   r(w.joints, w.freeJoints, jointCount);

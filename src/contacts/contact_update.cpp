@@ -6,11 +6,13 @@
 
 #include "base/format.h"
 #include "bodies/body_parts.h"
+#include "contacts/in_place_merge.h"
 #include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
 #include "shapes/shape_functions.h"
 
 #include <algorithm>
+#include <memory>
 #include <utility>
 
 namespace collide::detail {
@@ -67,17 +69,15 @@ bool settingsInRange(const ContactSettings& s) {
 class PairPass {
  public:
   PairPass(const ContactUpdate& scratch, const BodyStorage& bodies, std::span<const ProxyPair> pairs,
-           Array<Contact>& contacts, const Array<Contact>& previous, Array<ApartPair>& apart,
-           const Array<ApartPair>& previousApart, const ContactUpdateSettings& settings, float dt,
-           const PreSolveCallback& preSolve, const PairFilters& filters, StepEvents& events,
-           std::string& callbackError)
+           InPlaceMerge<Contact>& contacts, InPlaceMerge<ApartPair>& apart, Array<Contact>& pairPrevious,
+           const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
+           const PairFilters& filters, StepEvents& events, std::string& callbackError)
       : s_(scratch),
         bodies_(bodies),
         pairs_(pairs),
         contacts_(contacts),
-        previous_(previous),
         apart_(apart),
-        previousApart_(previousApart),
+        pairPrevious_(pairPrevious),
         settings_(settings),
         dt_(dt),
         preSolve_(preSolve),
@@ -154,7 +154,9 @@ class PairPass {
       prefetchAhead(p);
       updatePair(pairs_[p], p);
     }
-    while (next_ < previous_.size()) events_.endVanished(bodies_, previous_[next_++]);
+    for (; contacts_.hasNext(); contacts_.pop()) events_.endVanished(bodies_, contacts_.next());
+    contacts_.finish();
+    apart_.finish();
     return counts_;
   }
 
@@ -167,10 +169,8 @@ class PairPass {
   static constexpr std::size_t kPairsAhead = 4;
 
   void prefetchAhead(std::size_t p) const {
-    if (next_ + kContactsAhead < previous_.size())
-      prefetchBytes(&previous_[next_ + kContactsAhead], sizeof(Contact));
-    if (contacts_.size() + kContactsAhead < contacts_.capacity())
-      prefetchBytes(contacts_.data() + contacts_.size() + kContactsAhead, sizeof(Contact));
+    if (const Contact* unread = contacts_.unreadAhead(kContactsAhead)) prefetchBytes(unread, sizeof(Contact));
+    if (const Contact* slot = contacts_.slotAhead(kContactsAhead)) prefetchBytes(slot, sizeof(Contact));
     prefetchPairShapes(p + 3 * kPairsAhead, [](const Shape& shape) { prefetchLine(&shape); });
     prefetchPairShapes(p + 2 * kPairsAhead, prefetchShapeHeader);
     prefetchPairShapes(p + kPairsAhead, prefetchShapeArrays);
@@ -186,84 +186,162 @@ class PairPass {
 
   std::uint32_t bodyOf(ProxyId proxy) const { return s_.proxyBodies_[proxy.index]; }
 
-  // Last step's contacts of this pair (one, or one per pair of parts for bodies made of parts), if
-  // they were between these very bodies (not a reused slot); contacts of pairs that came before it
-  // and are gone now end.
-  std::span<const Contact> takePrevious(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
-    while (next_ < previous_.size() && previous_[next_].key < key)
-      events_.endVanished(bodies_, previous_[next_++]);
-    const std::size_t first = next_;
-    while (next_ < previous_.size() && previous_[next_].key == key) ++next_;
-    if (first == next_) return {};
-    return sameBodies(previous_[first], bodies_, ia, ib)
-               ? std::span<const Contact>(previous_).subspan(first, next_ - first)
-               : std::span<const Contact>{};
+  // Last step's contacts of pairs before this one in key order are of pairs that are gone: they end.
+  void endVanishedBefore(std::uint64_t key) {
+    for (; contacts_.hasNext() && contacts_.next().key < key; contacts_.pop())
+      events_.endVanished(bodies_, contacts_.next());
+  }
+
+  // Whether last step's contacts of this pair (one, or one per pair of parts for bodies made of
+  // parts), next in the merge, were between these very bodies (not bodies that took a freed slot).
+  bool previousIsOurs(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) const {
+    return contacts_.hasNext() && contacts_.next().key == key &&
+           sameBodies(contacts_.next(), bodies_, ia, ib);
+  }
+
+  // Goes past last step's contacts of this pair; `visit` sees each that was ours (previousIsOurs).
+  // A contact is visited where it lies: `visit` may emplace (the slot emplace() gives is never an
+  // unread contact's), and a reference to it holds until the next emplace().
+  template <typename Visit>
+  void passPrevious(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, Visit&& visit) {
+    const bool ours = previousIsOurs(key, ia, ib);
+    for (; contacts_.hasNext() && contacts_.next().key == key; contacts_.pop())
+      if (ours) visit(contacts_.next());
+  }
+
+  // Last step's contacts of this pair, copied out (for pairs of parts, which write several contacts
+  // while they read several).
+  std::span<const Contact> copyPrevious(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
+    pairPrevious_.clear();
+    passPrevious(key, ia, ib, [&](const Contact& old) { pairPrevious_.push_back(old); });
+    return pairPrevious_;
   }
 
   // Last step's record of this pair found apart, if it was between these very bodies (a pair has
-  // a contact or an apart record, not both).
+  // a contact or an apart record, not both). It lies in the merge: valid until the next record apart
+  // is emplaced.
   const ApartPair* takePreviousApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib) {
-    while (nextApart_ < previousApart_.size() && previousApart_[nextApart_].key < key) ++nextApart_;
-    if (nextApart_ == previousApart_.size() || previousApart_[nextApart_].key != key) return nullptr;
-    const ApartPair& old = previousApart_[nextApart_++];
-    return sameBodies(old, bodies_, ia, ib) ? &old : nullptr;
-  }
-
-  void endAll(std::span<const Contact> previous) {
-    for (const Contact& old : previous) events_.endVanished(bodies_, old);
+    for (; apart_.hasNext() && apart_.next().key < key; apart_.pop()) {
+    }
+    if (!apart_.hasNext() || apart_.next().key != key) return nullptr;
+    const ApartPair* old = &apart_.next();
+    apart_.pop();
+    return sameBodies(*old, bodies_, ia, ib) ? old : nullptr;
   }
 
   void updatePair(const ProxyPair& pair, std::size_t pairIndex) {
     const std::uint64_t key = pairKey(pair.a.index, pair.b.index);
     const std::uint32_t ia = bodyOf(pair.a);
     const std::uint32_t ib = bodyOf(pair.b);
-    const std::span<const Contact> previousRange = takePrevious(key, ia, ib);
+    endVanishedBefore(key);
     const ApartPair* previousApart = takePreviousApart(key, ia, ib);
     const BodyRecord& ra = bodies_.records[ia];
     const BodyRecord& rb = bodies_.records[ib];
+    const auto end = [&](const Contact& old) { events_.endVanished(bodies_, old); };
     // Only a dynamic body responds: kinematic-kinematic and kinematic-static pairs are never tested
     // (static-static never reaches us: the broad phase does not produce them).
-    if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) return;
+    if (ra.type != BodyType::Dynamic && rb.type != BodyType::Dynamic) {
+      passPrevious(key, ia, ib, [](const Contact&) {});
+      return;
+    }
     if (ra.sensor && rb.sensor) {
-      endAll(previousRange);
+      passPrevious(key, ia, ib, end);
       return;
     }
     if (!pairAllowed(bodies_, filters_, ia, ib)) {
       ++counts_.filteredPairs;
-      endAll(previousRange);
+      passPrevious(key, ia, ib, end);
       return;
     }
     if (!bodies_.isAwakeDynamic(ia) && !bodies_.isAwakeDynamic(ib)) {
       // Sleeping against static, sleeping or still kinematic: nothing moves, so last step's contact
       // is kept as it was (touching state, impulses for the warm start on waking), unsolved.
-      for (const Contact& old : previousRange) {
-        Contact& kept = contacts_.emplace_back(old);
+      passPrevious(key, ia, ib, [&](const Contact& old) {
+        Contact& kept = contacts_.emplace(old);
         kept.asleep = true;
         kept.wasTouching = kept.touching;
         kept.impactSpeed = kept.impactImpulse = 0.0f;
+      });
+      if (previousApart) {
+        const ApartPair kept = *previousApart;  // emplace() may spill over where it lies
+        apart_.emplace(kept);
       }
-      if (previousApart) apart_.push_back(*previousApart);
       return;
     }
     if (hasParts(ra) || hasParts(rb)) {
-      updatePartPairs(key, ia, ib, previousRange);
+      updatePartPairs(key, ia, ib, copyPrevious(key, ia, ib));
       return;
     }
-    const Contact* previous = !previousRange.empty() ? &previousRange.front()
-                              : previousApart        ? viewOf(*previousApart, apartView_)
-                                                     : nullptr;
-    Contact& c = contacts_.emplace_back();
+    // Last step's contact is read where it lies, and this step's made beside it (building_): in a
+    // steady pile the new one goes into the old one's very slot, so it is copied there at the end.
+    const Contact* previous = nullptr;
+    passPrevious(key, ia, ib, [&](const Contact& old) {
+      if (!previous) previous = &old;
+    });
+    const bool sensor = ra.sensor || rb.sensor;
+    if (previous && !sensor && placedAgain(ia, ib, *previous, pairIndex, placed_)) {
+      // The common case of a resting pile, updated where it lies without a copy.
+      ++counts_.narrowPhaseTests;
+      ++counts_.reusedManifolds;
+      Contact& c = contacts_.keep(*previous);
+      refreshPlaced(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), c);
+      finishContact(ia, ib, c);
+      return;
+    }
+    if (!previous && previousApart) previous = viewOf(*previousApart, apartView_);
+    Contact& c = *std::construct_at(&building_);
     ++counts_.narrowPhaseTests;
     const bool reused = computeManifold(ia, ib, previous, c, pairIndex);
     if (c.manifold.count == 0) {
       if (previous) events_.endVanished(bodies_, *previous);
       if (c.cache.valid) keepApart(key, ia, ib, c.cache);
-      contacts_.pop_back();
       return;
     }
-    fillContact(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), ra.sensor || rb.sensor, previous,
-                reused, c);
+    fillContact(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), sensor, previous, reused, c);
     finishContact(ia, ib, c);
+    contacts_.emplace(c);  // last: it may spill over where `previous` lies
+  }
+
+  // Whether last step's contact's manifold is placed again this step (ManifoldRoute::Reused, as
+  // computeManifold would find it, or as the stage run ahead found it), into `out`.
+  bool placedAgain(std::uint32_t ia, std::uint32_t ib, const Contact& previous, std::size_t pairIndex,
+                   Manifold& out) const {
+    if (const ContactUpdate::StagedTest* staged = s_.stagedTest(pairIndex)) {
+      if (!staged->reused) return false;
+      out = staged->manifold;
+      return true;
+    }
+    if (s_.stagedRoute(pairIndex, ManifoldRoute::SpheresApart) ||
+        s_.stagedRoute(pairIndex, ManifoldRoute::AxisApart))
+      return false;
+    return reuseManifold(previous.cache, previous.manifold, s_.poses_[ia], s_.poses_[ib],
+                         s_.scaledRotations_[ia], s_.scaledRotations_[ib], bodies_.records[ia].originRadius,
+                         bodies_.records[ib].originRadius, settings_.tuning.manifoldCacheDistance, out);
+  }
+
+  // Last step's contact `c` turned into this step's, in place, with its manifold placed again
+  // (placed_): every field as computeManifold and fillContact give a new contact from it (with
+  // reused true), the cache, the friction patch and the anchors kept as they are.
+  void refreshPlaced(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
+                     const BodyMaterial& mb, Contact& c) const {
+    const int consecutiveSteps = c.consecutiveSteps + 1;
+    const bool wasTouching = c.touching;
+    setPairFields(key, ia, ib, ma, mb, false, consecutiveSteps, wasTouching, c);
+    c.partA = c.partB = 0;
+    c.surfaceVelocity = Vec3(0.0f);
+    c.asleep = false;
+    c.impactSpeed = c.impactImpulse = 0.0f;
+    const int count = placed_.count;
+    c.manifold.count = count;
+    c.manifold.normal = placed_.normal;
+    for (int i = 0; i < Manifold::kMaxPoints; ++i) {
+      const float normalImpulse = c.points[i].normalImpulse;
+      c.manifold.points[i] = i < count ? placed_.points[i] : ContactPoint{};
+      c.points[i] = ContactPointState{};
+      if (i < count) c.points[i].normalImpulse = normalImpulse;
+    }
+    c.prolongedPoints = static_cast<std::uint8_t>((1u << count) - 1u);
+    c.enabled = true;
   }
 
   // The pre-solve callback, then whether the contact touches.
@@ -310,11 +388,11 @@ class PairPass {
         return;
       }
       ++counts_.narrowPhaseTests;
-      Contact& c = contacts_.emplace_back();
+      Contact& c = contacts_.emplace();
       collide::collide(shapeA, pa, shapeB, pb, c.manifold, margin);
       if (c.manifold.count == 0) {
         if (old) events_.endVanished(bodies_, *old);
-        contacts_.pop_back();
+        contacts_.dropLast();
         return;
       }
       c.partA = i;
@@ -385,7 +463,8 @@ class PairPass {
   // A pair found apart keeps its cache (ApartPair), so that next step can take the same "apart"
   // while the pair does not move.
   void keepApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const ManifoldCache& cache) {
-    apart_.push_back({key, ia, ib, bodies_.records[ia].generation, bodies_.records[ib].generation, cache});
+    apart_.emplace(
+        ApartPair{key, ia, ib, bodies_.records[ia].generation, bodies_.records[ib].generation, cache});
   }
 
   // A touching or speculative contact: the two parts' materials combined, and last step's points and
@@ -393,6 +472,22 @@ class PairPass {
   void fillContact(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
                    const BodyMaterial& mb, bool sensor, const Contact* previous, bool reused,
                    Contact& c) const {
+    setPairFields(key, ia, ib, ma, mb, sensor, previous ? previous->consecutiveSteps + 1 : 1,
+                  previous ? previous->touching : false, c);
+    if (previous) {
+      inheritContact(*previous, c, settings_.tuning.linearSlop, reused);
+    } else {
+      c.points = {};
+      c.prolongedPoints = 0;
+    }
+    c.enabled = true;
+  }
+
+  // The pair's own fields of a contact: its bodies, the parts' materials combined, and how long it
+  // has lasted.
+  void setPairFields(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
+                     const BodyMaterial& mb, bool sensor, int consecutiveSteps, bool wasTouching,
+                     Contact& c) const {
     c.key = key;
     c.bodyA = ia;
     c.bodyB = ib;
@@ -403,8 +498,8 @@ class PairPass {
     c.rollingResistance = std::max(ma.rollingResistance, mb.rollingResistance);
     c.restitution = combine(settings_.bouncinessCombine, ma.bounciness, mb.bounciness);
     c.impactBounciness = c.restitution;
-    c.consecutiveSteps = previous ? previous->consecutiveSteps + 1 : 1;
-    c.wasTouching = previous ? previous->touching : false;
+    c.consecutiveSteps = consecutiveSteps;
+    c.wasTouching = wasTouching;
     if (settings_.impactModel == ImpactModel::Interpolated) {
       // The lecture's impact replaces the solver's restitution, and its glued (inelastic) part
       // already handles the tangent, so the impact step gets no solver bounce and no Coulomb
@@ -412,13 +507,6 @@ class PairPass {
       c.restitution = 0.0f;
       if (!c.wasTouching) c.friction = 0.0f;
     }
-    if (previous) {
-      inheritContact(*previous, c, settings_.tuning.linearSlop, reused);
-    } else {
-      c.points = {};
-      c.prolongedPoints = 0;
-    }
-    c.enabled = true;
   }
 
   // The pre-solve callback may disable the contact for this step or change its settings. A NaN
@@ -447,19 +535,18 @@ class PairPass {
   const ContactUpdate& s_;
   const BodyStorage& bodies_;
   std::span<const ProxyPair> pairs_;
-  Array<Contact>& contacts_;
-  const Array<Contact>& previous_;
-  Array<ApartPair>& apart_;
-  const Array<ApartPair>& previousApart_;
+  InPlaceMerge<Contact>& contacts_;  // last step's contacts read, this step's written over them
+  InPlaceMerge<ApartPair>& apart_;   // and the pairs found apart
+  Array<Contact>& pairPrevious_;     // the walked pair's last contacts, copied out (takePrevious)
   const ContactUpdateSettings& settings_;
   float dt_;
   const PreSolveCallback& preSolve_;
   const PairFilters& filters_;
   StepEvents& events_;
   std::string& callbackError_;
-  std::size_t next_ = 0;       // last step's contacts before this are matched or ended
-  std::size_t nextApart_ = 0;  // and last step's pairs apart before this
-  Contact apartView_;          // the previous contact of a pair that was apart (viewOf)
+  Contact apartView_;  // the previous contact of a pair that was apart (viewOf)
+  Contact building_;   // this step's contact of the walked pair, until it is kept
+  Manifold placed_;    // last step's manifold placed again (placedAgain)
   ContactUpdateCounts counts_;
 };
 
@@ -558,25 +645,22 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
 
 ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                                        std::span<const ProxyPair> pairs, Array<Contact>& contacts,
-                                       Array<Contact>& previous, Array<ApartPair>& apart,
-                                       Array<ApartPair>& previousApart, const ContactUpdateSettings& settings,
+                                       Array<ApartPair>& apart, const ContactUpdateSettings& settings,
                                        float dt, const PreSolveCallback& preSolve, const PairFilters& filters,
                                        StepEvents& events, std::string& callbackError, TaskRunner& tasks) {
   snapshotBodies(bodies, broadPhase, dt, settings.tuning.manifoldCacheDistance, tasks);
-  std::swap(contacts, previous);
-  contacts.clear();
-  std::swap(apart, previousApart);
-  apart.clear();
   // Running ahead pays when many pairs need their collider test; when most reuse last step's
   // manifold (a resting pile) the walk's bookkeeping is the work and staging only adds to it. Last
   // step's share decides (either way the contacts are the same).
   const bool manyTests = lastTests_ * kStageWhenTestedOneIn >= lastPairs_;
   if (tasks.workerCount() > 1 && manyTests) {
-    stageTests(bodies, pairs, previous, previousApart, settings, dt, tasks);
+    stageTests(bodies, pairs, contacts, apart, settings, dt, tasks);  // before the walk rewrites them
   } else {
     stagedIndex_.clear();
   }
-  const ContactUpdateCounts counts = PairPass(*this, bodies, pairs, contacts, previous, apart, previousApart,
+  InPlaceMerge<Contact> contactMerge(contacts, contactSpill_);
+  InPlaceMerge<ApartPair> apartMerge(apart, apartSpill_);
+  const ContactUpdateCounts counts = PairPass(*this, bodies, pairs, contactMerge, apartMerge, pairPrevious_,
                                               settings, dt, preSolve, filters, events, callbackError)
                                          .run();
   lastTests_ = counts.narrowPhaseTests - counts.reusedManifolds;
@@ -587,7 +671,8 @@ ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPha
 std::size_t ContactUpdate::memoryBytes() const {
   std::size_t bytes = heapBytes(poses_) + heapBytes(scaledRotations_) + heapBytes(spinReaches_) +
                       heapBytes(velocities_) + heapBytes(likelyPlaced_) + heapBytes(proxyBodies_) +
-                      heapBytes(stagedIndex_) + heapBytes(staged_);
+                      heapBytes(stagedIndex_) + heapBytes(staged_) + heapBytes(contactSpill_) +
+                      heapBytes(apartSpill_) + heapBytes(pairPrevious_);
   for (const WorkerTests& worker : staged_) bytes += heapBytes(worker.tests);
   return bytes;
 }

@@ -1,7 +1,8 @@
 // The narrow-phase stage of the step (lecture: collision detection, then collision data): for each
-// pair the broad phase kept, the contact of last step is found by merging two sorted arrays, the
-// pair's manifold is computed or reused, and the contact is carried over (new vs prolonged points,
-// warm starting) or ended, then shown to the pre-solve callback.
+// pair the broad phase kept, the contact of last step is found by a merge in key order (one array,
+// rewritten in place: in_place_merge.h), the pair's manifold is computed or reused, and the contact
+// is carried over (new vs prolonged points, warm starting) or ended, then shown to the pre-solve
+// callback. A contact whose manifold is placed again is updated where it lies.
 //
 // A manifold costs nothing when it can be avoided exactly: a pair whose bodies did not move relative
 // to each other gets its manifold placed again (Jolt's body pair cache, contact_cache.h); bounding
@@ -66,15 +67,14 @@ struct ContactUpdateCounts {
 class ContactUpdate {
  public:
   // `contacts` holds last step's contacts on entry and this step's on return, in pair order, and
-  // `apart` likewise the pairs found apart (ApartPair); `previous` and `previousApart` are scratch. End
+  // `apart` likewise the pairs found apart (ApartPair), each rewritten in place (InPlaceMerge). End
   // events of contacts whose pair vanished go to `events`. Settings the pre-solve callback gets wrong are
   // refused, and the first such refusal is described in `callbackError`. With more than one worker, the
   // pairs' full collider tests run first, in parallel ranges (each pair's test reads only the step's
   // snapshot), and the walk in pair order takes their results: the contacts, the events and the callbacks are
   // those of one worker, in the same order.
   ContactUpdateCounts run(const BodyStorage& bodies, const BroadPhase& broadPhase,
-                          std::span<const ProxyPair> pairs, Array<Contact>& contacts,
-                          Array<Contact>& previous, Array<ApartPair>& apart, Array<ApartPair>& previousApart,
+                          std::span<const ProxyPair> pairs, Array<Contact>& contacts, Array<ApartPair>& apart,
                           const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
                           const PairFilters& filters, StepEvents& events, std::string& callbackError,
                           TaskRunner& tasks);
@@ -93,7 +93,7 @@ class ContactUpdate {
   static constexpr std::uint32_t kAxisApart = 0xFFFFFFFDu;
   static constexpr std::uint32_t kPairsPerRange = 64;
 
-  std::size_t memoryBytes() const;  // the snapshots and the staged tests (World::memoryUse)
+  std::size_t memoryBytes() const;  // the snapshots, the staged tests, the walk's scratch (World::memoryUse)
 
  private:
   friend class PairPass;
@@ -131,6 +131,11 @@ class ContactUpdate {
     Array<StagedTest> tests;
   };
   Array<WorkerTests> staged_;
+  // The walk's scratch: last step's records moved aside while this step's are written over them
+  // (InPlaceMerge), and the walked pair's last contacts.
+  Array<Contact> contactSpill_;
+  Array<ApartPair> apartSpill_;
+  Array<Contact> pairPrevious_;
   // Last step's pairs that reached the narrow phase, and of those the ones not reused: the stage
   // runs ahead when at least one in kStageWhenTestedOneIn was tested.
   static constexpr std::uint64_t kStageWhenTestedOneIn = 4;

@@ -1,0 +1,133 @@
+// The narrow phase's one array per step (contacts/in_place_merge.h): last step's records read in key
+// order while this step's are written over them, against a reference merge with two arrays.
+#include "contacts/in_place_merge.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace collide::detail {
+namespace {
+
+// Trivially destructible, like a contact; `tag` tells last step's records from this step's.
+struct Record {
+  std::uint64_t key = 0;
+  std::uint64_t tag = 0;
+  bool operator==(const Record&) const = default;
+};
+
+// One walk: for each key of this step, in order, last step's records of smaller keys are read (and
+// counted as ended), its own record (if last step had it) is read, and a record is written for it:
+// kept as it was (keep), made anew from it or from nothing (emplace), or none. Returns the records
+// read in order; `records` ends as this step's.
+enum class Write { None, Keep, FromOld, Fresh };
+struct Step {
+  std::uint64_t key;
+  Write write;
+};
+
+std::vector<Record> walk(Array<Record>& records, Array<Record>& spill, const std::vector<Step>& steps,
+                         std::uint64_t tag) {
+  std::vector<Record> read;
+  InPlaceMerge<Record> merge(records, spill);
+  for (const Step& step : steps) {
+    for (; merge.hasNext() && merge.next().key < step.key; merge.pop()) read.push_back(merge.next());
+    const Record* old = nullptr;
+    if (merge.hasNext() && merge.next().key == step.key) {
+      old = &merge.next();
+      read.push_back(*old);
+      merge.pop();
+    }
+    switch (step.write) {
+      case Write::None:
+        break;
+      case Write::Keep:
+        if (old) {
+          merge.keep(*old).tag = tag;  // updated where it lies, as a placed-again contact is
+        } else {
+          merge.emplace(Record{step.key, tag});
+        }
+        break;
+      case Write::FromOld:
+        if (old) {
+          Record& made = merge.emplace(*old);  // `old` may lie where room is made
+          made.tag = tag;
+        } else {
+          merge.emplace(Record{step.key, tag});
+        }
+        break;
+      case Write::Fresh: {
+        Record& made = merge.emplace();
+        made = Record{step.key, tag};
+        break;
+      }
+    }
+  }
+  for (; merge.hasNext(); merge.pop()) read.push_back(merge.next());
+  merge.finish();
+  return read;
+}
+
+TEST(InPlaceMerge, EveryOldRecordIsReadInOrderAndTheNewOnesWritten) {
+  std::mt19937 rng(20261206);
+  Array<Record> records;
+  Array<Record> spill;
+  std::vector<Record> reference;  // what the two-array merge would hold
+  for (int stepIndex = 1; stepIndex <= 400; ++stepIndex) {
+    const auto tag = static_cast<std::uint64_t>(stepIndex);
+    // This step's keys: last step's, some dropped, some new ones anywhere (runs of them at times, so
+    // that the written records run far ahead of the read ones, or fall far behind).
+    std::vector<Step> steps;
+    std::vector<Record> expected;
+    const int mode = stepIndex % 5;
+    for (std::uint64_t key = 0; key < 300; ++key) {
+      const bool had = std::binary_search(reference.begin(), reference.end(), Record{key, 0},
+                                          [](const Record& a, const Record& b) { return a.key < b.key; });
+      const int draw = static_cast<int>(rng() % 100);
+      bool present = had ? draw >= (mode == 1 ? 40 : 5) : draw < (mode == 2 ? 60 : mode == 3 ? 2 : 10);
+      if (mode == 4 && key < 40) present = true;  // a run of new records at the front
+      if (!present) continue;
+      const Write write = static_cast<Write>(1 + rng() % 3);
+      const bool written = rng() % 10 != 0;  // some pairs are found apart: no record
+      steps.push_back({key, written ? write : Write::None});
+      if (written) expected.push_back({key, tag});
+    }
+    const std::vector<Record> read = walk(records, spill, steps, tag);
+    ASSERT_EQ(read, reference) << "step " << stepIndex << ": last step's records, each once, in key order";
+    ASSERT_EQ(std::vector<Record>(records.begin(), records.end()), expected) << "step " << stepIndex;
+    reference = expected;
+  }
+  EXPECT_GT(spill.size(), 0u) << "the walks ran ahead of what they read";
+}
+
+TEST(InPlaceMerge, AStepOfOnlyNewRecordsGrowsTheArray) {
+  Array<Record> records{{5, 0}};
+  Array<Record> spill;
+  const std::vector<Record> read =
+      walk(records, spill, {{1, Write::Fresh}, {2, Write::Fresh}, {3, Write::Fresh}, {5, Write::Keep}}, 1);
+  EXPECT_EQ(read, (std::vector<Record>{{5, 0}}));
+  EXPECT_EQ(std::vector<Record>(records.begin(), records.end()),
+            (std::vector<Record>{{1, 1}, {2, 1}, {3, 1}, {5, 1}}));
+}
+
+TEST(InPlaceMerge, KeepingARecordInItsOwnSlotCopiesNothing) {
+  Array<Record> records{{1, 0}, {2, 0}, {3, 0}};
+  Array<Record> spill;
+  const Record* slots = records.data();
+  InPlaceMerge<Record> merge(records, spill);
+  for (int i = 0; i < 3; ++i) {
+    const Record& old = merge.next();
+    merge.pop();
+    Record& kept = merge.keep(old);
+    EXPECT_EQ(&kept, &slots[i]);
+  }
+  merge.finish();
+  EXPECT_EQ(records.data(), slots);
+  EXPECT_TRUE(spill.empty());
+}
+
+}  // namespace
+}  // namespace collide::detail
