@@ -58,6 +58,9 @@ const Contact* viewOf(const ApartPair& apart, Contact& view) {
   return &view;
 }
 
+// The walk in blocks runs without a pre-solve callback (ContactUpdate::run).
+const PreSolveCallback kNoPreSolve{};
+
 bool settingsInRange(const ContactSettings& s) {
   return isFinite(s.friction) && s.friction >= 0.0f && isFinite(s.bounciness) && s.bounciness >= 0.0f &&
          s.bounciness <= 1.0f && isFinite(s.surfaceVelocity);
@@ -149,14 +152,13 @@ class PairPass {
     return !hasParts(ra) && !hasParts(rb);
   }
 
-  ContactUpdateCounts run() {
-    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+  // The pairs [begin, end), and last step's contacts after the last of them (in the merges) ended.
+  ContactUpdateCounts run(std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
       prefetchAhead(p);
       updatePair(pairs_[p], p);
     }
     for (; contacts_.hasNext(); contacts_.pop()) events_.endVanished(bodies_, contacts_.next());
-    contacts_.finish();
-    apart_.finish();
     return counts_;
   }
 
@@ -658,13 +660,98 @@ ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPha
   } else {
     stagedIndex_.clear();
   }
-  InPlaceMerge<Contact> contactMerge(contacts, contactSpill_);
-  InPlaceMerge<ApartPair> apartMerge(apart, apartSpill_);
-  const ContactUpdateCounts counts = PairPass(*this, bodies, pairs, contactMerge, apartMerge, pairPrevious_,
-                                              settings, dt, preSolve, filters, events, callbackError)
-                                         .run();
+  ContactUpdateCounts counts;
+  // The walk in blocks on several workers needs its callbacks free of threads (a user's pre-solve
+  // or pair filter is called from the calling thread, in pair order) and enough pairs to share.
+  const bool callbacks = preSolve || (filters.callback && *filters.callback);
+  if (tasks.workerCount() > 1 && !callbacks && pairs.size() >= 2 * kMinPairsPerBlock) {
+    counts = walkInBlocks(bodies, pairs, contacts, apart, settings, dt, filters, events, tasks);
+  } else {
+    InPlaceMerge<Contact> contactMerge(contacts, contactSpill_);
+    InPlaceMerge<ApartPair> apartMerge(apart, apartSpill_);
+    counts = PairPass(*this, bodies, pairs, contactMerge, apartMerge, pairPrevious_, settings, dt, preSolve,
+                      filters, events, callbackError)
+                 .run(0, pairs.size());
+    contactMerge.finish();
+    apartMerge.finish();
+  }
   lastTests_ = counts.narrowPhaseTests - counts.reusedManifolds;
   lastPairs_ = counts.narrowPhaseTests;
+  return counts;
+}
+
+ContactUpdateCounts ContactUpdate::walkInBlocks(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
+                                                Array<Contact>& contacts, Array<ApartPair>& apart,
+                                                const ContactUpdateSettings& settings, float dt,
+                                                const PairFilters& filters, StepEvents& events,
+                                                TaskRunner& tasks) {
+  // Consecutive blocks of pairs, each with the block of last step's contacts (and pairs apart) whose
+  // keys fall between its first pair's and the next block's: what the one walk would read while it
+  // walks those pairs. How the pairs are cut does not change what each pair gets, so the result is
+  // the one walk's at every worker count.
+  const std::size_t blockCount =
+      std::min<std::size_t>(pairs.size() / kMinPairsPerBlock, kBlocksPerWorker * tasks.workerCount());
+  blocks_.resize(blockCount);
+  const auto firstKey = [&](std::size_t block) {
+    const ProxyPair& pair = pairs[pairs.size() * block / blockCount];
+    return pairKey(pair.a.index, pair.b.index);
+  };
+  const auto contactAt = [&](std::uint64_t key) {
+    return static_cast<std::size_t>(
+        std::lower_bound(contacts.begin(), contacts.end(), key,
+                         [](const Contact& contact, std::uint64_t k) { return contact.key < k; }) -
+        contacts.begin());
+  };
+  const auto apartAt = [&](std::uint64_t key) {
+    return static_cast<std::size_t>(
+        std::lower_bound(apart.begin(), apart.end(), key,
+                         [](const ApartPair& pair, std::uint64_t k) { return pair.key < k; }) -
+        apart.begin());
+  };
+  for (std::size_t b = 0; b < blockCount; ++b) {
+    WalkBlock& block = blocks_[b];
+    block.firstPair = pairs.size() * b / blockCount;
+    block.endPair = pairs.size() * (b + 1) / blockCount;
+    block.contacts.begin = b == 0 ? 0 : blocks_[b - 1].contacts.end;
+    block.contacts.end = b + 1 == blockCount ? contacts.size() : contactAt(firstKey(b + 1));
+    block.apart.begin = b == 0 ? 0 : blocks_[b - 1].apart.end;
+    block.apart.end = b + 1 == blockCount ? apart.size() : apartAt(firstKey(b + 1));
+  }
+  tasks.parallelFor(
+      static_cast<std::uint32_t>(blockCount), 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+        for (std::uint32_t b = begin; b < end; ++b) {
+          WalkBlock& block = blocks_[b];
+          block.events.contacts.clear();
+          block.events.contactOfEvent.clear();
+          block.events.sensors.clear();
+          InPlaceMerge<Contact> contactMerge(contacts, block.contacts.begin, block.contacts.end,
+                                             block.contacts.spill, block.contacts.overflow);
+          InPlaceMerge<ApartPair> apartMerge(apart, block.apart.begin, block.apart.end, block.apart.spill,
+                                             block.apart.overflow);
+          block.counts = PairPass(*this, bodies, pairs, contactMerge, apartMerge, block.pairPrevious,
+                                  settings, dt, kNoPreSolve, filters, block.events, block.callbackError)
+                             .run(block.firstPair, block.endPair);
+          block.contacts.inPlace = contactMerge.writtenInPlace();
+          block.apart.inPlace = apartMerge.writtenInPlace();
+        }
+      });
+  // The blocks' records made one array each, and their events and counts added, in block order.
+  mergedContacts_.clear();
+  mergedApart_.clear();
+  ContactUpdateCounts counts;
+  for (const WalkBlock& block : blocks_) {
+    mergedContacts_.push_back({block.contacts.begin, block.contacts.inPlace, &block.contacts.overflow});
+    mergedApart_.push_back({block.apart.begin, block.apart.inPlace, &block.apart.overflow});
+    events.contacts.insert(events.contacts.end(), block.events.contacts.begin(), block.events.contacts.end());
+    events.contactOfEvent.insert(events.contactOfEvent.end(), block.events.contactOfEvent.begin(),
+                                 block.events.contactOfEvent.end());
+    events.sensors.insert(events.sensors.end(), block.events.sensors.begin(), block.events.sensors.end());
+    counts.filteredPairs += block.counts.filteredPairs;
+    counts.narrowPhaseTests += block.counts.narrowPhaseTests;
+    counts.reusedManifolds += block.counts.reusedManifolds;
+  }
+  compactBlocks<Contact>(contacts, mergedContacts_);
+  compactBlocks<ApartPair>(apart, mergedApart_);
   return counts;
 }
 
@@ -672,8 +759,14 @@ std::size_t ContactUpdate::memoryBytes() const {
   std::size_t bytes = heapBytes(poses_) + heapBytes(scaledRotations_) + heapBytes(spinReaches_) +
                       heapBytes(velocities_) + heapBytes(likelyPlaced_) + heapBytes(proxyBodies_) +
                       heapBytes(stagedIndex_) + heapBytes(staged_) + heapBytes(contactSpill_) +
-                      heapBytes(apartSpill_) + heapBytes(pairPrevious_);
+                      heapBytes(apartSpill_) + heapBytes(pairPrevious_) + heapBytes(blocks_) +
+                      heapBytes(mergedContacts_) + heapBytes(mergedApart_);
   for (const WorkerTests& worker : staged_) bytes += heapBytes(worker.tests);
+  for (const WalkBlock& block : blocks_) {
+    bytes += heapBytes(block.contacts.spill) + heapBytes(block.contacts.overflow) +
+             heapBytes(block.apart.spill) + heapBytes(block.apart.overflow) + heapBytes(block.pairPrevious) +
+             block.events.memoryBytes();
+  }
   return bytes;
 }
 

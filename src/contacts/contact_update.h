@@ -21,6 +21,7 @@
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "contacts/contact_events.h"
+#include "contacts/in_place_merge.h"
 #include "contacts/pair_filter.h"
 
 #include <cstdint>
@@ -68,11 +69,14 @@ class ContactUpdate {
  public:
   // `contacts` holds last step's contacts on entry and this step's on return, in pair order, and
   // `apart` likewise the pairs found apart (ApartPair), each rewritten in place (InPlaceMerge). End
-  // events of contacts whose pair vanished go to `events`. Settings the pre-solve callback gets wrong are
-  // refused, and the first such refusal is described in `callbackError`. With more than one worker, the
-  // pairs' full collider tests run first, in parallel ranges (each pair's test reads only the step's
-  // snapshot), and the walk in pair order takes their results: the contacts, the events and the callbacks are
-  // those of one worker, in the same order.
+  // events of contacts whose pair vanished go to `events`. Settings the pre-solve callback gets wrong
+  // are refused, and the first such refusal is described in `callbackError`. With more than one
+  // worker, the pairs' full collider tests run first, in parallel ranges (each pair's test reads
+  // only the step's snapshot), when last step tested many; then the walk takes their results, in
+  // blocks of pairs on the workers (each block rewrites its own part of the arrays, and the parts
+  // are joined in order) unless a pre-solve callback or a pair filter must be called in pair order
+  // from the calling thread. The contacts, the events and the callbacks are those of one worker, in
+  // the same order.
   ContactUpdateCounts run(const BodyStorage& bodies, const BroadPhase& broadPhase,
                           std::span<const ProxyPair> pairs, Array<Contact>& contacts, Array<ApartPair>& apart,
                           const ContactUpdateSettings& settings, float dt, const PreSolveCallback& preSolve,
@@ -136,6 +140,36 @@ class ContactUpdate {
   Array<Contact> contactSpill_;
   Array<ApartPair> apartSpill_;
   Array<Contact> pairPrevious_;
+
+  // The walk in blocks on several workers (walkInBlocks): each block's pairs, its part of the
+  // contacts and pairs apart, its own scratch, events and counts, kept from step to step.
+  static constexpr std::size_t kMinPairsPerBlock = 256;
+  static constexpr std::size_t kBlocksPerWorker = 4;
+  template <typename Record>
+  struct BlockRecords {
+    std::size_t begin = 0;  // last step's records of the block's pairs: [begin, end)
+    std::size_t end = 0;
+    std::size_t inPlace = 0;  // this step's, written from begin, then the overflow
+    Array<Record> spill;
+    Array<Record> overflow;
+  };
+  struct WalkBlock {
+    std::size_t firstPair = 0;
+    std::size_t endPair = 0;
+    BlockRecords<Contact> contacts;
+    BlockRecords<ApartPair> apart;
+    Array<Contact> pairPrevious;
+    StepEvents events;
+    std::string callbackError;
+    ContactUpdateCounts counts;
+  };
+  ContactUpdateCounts walkInBlocks(const BodyStorage& bodies, std::span<const ProxyPair> pairs,
+                                   Array<Contact>& contacts, Array<ApartPair>& apart,
+                                   const ContactUpdateSettings& settings, float dt,
+                                   const PairFilters& filters, StepEvents& events, TaskRunner& tasks);
+  Array<WalkBlock> blocks_;
+  Array<MergedBlock<Contact>> mergedContacts_;
+  Array<MergedBlock<ApartPair>> mergedApart_;
   // Last step's pairs that reached the narrow phase, and of those the ones not reused: the stage
   // runs ahead when at least one in kStageWhenTestedOneIn was tested.
   static constexpr std::uint64_t kStageWhenTestedOneIn = 4;

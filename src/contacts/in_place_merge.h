@@ -11,6 +11,10 @@
 // through the queue, so the queue is a ring of k records, not a list of all that passed through.
 // A record read is gone from the walk's point of view: its slot may be written next, so a caller
 // that needs it while writing copies it out first.
+//
+// Several walks can rewrite one array at once, each over its own block of it (the records of its
+// own pairs): a block's walk writes within the block, what does not fit goes to the block's
+// overflow, and compactBlocks joins the blocks in order afterwards.
 #pragma once
 
 #include <collide/hooks.h>
@@ -18,6 +22,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <utility>
 
@@ -30,9 +35,24 @@ class InPlaceMerge {
 
  public:
   // `records` holds last step's records; `spill` is scratch (its contents unspecified, its capacity
-  // kept from step to step).
+  // kept from step to step). The walk rewrites the whole array, growing it as this step needs.
   InPlaceMerge(Array<Record>& records, Array<Record>& spill)
-      : records_(records), spill_(spill), readEnd_(records.size()) {}
+      : records_(records), spill_(spill), readEnd_(records.size()), limit_(records.size()) {}
+  // A block of the array, [begin, end), rewritten by one of several walks at once (each over its own
+  // block and pairs): this step's records are written from `begin` up to `end` at most, and those
+  // beyond go to `overflow` (emptied here); compactBlocks then closes the gaps.
+  InPlaceMerge(Array<Record>& records, std::size_t begin, std::size_t end, Array<Record>& spill,
+               Array<Record>& overflow)
+      : records_(records),
+        spill_(spill),
+        overflow_(&overflow),
+        readEnd_(end),
+        read_(begin),
+        write_(begin),
+        begin_(begin),
+        limit_(end) {
+    overflow.clear();
+  }
   InPlaceMerge(const InPlaceMerge&) = delete;
   InPlaceMerge& operator=(const InPlaceMerge&) = delete;
 
@@ -57,10 +77,18 @@ class InPlaceMerge {
   // grown), which can move or overwrite such a record, the new one is made aside first.
   template <typename... Args>
   Record& emplace(Args&&... args) {
-    if ((write_ == read_ && read_ < readEnd_) || write_ == records_.size()) {
+    lastOverflowed_ = false;
+    if ((write_ == read_ && read_ < readEnd_) || write_ == limit_) {
       const Record made(std::forward<Args>(args)...);
       if (write_ == read_ && read_ < readEnd_) spill(records_[read_++]);
-      if (write_ == records_.size()) records_.emplace_back();
+      if (write_ == limit_) {
+        if (overflow_) {
+          lastOverflowed_ = true;
+          return overflow_->emplace_back(made);
+        }
+        records_.emplace_back();
+        ++limit_;
+      }
       return *std::construct_at(&records_[write_++], made);
     }
     // Otherwise the slot is one already read (its record copied out or kept, see keep()), and no
@@ -70,18 +98,30 @@ class InPlaceMerge {
   // Last step's record `previous` (next() a moment ago) kept as this step's next record: where the
   // walk writes into the very slot it read it from (a steady pile), nothing is copied.
   Record& keep(const Record& previous) {
-    if (write_ < records_.size() && &previous == &records_[write_]) return records_[write_++];
+    if (write_ < limit_ && &previous == &records_[write_]) {
+      lastOverflowed_ = false;
+      return records_[write_++];
+    }
     return emplace(previous);
   }
   // Takes back the record emplace() made last (the record turned out not to be kept).
-  void dropLast() { --write_; }
+  void dropLast() {
+    if (lastOverflowed_) {
+      overflow_->pop_back();
+    } else {
+      --write_;
+    }
+  }
   // The slot `ahead` places after the next one written, if the array has it (for prefetching).
   const Record* slotAhead(std::size_t ahead) const {
-    return write_ + ahead < records_.size() ? &records_[write_ + ahead] : nullptr;
+    return write_ + ahead < limit_ ? &records_[write_ + ahead] : nullptr;
   }
 
-  // After the walk: the array holds this step's records alone (last step's not read are dropped).
+  // After the walk over the whole array: it holds this step's records alone (last step's not read
+  // are dropped). After a block's walk: how many of this step's records the block holds in place,
+  // from its begin (the rest are in its overflow).
   void finish() { records_.resize(write_); }
+  std::size_t writtenInPlace() const { return write_ - begin_; }
 
  private:
   void spill(const Record& record) {
@@ -99,11 +139,52 @@ class InPlaceMerge {
 
   Array<Record>& records_;
   Array<Record>& spill_;
-  std::size_t readEnd_;   // last step's records in the array are [read_, readEnd_)
-  std::size_t read_ = 0;  // and those in the spill ring (spillCount_ from spillHead_) come first
+  Array<Record>* overflow_ = nullptr;  // a block's records beyond its end; null: the array grows
+  std::size_t readEnd_;                // last step's records in the array are [read_, readEnd_)
+  std::size_t read_ = 0;               // and those in the spill ring (spillCount_ from spillHead_) come first
   std::size_t spillHead_ = 0;
   std::size_t spillCount_ = 0;
-  std::size_t write_ = 0;  // this step's records are [0, write_)
+  std::size_t write_ = 0;  // this step's records are [begin_, write_)
+  std::size_t begin_ = 0;
+  std::size_t limit_;  // writes in the array stop here
+  bool lastOverflowed_ = false;
 };
+
+// One block's walk as compactBlocks takes it: this step's records in place from `begin`, then those
+// in its overflow.
+template <typename Record>
+struct MergedBlock {
+  std::size_t begin = 0;
+  std::size_t inPlace = 0;
+  const Array<Record>* overflow = nullptr;
+};
+
+// After walks over consecutive blocks of `records`: the blocks' records made one array in block
+// order. Blocks that move towards the front are moved first, front to back, then those that move
+// towards the back, back to front: no block is written over before it has moved (each block's
+// final place starts after every earlier block's final end, which is past that block's data).
+template <typename Record>
+void compactBlocks(Array<Record>& records, std::span<const MergedBlock<Record>> blocks) {
+  std::size_t total = 0;
+  for (const MergedBlock<Record>& block : blocks) total += block.inPlace + block.overflow->size();
+  if (total > records.size()) records.resize(total);
+  const auto at = [&](std::size_t index) { return records.begin() + static_cast<std::ptrdiff_t>(index); };
+  std::size_t offset = 0;
+  for (const MergedBlock<Record>& block : blocks) {
+    if (offset < block.begin) std::copy(at(block.begin), at(block.begin + block.inPlace), at(offset));
+    offset += block.inPlace + block.overflow->size();
+  }
+  for (std::size_t b = blocks.size(); b-- > 0;) {
+    offset -= blocks[b].inPlace + blocks[b].overflow->size();
+    const MergedBlock<Record>& block = blocks[b];
+    if (offset > block.begin)
+      std::copy_backward(at(block.begin), at(block.begin + block.inPlace), at(offset + block.inPlace));
+  }
+  for (const MergedBlock<Record>& block : blocks) {
+    std::copy(block.overflow->begin(), block.overflow->end(), at(offset + block.inPlace));
+    offset += block.inPlace + block.overflow->size();
+  }
+  records.resize(total);
+}
 
 }  // namespace collide::detail

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <vector>
 
 namespace collide::detail {
@@ -29,10 +30,8 @@ struct Step {
   Write write;
 };
 
-std::vector<Record> walk(Array<Record>& records, Array<Record>& spill, const std::vector<Step>& steps,
-                         std::uint64_t tag) {
-  std::vector<Record> read;
-  InPlaceMerge<Record> merge(records, spill);
+void walkSteps(InPlaceMerge<Record>& merge, std::span<const Step> steps, std::uint64_t tag,
+               std::vector<Record>& read) {
   for (const Step& step : steps) {
     for (; merge.hasNext() && merge.next().key < step.key; merge.pop()) read.push_back(merge.next());
     const Record* old = nullptr;
@@ -67,7 +66,58 @@ std::vector<Record> walk(Array<Record>& records, Array<Record>& spill, const std
     }
   }
   for (; merge.hasNext(); merge.pop()) read.push_back(merge.next());
+}
+
+std::vector<Record> walk(Array<Record>& records, Array<Record>& spill, const std::vector<Step>& steps,
+                         std::uint64_t tag) {
+  std::vector<Record> read;
+  InPlaceMerge<Record> merge(records, spill);
+  walkSteps(merge, steps, tag, read);
   merge.finish();
+  return read;
+}
+
+// The same walk cut into `blockCount` blocks of steps, each over the records of its keys (as the
+// narrow phase's workers do), then the blocks joined (compactBlocks).
+std::vector<Record> walkInBlocks(Array<Record>& records, const std::vector<Step>& steps, std::uint64_t tag,
+                                 std::size_t blockCount) {
+  struct Block {
+    std::size_t firstStep, endStep, begin, end;
+    Array<Record> spill, overflow;
+    std::size_t inPlace = 0;
+    std::vector<Record> read;
+  };
+  std::vector<Block> blocks(blockCount);
+  const auto recordAt = [&](std::uint64_t key) {
+    return static_cast<std::size_t>(
+        std::lower_bound(records.begin(), records.end(), key,
+                         [](const Record& r, std::uint64_t k) { return r.key < k; }) -
+        records.begin());
+  };
+  for (std::size_t b = 0; b < blockCount; ++b) {
+    Block& block = blocks[b];
+    block.firstStep = steps.size() * b / blockCount;
+    block.endStep = steps.size() * (b + 1) / blockCount;
+    block.begin = b == 0 ? 0 : blocks[b - 1].end;
+    block.end = b + 1 == blockCount || block.endStep == steps.size() ? records.size()
+                                                                     : recordAt(steps[block.endStep].key);
+    if (block.end < block.begin) block.end = block.begin;
+  }
+  // In reverse, so that a block that wrote past its end would spoil a block already walked.
+  for (std::size_t b = blockCount; b-- > 0;) {
+    Block& block = blocks[b];
+    InPlaceMerge<Record> merge(records, block.begin, block.end, block.spill, block.overflow);
+    walkSteps(merge, std::span<const Step>(steps).subspan(block.firstStep, block.endStep - block.firstStep),
+              tag, block.read);
+    block.inPlace = merge.writtenInPlace();
+  }
+  std::vector<MergedBlock<Record>> merged;
+  std::vector<Record> read;
+  for (const Block& block : blocks) {
+    merged.push_back({block.begin, block.inPlace, &block.overflow});
+    read.insert(read.end(), block.read.begin(), block.read.end());
+  }
+  compactBlocks<Record>(records, merged);
   return read;
 }
 
@@ -101,6 +151,39 @@ TEST(InPlaceMerge, EveryOldRecordIsReadInOrderAndTheNewOnesWritten) {
     reference = expected;
   }
   EXPECT_GT(spill.size(), 0u) << "the walks ran ahead of what they read";
+}
+
+TEST(InPlaceMerge, WalksInBlocksJoinedGiveTheOneWalksArray) {
+  std::mt19937 rng(7);
+  for (const std::size_t blockCount : {2u, 3u, 8u}) {
+    Array<Record> records;
+    std::vector<Record> reference;
+    for (int stepIndex = 1; stepIndex <= 200; ++stepIndex) {
+      const auto tag = static_cast<std::uint64_t>(stepIndex);
+      std::vector<Step> steps;
+      std::vector<Record> expected;
+      // Some steps add records mostly in the first blocks (every later block then moves back), some
+      // remove them there (every later block moves to the front).
+      const int mode = stepIndex % 4;
+      for (std::uint64_t key = 0; key < 400; ++key) {
+        const bool had = std::binary_search(reference.begin(), reference.end(), Record{key, 0},
+                                            [](const Record& a, const Record& b) { return a.key < b.key; });
+        const int draw = static_cast<int>(rng() % 100);
+        const bool front = key < 100;
+        bool present = had ? draw >= (mode == 1 && front ? 60 : 5) : draw < (mode == 2 && front ? 70 : 8);
+        if (!present) continue;
+        const Write write = static_cast<Write>(1 + rng() % 3);
+        const bool written = rng() % 8 != 0;
+        steps.push_back({key, written ? write : Write::None});
+        if (written) expected.push_back({key, tag});
+      }
+      const std::vector<Record> read = walkInBlocks(records, steps, tag, blockCount);
+      ASSERT_EQ(read, reference) << blockCount << " blocks, step " << stepIndex;
+      ASSERT_EQ(std::vector<Record>(records.begin(), records.end()), expected)
+          << blockCount << " blocks, step " << stepIndex;
+      reference = expected;
+    }
+  }
 }
 
 TEST(InPlaceMerge, AStepOfOnlyNewRecordsGrowsTheArray) {

@@ -127,6 +127,65 @@ TEST(Workers, APileEndsInTheSameStateOnEveryWorkerCount) {
 // The fault guard looks at the bodies in parallel ranges: with bodies enough for several ranges and
 // faults in more than one of them, every worker count freezes the same bodies and reports them in
 // body order.
+// Spheres rained onto the ground in a loose, jittered lattice, some bouncy: contacts begin, end
+// and come back all through the run, so the narrow phase's walk in blocks (several workers) meets
+// new contacts ahead of vanished ones in every block, and blocks that grow and shrink. Each step's
+// contact events, and the whole world's bytes (a snapshot: every contact and pair apart, in order)
+// at the end, are the one walk's.
+struct RainRecord {
+  std::vector<unsigned char> events;
+  std::vector<std::uint8_t> snapshot;
+};
+RainRecord runRain(int workers) {
+  WorldDef def;
+  def.workerCount = workers;
+  World world(def);
+  world.createBody(test::groundBox());
+  std::uint32_t seed = 12345;
+  const auto jitter = [&seed] {
+    seed = seed * 1664525u + 1013904223u;
+    return float(seed >> 8) / float(1u << 24) - 0.5f;
+  };
+  for (int i = 0; i < 900; ++i) {
+    const Vec3 at(0.6f * float(i % 15) + 0.1f * jitter(), 0.6f + 0.6f * float(i / 225),
+                  0.6f * float((i / 15) % 15) + 0.1f * jitter());
+    BodyDef body = test::sphereBody(at, 0.25f, 1.0f, Vec3(jitter(), -2.0f, jitter()));
+    if (i % 3 == 0) body.bounciness = 0.8f;
+    world.createBody(body);
+  }
+  RainRecord record;
+  for (int step = 0; step < 90; ++step) {
+    world.step(kDt);
+    for (const ContactEvent& e : world.contactEvents()) {
+      const auto append = [&](const auto& field) {
+        const auto* p = reinterpret_cast<const unsigned char*>(&field);
+        record.events.insert(record.events.end(), p, p + sizeof field);
+      };
+      append(e.type);
+      append(e.a.index);
+      append(e.b.index);
+      append(e.partA);
+      append(e.partB);
+      append(e.point);
+      append(e.normal);
+      append(e.impulse);
+      append(e.speed);
+    }
+  }
+  record.snapshot = world.saveSnapshot();
+  return record;
+}
+
+TEST(Workers, TheNarrowPhaseInBlocksGivesTheSameContactsAndEvents) {
+  const RainRecord one = runRain(1);
+  ASSERT_GT(one.events.size(), 500u * 50u) << "contacts begin and end all through";
+  for (const int workers : {2, 3, 8}) {
+    const RainRecord many = runRain(workers);
+    EXPECT_TRUE(many.events == one.events) << workers << " workers: the contact events";
+    EXPECT_TRUE(many.snapshot == one.snapshot) << workers << " workers: the world's bytes";
+  }
+}
+
 TEST(Workers, FaultsInSeveralRangesAreReportedInBodyOrderOnEveryWorkerCount) {
   constexpr float kHuge = 3.0e38f;  // finite; two of them add up to infinity
   std::vector<BodyId> expected;
