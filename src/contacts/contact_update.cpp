@@ -752,6 +752,13 @@ ContactUpdateCounts ContactUpdate::walkInBlocks(const BodyStorage& bodies, std::
   }
   compactBlocks<Contact>(contacts, mergedContacts_);
   compactBlocks<ApartPair>(apart, mergedApart_);
+  // A block's overflow is small once contacts come and go a few at a time; while a pile lands,
+  // nearly every contact is new and lands there (the blocks start from last step's fewer ones).
+  // Such overflows are freed rather than kept for good beside the array they were copied into.
+  for (WalkBlock& block : blocks_) {
+    if (block.contacts.overflow.capacity() > kKeptOverflow) Array<Contact>().swap(block.contacts.overflow);
+    if (block.apart.overflow.capacity() > kKeptOverflow) Array<ApartPair>().swap(block.apart.overflow);
+  }
   return counts;
 }
 

@@ -145,6 +145,7 @@ class ContactUpdate {
   // contacts and pairs apart, its own scratch, events and counts, kept from step to step.
   static constexpr std::size_t kMinPairsPerBlock = 256;
   static constexpr std::size_t kBlocksPerWorker = 4;
+  static constexpr std::size_t kKeptOverflow = 256;  // records a block's overflow keeps room for
   template <typename Record>
   struct BlockRecords {
     std::size_t begin = 0;  // last step's records of the block's pairs: [begin, end)
