@@ -141,6 +141,17 @@ void World::setDef(const WorldDef& def) {
   w.def = def;
 }
 
+void World::reserveBodies(std::size_t count) {
+  if (count > kMaxReservedBodies)
+    COLLIDE_FAIL("world: reserveBodies: " + std::to_string(count) + " bodies, more than the " +
+                 std::to_string(kMaxReservedBodies) + " a world reserves room for");
+  Impl& w = *impl_;
+  w.bodies.records.reserve(count);
+  w.bodies.states.reserve(count);
+  w.broadPhase->reserveProxies(count);
+  w.proxyUpdate.reserve(count);
+}
+
 BodyId World::createBody(const BodyDef& def) {
   const detail::ErrorScope scope;
   detail::validateBodyDef(def);

@@ -201,6 +201,8 @@ class BroadPhase {
   // The heap it holds, in bytes: the proxies, the algorithm's structure and its pair scratch, as
   // reserved (World::memoryUse).
   std::size_t memoryBytes() const;
+  // Room for `count` proxies in all, as std::vector::reserve (World::reserveBodies).
+  void reserveProxies(std::size_t count) { proxies_.reserve(count); }
 
   // Structural self-check for tests; throws collide::Error naming the broken invariant.
   virtual void validate() const {}

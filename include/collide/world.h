@@ -206,6 +206,15 @@ class World {
   // constructor does, and then changes nothing.
   void setDef(const WorldDef& def);
 
+  // Makes room for `count` bodies in all (alive or not), as std::vector::reserve does: a world whose
+  // bodies are known before it is built (a level, a scene file) then keeps its body records and
+  // broad-phase proxies in arrays of that size, not in arrays that doubled past it, whose freed
+  // smaller copies stay in the process (R1's 4,097 bodies: the whole process peaks 1.7 MB lower).
+  // A hint, not a limit: more bodies may be created. Counts at or below the room there is change
+  // nothing; a count above kMaxReservedBodies is refused (an Error, nothing changed).
+  static constexpr std::size_t kMaxReservedBodies = std::size_t{1} << 24;
+  void reserveBodies(std::size_t count);
+
   // Throws Error naming the field for a bad definition.
   BodyId createBody(const BodyDef& def);
   // Also destroys the body's constraints and wakes what it touched. Its touching contacts and

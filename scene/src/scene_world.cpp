@@ -86,6 +86,7 @@ SceneWorld buildWorld(const Scene& scene) {
     throw Error(scene.source + ": settings: " + e.what());
   }
   SceneWorld out{std::move(*world), {}, {}};
+  out.world.reserveBodies(scene.bodies.size());  // bounded by the loader's kMaxBodies
   out.bodies.reserve(scene.bodies.size());
   std::map<std::string, BodyId, std::less<>> byName;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

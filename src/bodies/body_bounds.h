@@ -50,6 +50,10 @@ class ProxyUpdate {
                       TaskRunner& tasks);
 
   std::size_t memoryBytes() const;  // the scratch (World::memoryUse)
+  void reserve(std::size_t bodies) {  // World::reserveBodies
+    boxes_.reserve(bodies);
+    updated_.reserve(bodies);
+  }
 
  private:
   // Resizes the scratch, has fillRange(begin, end) set updated_ and boxes_ for parallel ranges of

@@ -1,6 +1,7 @@
 // World::memoryUse: each stage's arrays, counted where they are held. Lower bounds from what the
 // world must store (a record per body, a contact per touching pair, a joint record per joint), and
 // the world's promise that a running scene stops allocating once it has grown to its work.
+#include "support/collide_error.h"
 #include "support/world_helpers.h"
 
 #include "bodies/body_storage.h"
@@ -9,6 +10,7 @@
 
 #include <collide/world.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -61,6 +63,37 @@ TEST(WorldMemory, BodiesHoldARecordAndAStateEachAndTheirLongNames) {
   const std::size_t before = world.memoryUse().bodies;
   world.createBody(named);
   EXPECT_GE(world.memoryUse().bodies, before + 301);
+}
+
+// Room reserved for the bodies up front: creating them then allocates no body storage and no
+// proxy record, and the world steps exactly as one that grew as they came.
+TEST(WorldMemory, ReservedBodiesAreCreatedWithoutGrowing) {
+  const auto build = [](World& world) {
+    world.createBody(test::groundBox());
+    for (int i = 0; i < 300; ++i)
+      world.createBody(test::sphereBody(
+          Vec3(0.6f * float(i % 10), 1.0f + 0.6f * float(i / 100), 0.6f * float((i / 10) % 10)), 0.25f,
+          1.0f));
+  };
+  World reserved;
+  reserved.reserveBodies(301);
+  const WorldMemory before = reserved.memoryUse();
+  EXPECT_GE(before.bodies, 301 * (sizeof(detail::BodyRecord) + sizeof(detail::BodyState)));
+  build(reserved);
+  EXPECT_EQ(reserved.memoryUse().bodies, before.bodies) << "no body array grew";
+  reserved.reserveBodies(10);  // less than there is: nothing changes
+  EXPECT_EQ(reserved.memoryUse().bodies, before.bodies);
+  World grown;
+  build(grown);
+  EXPECT_GT(grown.memoryUse().bodies, before.bodies) << "grown by doubling, to room for 512";
+  for (int i = 0; i < 60; ++i) {
+    reserved.step(kDt);
+    grown.step(kDt);
+  }
+  EXPECT_TRUE(reserved.saveSnapshot() == grown.saveSnapshot()) << "room changes no result";
+  EXPECT_THAT([&] { reserved.reserveBodies(World::kMaxReservedBodies + 1); },
+              test::ReportsError(::testing::HasSubstr("world: reserveBodies: 16777217 bodies")));
+  EXPECT_EQ(reserved.memoryUse().bodies, before.bodies);
 }
 
 TEST(WorldMemory, ContactsAreHeldOnce) {
