@@ -689,8 +689,10 @@ ContactUpdateCounts ContactUpdate::walkInBlocks(const BodyStorage& bodies, std::
   // keys fall between its first pair's and the next block's: what the one walk would read while it
   // walks those pairs. How the pairs are cut does not change what each pair gets, so the result is
   // the one walk's at every worker count.
+  // A whole number of blocks per worker, so that the workers finish together.
+  const auto workers = static_cast<std::size_t>(tasks.workerCount());
   const std::size_t blockCount =
-      std::min<std::size_t>(pairs.size() / kMinPairsPerBlock, kBlocksPerWorker * tasks.workerCount());
+      workers * std::clamp<std::size_t>(pairs.size() / kMinPairsPerBlock / workers, 1, kBlocksPerWorker);
   blocks_.resize(blockCount);
   const auto firstKey = [&](std::size_t block) {
     const ProxyPair& pair = pairs[pairs.size() * block / blockCount];
