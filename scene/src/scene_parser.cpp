@@ -2,6 +2,7 @@
 // and unknown fields are refused, so that a typo is an error rather than a silent default.
 #include "file_text.h"
 #include "json_node.h"
+#include "scene_document.h"
 
 #include <collide/scene/limits.h>
 #include <collide/scene/obj_file.h>
@@ -705,9 +706,13 @@ Json parseDocument(std::string_view text, const std::string& source) {
 
 Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir,
                  const LoadOptions& options) {
+  return readSceneDocument(parseDocument(text, std::string(sourceName)), sourceName, baseDir, options);
+}
+
+Scene readSceneDocument(const Json& document, std::string_view sourceName,
+                        const std::filesystem::path& baseDir, const LoadOptions& options) {
   Scene scene;
   scene.source = sourceName;
-  const Json document = parseDocument(text, scene.source);
   const JsonNode root(document, scene.source);
   const LoadContext context{baseDir, options, &scene.objFiles};
   if (!document.is_object()) root.fail("a scene must be a JSON object, got " + root.shown());
@@ -755,6 +760,15 @@ Scene parseScene(std::string_view text, std::string_view sourceName, const std::
     }
   }
   return scene;
+}
+
+void normalizeIntegers(Json& document) {
+  if (document.is_number_integer() && !document.is_number_unsigned()) {
+    const auto value = document.get<std::int64_t>();
+    if (value >= 0) document = static_cast<std::uint64_t>(value);
+  } else if (document.is_structured()) {
+    for (Json& element : document) normalizeIntegers(element);
+  }
 }
 
 Scene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options) {
