@@ -12,8 +12,10 @@
 namespace collide::scene {
 
 // Throws collide::Error as parseScene does for what the document holds. Integers must be as the
-// parser gives them: non-negative ones unsigned (normalizeIntegers).
-Scene readSceneDocument(const nlohmann::json& document, std::string_view source,
+// parser gives them: non-negative ones unsigned (normalizeIntegers). Each body's JSON is emptied
+// (null) once the body is read, so that the document and the bodies built from it are not held
+// whole together.
+Scene readSceneDocument(nlohmann::json& document, std::string_view source,
                         const std::filesystem::path& baseDir = ".", const LoadOptions& options = {});
 
 // Makes every non-negative integer of `document` unsigned, as the parser reads "5" (a document

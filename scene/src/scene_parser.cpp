@@ -706,11 +706,12 @@ Json parseDocument(std::string_view text, const std::string& source) {
 
 Scene parseScene(std::string_view text, std::string_view sourceName, const std::filesystem::path& baseDir,
                  const LoadOptions& options) {
-  return readSceneDocument(parseDocument(text, std::string(sourceName)), sourceName, baseDir, options);
+  Json document = parseDocument(text, std::string(sourceName));
+  return readSceneDocument(document, sourceName, baseDir, options);
 }
 
-Scene readSceneDocument(const Json& document, std::string_view sourceName,
-                        const std::filesystem::path& baseDir, const LoadOptions& options) {
+Scene readSceneDocument(Json& document, std::string_view sourceName, const std::filesystem::path& baseDir,
+                        const LoadOptions& options) {
   Scene scene;
   scene.source = sourceName;
   const JsonNode root(document, scene.source);
@@ -733,13 +734,19 @@ Scene readSceneDocument(const Json& document, std::string_view sourceName,
       n->fail("holds " + std::to_string(n->value().size()) + " bodies, more than the limit of " +
               std::to_string(kMaxBodies));
     }
-    for (const JsonNode& b : n->elements()) {
+    const std::vector<JsonNode> bodies = n->elements();
+    Json& bodiesJson = document.at("bodies");  // the same array, to free each body's JSON once read
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const JsonNode& b = bodies[i];
       Body body = readBody(b, scene, context);
       const auto [it, inserted] = names.emplace(body.def.name, scene.bodies.size());
       if (!inserted) {
         b.at("name").fail("duplicate name " + b.at("name").shown() + " (also bodies[" +
                           std::to_string(it->second) + "])");
       }
+      // The body holds what its JSON said (a hull's points are a hull now): the JSON goes, so that
+      // the bodies built next reuse its memory instead of the scene being held twice.
+      bodiesJson[i] = nullptr;
       body.def.userData = scene.bodies.size();
       scene.bodies.push_back(std::move(body));
     }
