@@ -186,8 +186,7 @@ struct WorldDef {
 class World {
  public:
   // Throws Error on invalid settings (substeps outside 1 to kMaxSubsteps, non-finite gravity, bad
-  // tuning) and on
-  // settings not implemented yet.
+  // tuning) and on settings not implemented yet.
   // Without exceptions (collide/error.h) a refused definition is reported and the world takes the
   // default one; create() returns null instead, the result to check.
   explicit World(const WorldDef& def = {});
@@ -209,9 +208,9 @@ class World {
   // Makes room for `count` bodies in all (alive or not), as std::vector::reserve does: a world whose
   // bodies are known before it is built (a level, a scene file) then keeps its body records and
   // broad-phase proxies in arrays of that size, not in arrays that doubled past it, whose freed
-  // smaller copies stay in the process (R1's 4,097 bodies: the whole process peaks 1.7 MB lower).
-  // A hint, not a limit: more bodies may be created. Counts at or below the room there is change
-  // nothing; a count above kMaxReservedBodies is refused (an Error, nothing changed).
+  // smaller copies stay in the process (R1's 4,097 bodies: the whole process peaks 1.4 MiB lower).
+  // A hint, not a limit: more bodies may be created. A count at or below the room already there
+  // changes nothing; a count above kMaxReservedBodies is refused (an Error, nothing changed).
   static constexpr std::size_t kMaxReservedBodies = std::size_t{1} << 24;
   void reserveBodies(std::size_t count);
 

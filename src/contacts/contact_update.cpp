@@ -88,22 +88,30 @@ class PairPass {
         events_(events),
         callbackError_(callbackError) {}
 
+  // Last step's manifold of the pair placed again at this step's poses, into `out`, if neither
+  // body moved beyond the cache's tolerance relative to the other (reuseManifold).
+  static bool placeAgain(const ContactUpdate& s, const BodyStorage& bodies, std::uint32_t ia,
+                         std::uint32_t ib, const Contact& previous, const ContactTuning& tuning,
+                         Manifold& out) {
+    return reuseManifold(previous.cache, previous.manifold, s.poses_[ia], s.poses_[ib],
+                         s.scaledRotations_[ia], s.scaledRotations_[ib], bodies.records[ia].originRadius,
+                         bodies.records[ib].originRadius, tuning.manifoldCacheDistance, out);
+  }
+
   // How a pair's manifold is found, the cheapest exact way first: last step's placed again
-  // (Reused, written to `out`), the bounding spheres apart by more than the margin, still apart
-  // along last step's separating axis, or the proxies' collider test.
+  // (Reused, written to `out`; not tried again when `reuseTried`), the bounding spheres apart by
+  // more than the margin, still apart along last step's separating axis, or the proxies' collider
+  // test.
   enum class ManifoldRoute { Reused, SpheresApart, AxisApart, Test };
   static ManifoldRoute manifoldRoute(const ContactUpdate& s, const BodyStorage& bodies, std::uint32_t ia,
                                      std::uint32_t ib, const Contact* previous, float margin,
-                                     const ContactTuning& tuning, Manifold& out) {
+                                     const ContactTuning& tuning, bool reuseTried, Manifold& out) {
     const BodyRecord& ra = bodies.records[ia];
     const BodyRecord& rb = bodies.records[ib];
     const Transform& ta = s.poses_[ia];
     const Transform& tb = s.poses_[ib];
     const bool sensor = ra.sensor || rb.sensor;
-    if (previous && !sensor &&
-        reuseManifold(previous->cache, previous->manifold, ta, tb, s.scaledRotations_[ia],
-                      s.scaledRotations_[ib], ra.originRadius, rb.originRadius, tuning.manifoldCacheDistance,
-                      out))
+    if (previous && !sensor && !reuseTried && placeAgain(s, bodies, ia, ib, *previous, tuning, out))
       return ManifoldRoute::Reused;
     // The lecture's early reject with the cheapest bounding volume, before the collider test.
     if (glm::length(tb.position - ta.position) > ra.originRadius + rb.originRadius + margin)
@@ -281,7 +289,8 @@ class PairPass {
       if (!previous) previous = &old;
     });
     const bool sensor = ra.sensor || rb.sensor;
-    if (previous && !sensor && placedAgain(ia, ib, *previous, pairIndex, placed_)) {
+    const bool reuseTried = previous && !sensor;
+    if (reuseTried && placedAgain(ia, ib, *previous, pairIndex, placed_)) {
       // The common case of a resting pile, updated where it lies without a copy.
       ++counts_.narrowPhaseTests;
       ++counts_.reusedManifolds;
@@ -293,7 +302,7 @@ class PairPass {
     if (!previous && previousApart) previous = viewOf(*previousApart, apartView_);
     Contact& c = *std::construct_at(&building_);
     ++counts_.narrowPhaseTests;
-    const bool reused = computeManifold(ia, ib, previous, c, pairIndex);
+    const bool reused = computeManifold(ia, ib, previous, reuseTried, c, pairIndex);
     if (c.manifold.count == 0) {
       if (previous) events_.endVanished(bodies_, *previous);
       if (c.cache.valid) keepApart(key, ia, ib, c.cache);
@@ -316,9 +325,7 @@ class PairPass {
     if (s_.stagedRoute(pairIndex, ManifoldRoute::SpheresApart) ||
         s_.stagedRoute(pairIndex, ManifoldRoute::AxisApart))
       return false;
-    return reuseManifold(previous.cache, previous.manifold, s_.poses_[ia], s_.poses_[ib],
-                         s_.scaledRotations_[ia], s_.scaledRotations_[ib], bodies_.records[ia].originRadius,
-                         bodies_.records[ib].originRadius, settings_.tuning.manifoldCacheDistance, out);
+    return placeAgain(s_, bodies_, ia, ib, previous, settings_.tuning, out);
   }
 
   // Last step's contact `c` turned into this step's, in place, with its manifold placed again
@@ -407,9 +414,10 @@ class PairPass {
 
   // The pair's manifold in c.manifold and what the next step may reuse of it in c.cache, by the
   // cheapest exact way (manifoldRoute); the collider test's result from `staged` if it ran ahead.
+  // `reuseTried`: the walk already tried to place last step's manifold again (placedAgain), in vain.
   // Returns whether last step's manifold was placed again.
-  bool computeManifold(std::uint32_t ia, std::uint32_t ib, const Contact* previous, Contact& c,
-                       std::size_t pairIndex) {
+  bool computeManifold(std::uint32_t ia, std::uint32_t ib, const Contact* previous, bool reuseTried,
+                       Contact& c, std::size_t pairIndex) {
     const ContactUpdate::StagedTest* staged = s_.stagedTest(pairIndex);
     const BodyRecord& ra = bodies_.records[ia];
     const BodyRecord& rb = bodies_.records[ib];
@@ -427,7 +435,7 @@ class PairPass {
         : s_.stagedRoute(pairIndex, ManifoldRoute::SpheresApart) ? ManifoldRoute::SpheresApart
         : s_.stagedRoute(pairIndex, ManifoldRoute::AxisApart)
             ? ManifoldRoute::AxisApart
-            : manifoldRoute(s_, bodies_, ia, ib, previous, margin, tuning, c.manifold);
+            : manifoldRoute(s_, bodies_, ia, ib, previous, margin, tuning, reuseTried, c.manifold);
     switch (route) {
       case ManifoldRoute::Reused:
         if (staged) c.manifold = staged->manifold;
@@ -539,7 +547,7 @@ class PairPass {
   std::span<const ProxyPair> pairs_;
   InPlaceMerge<Contact>& contacts_;  // last step's contacts read, this step's written over them
   InPlaceMerge<ApartPair>& apart_;   // and the pairs found apart
-  Array<Contact>& pairPrevious_;     // the walked pair's last contacts, copied out (takePrevious)
+  Array<Contact>& pairPrevious_;     // the walked pair's last contacts, copied out (copyPrevious)
   const ContactUpdateSettings& settings_;
   float dt_;
   const PreSolveCallback& preSolve_;
@@ -604,11 +612,9 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
         // this range's first pair would find them.
         const std::uint64_t firstKey = pairKey(pairs[begin].a.index, pairs[begin].b.index);
         auto cursor =
-            std::lower_bound(previous.begin(), previous.end(), firstKey,
-                             [](const Contact& contact, std::uint64_t k) { return contact.key < k; });
-        auto apartCursor =
-            std::lower_bound(previousApart.begin(), previousApart.end(), firstKey,
-                             [](const ApartPair& apart, std::uint64_t k) { return apart.key < k; });
+            previous.begin() + static_cast<std::ptrdiff_t>(firstAtOrAfter<Contact>(previous, firstKey));
+        auto apartCursor = previousApart.begin() +
+                           static_cast<std::ptrdiff_t>(firstAtOrAfter<ApartPair>(previousApart, firstKey));
         Contact apartView;
         for (std::uint32_t p = begin; p < end; ++p) {
           stagedIndex_[p] = kNotStaged;
@@ -629,7 +635,7 @@ void ContactUpdate::stageTests(const BodyStorage& bodies, std::span<const ProxyP
           const BodyRecord& rb = bodies.records[ib];
           const float margin = PairPass::pairMargin(*this, ra, rb, ia, ib, dt, settings.tuning);
           const PairPass::ManifoldRoute route =
-              PairPass::manifoldRoute(*this, bodies, ia, ib, old, margin, settings.tuning, scratch);
+              PairPass::manifoldRoute(*this, bodies, ia, ib, old, margin, settings.tuning, false, scratch);
           if (route == PairPass::ManifoldRoute::SpheresApart) stagedIndex_[p] = kSpheresApart;
           if (route == PairPass::ManifoldRoute::AxisApart) stagedIndex_[p] = kAxisApart;
           if (route == PairPass::ManifoldRoute::Reused) {
@@ -694,30 +700,20 @@ ContactUpdateCounts ContactUpdate::walkInBlocks(const BodyStorage& bodies, std::
   const std::size_t blockCount =
       workers * std::clamp<std::size_t>(pairs.size() / kMinPairsPerBlock / workers, 1, kBlocksPerWorker);
   blocks_.resize(blockCount);
+  contactBlocks_.resize(blockCount);
+  apartBlocks_.resize(blockCount);
   const auto firstKey = [&](std::size_t block) {
     const ProxyPair& pair = pairs[pairs.size() * block / blockCount];
     return pairKey(pair.a.index, pair.b.index);
   };
-  const auto contactAt = [&](std::uint64_t key) {
-    return static_cast<std::size_t>(
-        std::lower_bound(contacts.begin(), contacts.end(), key,
-                         [](const Contact& contact, std::uint64_t k) { return contact.key < k; }) -
-        contacts.begin());
-  };
-  const auto apartAt = [&](std::uint64_t key) {
-    return static_cast<std::size_t>(
-        std::lower_bound(apart.begin(), apart.end(), key,
-                         [](const ApartPair& pair, std::uint64_t k) { return pair.key < k; }) -
-        apart.begin());
-  };
   for (std::size_t b = 0; b < blockCount; ++b) {
-    WalkBlock& block = blocks_[b];
-    block.firstPair = pairs.size() * b / blockCount;
-    block.endPair = pairs.size() * (b + 1) / blockCount;
-    block.contacts.begin = b == 0 ? 0 : blocks_[b - 1].contacts.end;
-    block.contacts.end = b + 1 == blockCount ? contacts.size() : contactAt(firstKey(b + 1));
-    block.apart.begin = b == 0 ? 0 : blocks_[b - 1].apart.end;
-    block.apart.end = b + 1 == blockCount ? apart.size() : apartAt(firstKey(b + 1));
+    blocks_[b].firstPair = pairs.size() * b / blockCount;
+    blocks_[b].endPair = pairs.size() * (b + 1) / blockCount;
+    const bool last = b + 1 == blockCount;
+    contactBlocks_[b].begin = b == 0 ? 0 : contactBlocks_[b - 1].end;
+    contactBlocks_[b].end = last ? contacts.size() : firstAtOrAfter<Contact>(contacts, firstKey(b + 1));
+    apartBlocks_[b].begin = b == 0 ? 0 : apartBlocks_[b - 1].end;
+    apartBlocks_[b].end = last ? apart.size() : firstAtOrAfter<ApartPair>(apart, firstKey(b + 1));
   }
   tasks.parallelFor(
       static_cast<std::uint32_t>(blockCount), 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
@@ -726,24 +722,20 @@ ContactUpdateCounts ContactUpdate::walkInBlocks(const BodyStorage& bodies, std::
           block.events.contacts.clear();
           block.events.contactOfEvent.clear();
           block.events.sensors.clear();
-          InPlaceMerge<Contact> contactMerge(contacts, block.contacts.begin, block.contacts.end,
-                                             block.contacts.spill, block.contacts.overflow);
-          InPlaceMerge<ApartPair> apartMerge(apart, block.apart.begin, block.apart.end, block.apart.spill,
-                                             block.apart.overflow);
+          InPlaceMerge<Contact> contactMerge(contacts, contactBlocks_[b]);
+          InPlaceMerge<ApartPair> apartMerge(apart, apartBlocks_[b]);
           block.counts = PairPass(*this, bodies, pairs, contactMerge, apartMerge, block.pairPrevious,
                                   settings, dt, kNoPreSolve, filters, block.events, block.callbackError)
                              .run(block.firstPair, block.endPair);
-          block.contacts.inPlace = contactMerge.writtenInPlace();
-          block.apart.inPlace = apartMerge.writtenInPlace();
+          contactMerge.finish();
+          apartMerge.finish();
         }
       });
   // The blocks' records made one array each, and their events and counts added, in block order.
-  mergedContacts_.clear();
-  mergedApart_.clear();
+  compactBlocks<Contact>(contacts, contactBlocks_);
+  compactBlocks<ApartPair>(apart, apartBlocks_);
   ContactUpdateCounts counts;
   for (const WalkBlock& block : blocks_) {
-    mergedContacts_.push_back({block.contacts.begin, block.contacts.inPlace, &block.contacts.overflow});
-    mergedApart_.push_back({block.apart.begin, block.apart.inPlace, &block.apart.overflow});
     events.contacts.insert(events.contacts.end(), block.events.contacts.begin(), block.events.contacts.end());
     events.contactOfEvent.insert(events.contactOfEvent.end(), block.events.contactOfEvent.begin(),
                                  block.events.contactOfEvent.end());
@@ -752,15 +744,13 @@ ContactUpdateCounts ContactUpdate::walkInBlocks(const BodyStorage& bodies, std::
     counts.narrowPhaseTests += block.counts.narrowPhaseTests;
     counts.reusedManifolds += block.counts.reusedManifolds;
   }
-  compactBlocks<Contact>(contacts, mergedContacts_);
-  compactBlocks<ApartPair>(apart, mergedApart_);
   // A block's overflow is small once contacts come and go a few at a time; while a pile lands,
   // nearly every contact is new and lands there (the blocks start from last step's fewer ones).
   // Such overflows are freed rather than kept for good beside the array they were copied into.
-  for (WalkBlock& block : blocks_) {
-    if (block.contacts.overflow.capacity() > kKeptOverflow) Array<Contact>().swap(block.contacts.overflow);
-    if (block.apart.overflow.capacity() > kKeptOverflow) Array<ApartPair>().swap(block.apart.overflow);
-  }
+  for (MergeBlock<Contact>& block : contactBlocks_)
+    if (block.overflow.capacity() > kKeptOverflow) Array<Contact>().swap(block.overflow);
+  for (MergeBlock<ApartPair>& block : apartBlocks_)
+    if (block.overflow.capacity() > kKeptOverflow) Array<ApartPair>().swap(block.overflow);
   return counts;
 }
 
@@ -769,13 +759,13 @@ std::size_t ContactUpdate::memoryBytes() const {
                       heapBytes(velocities_) + heapBytes(likelyPlaced_) + heapBytes(proxyBodies_) +
                       heapBytes(stagedIndex_) + heapBytes(staged_) + heapBytes(contactSpill_) +
                       heapBytes(apartSpill_) + heapBytes(pairPrevious_) + heapBytes(blocks_) +
-                      heapBytes(mergedContacts_) + heapBytes(mergedApart_);
+                      heapBytes(contactBlocks_) + heapBytes(apartBlocks_);
   for (const WorkerTests& worker : staged_) bytes += heapBytes(worker.tests);
-  for (const WalkBlock& block : blocks_) {
-    bytes += heapBytes(block.contacts.spill) + heapBytes(block.contacts.overflow) +
-             heapBytes(block.apart.spill) + heapBytes(block.apart.overflow) + heapBytes(block.pairPrevious) +
-             block.events.memoryBytes();
-  }
+  for (const WalkBlock& block : blocks_) bytes += heapBytes(block.pairPrevious) + block.events.memoryBytes();
+  for (const MergeBlock<Contact>& block : contactBlocks_)
+    bytes += heapBytes(block.spill) + heapBytes(block.overflow);
+  for (const MergeBlock<ApartPair>& block : apartBlocks_)
+    bytes += heapBytes(block.spill) + heapBytes(block.overflow);
   return bytes;
 }
 

@@ -141,24 +141,15 @@ class ContactUpdate {
   Array<ApartPair> apartSpill_;
   Array<Contact> pairPrevious_;
 
-  // The walk in blocks on several workers (walkInBlocks): each block's pairs, its part of the
-  // contacts and pairs apart, its own scratch, events and counts, kept from step to step.
+  // The walk in blocks on several workers (walkInBlocks): each block's pairs, its own scratch,
+  // events and counts, and its part of the contacts and of the pairs apart (contactBlocks_ and
+  // apartBlocks_, as compactBlocks joins them), kept from step to step.
   static constexpr std::size_t kMinPairsPerBlock = 256;
   static constexpr std::size_t kBlocksPerWorker = 4;
   static constexpr std::size_t kKeptOverflow = 256;  // records a block's overflow keeps room for
-  template <typename Record>
-  struct BlockRecords {
-    std::size_t begin = 0;  // last step's records of the block's pairs: [begin, end)
-    std::size_t end = 0;
-    std::size_t inPlace = 0;  // this step's, written from begin, then the overflow
-    Array<Record> spill;
-    Array<Record> overflow;
-  };
   struct WalkBlock {
     std::size_t firstPair = 0;
     std::size_t endPair = 0;
-    BlockRecords<Contact> contacts;
-    BlockRecords<ApartPair> apart;
     Array<Contact> pairPrevious;
     StepEvents events;
     std::string callbackError;
@@ -169,8 +160,8 @@ class ContactUpdate {
                                    const ContactUpdateSettings& settings, float dt,
                                    const PairFilters& filters, StepEvents& events, TaskRunner& tasks);
   Array<WalkBlock> blocks_;
-  Array<MergedBlock<Contact>> mergedContacts_;
-  Array<MergedBlock<ApartPair>> mergedApart_;
+  Array<MergeBlock<Contact>> contactBlocks_;
+  Array<MergeBlock<ApartPair>> apartBlocks_;
   // Last step's pairs that reached the narrow phase, and of those the ones not reused: the stage
   // runs ahead when at least one in kStageWhenTestedOneIn was tested.
   static constexpr std::uint64_t kStageWhenTestedOneIn = 4;

@@ -21,12 +21,34 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <type_traits>
 #include <utility>
 
 namespace collide::detail {
+
+// The first of `records` (in key order) whose key is not below `key`: where a walk that starts at
+// `key` begins to read.
+template <typename Record>
+std::size_t firstAtOrAfter(std::span<const Record> records, std::uint64_t key) {
+  return static_cast<std::size_t>(
+      std::lower_bound(records.begin(), records.end(), key,
+                       [](const Record& record, std::uint64_t k) { return record.key < k; }) -
+      records.begin());
+}
+
+// One block of an array that several walks rewrite at once (InPlaceMerge's block constructor,
+// compactBlocks), with the walk's scratch, kept from step to step.
+template <typename Record>
+struct MergeBlock {
+  std::size_t begin = 0;  // last step's records of the block: [begin, end)
+  std::size_t end = 0;
+  std::size_t inPlace = 0;  // after the walk: this step's, written from begin, then the overflow
+  Array<Record> spill;
+  Array<Record> overflow;
+};
 
 template <typename Record>
 class InPlaceMerge {
@@ -38,20 +60,18 @@ class InPlaceMerge {
   // kept from step to step). The walk rewrites the whole array, growing it as this step needs.
   InPlaceMerge(Array<Record>& records, Array<Record>& spill)
       : records_(records), spill_(spill), readEnd_(records.size()), limit_(records.size()) {}
-  // A block of the array, [begin, end), rewritten by one of several walks at once (each over its own
-  // block and pairs): this step's records are written from `begin` up to `end` at most, and those
-  // beyond go to `overflow` (emptied here); compactBlocks then closes the gaps.
-  InPlaceMerge(Array<Record>& records, std::size_t begin, std::size_t end, Array<Record>& spill,
-               Array<Record>& overflow)
+  // A block of the array, [block.begin, block.end), rewritten by one of several walks at once (each
+  // over its own block and pairs): this step's records are written from `begin` up to `end` at most,
+  // and those beyond go to the block's overflow (emptied here); compactBlocks then closes the gaps.
+  InPlaceMerge(Array<Record>& records, MergeBlock<Record>& block)
       : records_(records),
-        spill_(spill),
-        overflow_(&overflow),
-        readEnd_(end),
-        read_(begin),
-        write_(begin),
-        begin_(begin),
-        limit_(end) {
-    overflow.clear();
+        spill_(block.spill),
+        block_(&block),
+        readEnd_(block.end),
+        read_(block.begin),
+        write_(block.begin),
+        limit_(block.end) {
+    block.overflow.clear();
   }
   InPlaceMerge(const InPlaceMerge&) = delete;
   InPlaceMerge& operator=(const InPlaceMerge&) = delete;
@@ -82,9 +102,9 @@ class InPlaceMerge {
       const Record made(std::forward<Args>(args)...);
       if (write_ == read_ && read_ < readEnd_) spill(records_[read_++]);
       if (write_ == limit_) {
-        if (overflow_) {
+        if (block_) {
           lastOverflowed_ = true;
-          return overflow_->emplace_back(made);
+          return block_->overflow.emplace_back(made);
         }
         records_.emplace_back();
         ++limit_;
@@ -107,7 +127,7 @@ class InPlaceMerge {
   // Takes back the record emplace() made last (the record turned out not to be kept).
   void dropLast() {
     if (lastOverflowed_) {
-      overflow_->pop_back();
+      block_->overflow.pop_back();
     } else {
       --write_;
     }
@@ -118,10 +138,15 @@ class InPlaceMerge {
   }
 
   // After the walk over the whole array: it holds this step's records alone (last step's not read
-  // are dropped). After a block's walk: how many of this step's records the block holds in place,
-  // from its begin (the rest are in its overflow).
-  void finish() { records_.resize(write_); }
-  std::size_t writtenInPlace() const { return write_ - begin_; }
+  // are dropped). After a block's walk: the block knows how many of this step's records it holds in
+  // place (the rest are in its overflow).
+  void finish() {
+    if (block_) {
+      block_->inPlace = write_ - block_->begin;
+    } else {
+      records_.resize(write_);
+    }
+  }
 
  private:
   void spill(const Record& record) {
@@ -139,24 +164,14 @@ class InPlaceMerge {
 
   Array<Record>& records_;
   Array<Record>& spill_;
-  Array<Record>* overflow_ = nullptr;  // a block's records beyond its end; null: the array grows
-  std::size_t readEnd_;                // last step's records in the array are [read_, readEnd_)
-  std::size_t read_ = 0;               // and those in the spill ring (spillCount_ from spillHead_) come first
+  MergeBlock<Record>* block_ = nullptr;  // a block's walk (its overflow); null: the array grows
+  std::size_t readEnd_;                  // last step's records in the array are [read_, readEnd_)
+  std::size_t read_ = 0;  // and those in the spill ring (spillCount_ from spillHead_) come first
   std::size_t spillHead_ = 0;
   std::size_t spillCount_ = 0;
-  std::size_t write_ = 0;  // this step's records are [begin_, write_)
-  std::size_t begin_ = 0;
-  std::size_t limit_;  // writes in the array stop here
+  std::size_t write_ = 0;  // this step's records are written from the block's begin (or 0) to here
+  std::size_t limit_;      // writes in the array stop here
   bool lastOverflowed_ = false;
-};
-
-// One block's walk as compactBlocks takes it: this step's records in place from `begin`, then those
-// in its overflow.
-template <typename Record>
-struct MergedBlock {
-  std::size_t begin = 0;
-  std::size_t inPlace = 0;
-  const Array<Record>* overflow = nullptr;
 };
 
 // After walks over consecutive blocks of `records`: the blocks' records made one array in block
@@ -164,25 +179,26 @@ struct MergedBlock {
 // towards the back, back to front: no block is written over before it has moved (each block's
 // final place starts after every earlier block's final end, which is past that block's data).
 template <typename Record>
-void compactBlocks(Array<Record>& records, std::span<const MergedBlock<Record>> blocks) {
+void compactBlocks(Array<Record>& records, std::span<const MergeBlock<Record>> blocks) {
+  const auto written = [](const MergeBlock<Record>& block) { return block.inPlace + block.overflow.size(); };
   std::size_t total = 0;
-  for (const MergedBlock<Record>& block : blocks) total += block.inPlace + block.overflow->size();
+  for (const MergeBlock<Record>& block : blocks) total += written(block);
   if (total > records.size()) records.resize(total);
   const auto at = [&](std::size_t index) { return records.begin() + static_cast<std::ptrdiff_t>(index); };
   std::size_t offset = 0;
-  for (const MergedBlock<Record>& block : blocks) {
+  for (const MergeBlock<Record>& block : blocks) {
     if (offset < block.begin) std::copy(at(block.begin), at(block.begin + block.inPlace), at(offset));
-    offset += block.inPlace + block.overflow->size();
+    offset += written(block);
   }
   for (std::size_t b = blocks.size(); b-- > 0;) {
-    offset -= blocks[b].inPlace + blocks[b].overflow->size();
-    const MergedBlock<Record>& block = blocks[b];
+    const MergeBlock<Record>& block = blocks[b];
+    offset -= written(block);
     if (offset > block.begin)
       std::copy_backward(at(block.begin), at(block.begin + block.inPlace), at(offset + block.inPlace));
   }
-  for (const MergedBlock<Record>& block : blocks) {
-    std::copy(block.overflow->begin(), block.overflow->end(), at(offset + block.inPlace));
-    offset += block.inPlace + block.overflow->size();
+  for (const MergeBlock<Record>& block : blocks) {
+    std::copy(block.overflow.begin(), block.overflow.end(), at(offset + block.inPlace));
+    offset += written(block);
   }
   records.resize(total);
 }

@@ -81,44 +81,51 @@ std::vector<Record> walk(Array<Record>& records, Array<Record>& spill, const std
 // narrow phase's workers do), then the blocks joined (compactBlocks).
 std::vector<Record> walkInBlocks(Array<Record>& records, const std::vector<Step>& steps, std::uint64_t tag,
                                  std::size_t blockCount) {
-  struct Block {
-    std::size_t firstStep, endStep, begin, end;
-    Array<Record> spill, overflow;
-    std::size_t inPlace = 0;
-    std::vector<Record> read;
-  };
-  std::vector<Block> blocks(blockCount);
-  const auto recordAt = [&](std::uint64_t key) {
-    return static_cast<std::size_t>(
-        std::lower_bound(records.begin(), records.end(), key,
-                         [](const Record& r, std::uint64_t k) { return r.key < k; }) -
-        records.begin());
-  };
+  std::vector<MergeBlock<Record>> blocks(blockCount);
+  std::vector<std::size_t> firstStep(blockCount + 1);
+  for (std::size_t b = 0; b <= blockCount; ++b) firstStep[b] = steps.size() * b / blockCount;
   for (std::size_t b = 0; b < blockCount; ++b) {
-    Block& block = blocks[b];
-    block.firstStep = steps.size() * b / blockCount;
-    block.endStep = steps.size() * (b + 1) / blockCount;
+    MergeBlock<Record>& block = blocks[b];
     block.begin = b == 0 ? 0 : blocks[b - 1].end;
-    block.end = b + 1 == blockCount || block.endStep == steps.size() ? records.size()
-                                                                     : recordAt(steps[block.endStep].key);
+    block.end = b + 1 == blockCount || firstStep[b + 1] == steps.size()
+                    ? records.size()
+                    : firstAtOrAfter<Record>(records, steps[firstStep[b + 1]].key);
     if (block.end < block.begin) block.end = block.begin;
   }
   // In reverse, so that a block that wrote past its end would spoil a block already walked.
+  std::vector<std::vector<Record>> readByBlock(blockCount);
   for (std::size_t b = blockCount; b-- > 0;) {
-    Block& block = blocks[b];
-    InPlaceMerge<Record> merge(records, block.begin, block.end, block.spill, block.overflow);
-    walkSteps(merge, std::span<const Step>(steps).subspan(block.firstStep, block.endStep - block.firstStep),
-              tag, block.read);
-    block.inPlace = merge.writtenInPlace();
+    InPlaceMerge<Record> merge(records, blocks[b]);
+    walkSteps(merge, std::span<const Step>(steps).subspan(firstStep[b], firstStep[b + 1] - firstStep[b]), tag,
+              readByBlock[b]);
+    merge.finish();
   }
-  std::vector<MergedBlock<Record>> merged;
+  compactBlocks<Record>(records, blocks);
   std::vector<Record> read;
-  for (const Block& block : blocks) {
-    merged.push_back({block.begin, block.inPlace, &block.overflow});
-    read.insert(read.end(), block.read.begin(), block.read.end());
-  }
-  compactBlocks<Record>(records, merged);
+  for (const std::vector<Record>& blockRead : readByBlock)
+    read.insert(read.end(), blockRead.begin(), blockRead.end());
   return read;
+}
+
+// A step's keys below `keyCount`: each present as `present(key, had, draw)` says (`had`: last step
+// held it, in `reference`; `draw` uniform in [0, 100)), written one of the three ways at random or,
+// one in `apartOneIn`, not at all (a pair found apart). `expected` gets this step's records.
+template <typename Present>
+std::vector<Step> randomStep(std::mt19937& rng, const std::vector<Record>& reference, std::uint64_t keyCount,
+                             unsigned apartOneIn, std::uint64_t tag, Present present,
+                             std::vector<Record>& expected) {
+  std::vector<Step> steps;
+  expected.clear();
+  for (std::uint64_t key = 0; key < keyCount; ++key) {
+    const bool had = std::binary_search(reference.begin(), reference.end(), Record{key, 0},
+                                        [](const Record& a, const Record& b) { return a.key < b.key; });
+    if (!present(key, had, static_cast<int>(rng() % 100))) continue;
+    const Write write = static_cast<Write>(1 + rng() % 3);
+    const bool written = rng() % apartOneIn != 0;
+    steps.push_back({key, written ? write : Write::None});
+    if (written) expected.push_back({key, tag});
+  }
+  return steps;
 }
 
 TEST(InPlaceMerge, EveryOldRecordIsReadInOrderAndTheNewOnesWritten) {
@@ -130,21 +137,15 @@ TEST(InPlaceMerge, EveryOldRecordIsReadInOrderAndTheNewOnesWritten) {
     const auto tag = static_cast<std::uint64_t>(stepIndex);
     // This step's keys: last step's, some dropped, some new ones anywhere (runs of them at times, so
     // that the written records run far ahead of the read ones, or fall far behind).
-    std::vector<Step> steps;
-    std::vector<Record> expected;
     const int mode = stepIndex % 5;
-    for (std::uint64_t key = 0; key < 300; ++key) {
-      const bool had = std::binary_search(reference.begin(), reference.end(), Record{key, 0},
-                                          [](const Record& a, const Record& b) { return a.key < b.key; });
-      const int draw = static_cast<int>(rng() % 100);
-      bool present = had ? draw >= (mode == 1 ? 40 : 5) : draw < (mode == 2 ? 60 : mode == 3 ? 2 : 10);
-      if (mode == 4 && key < 40) present = true;  // a run of new records at the front
-      if (!present) continue;
-      const Write write = static_cast<Write>(1 + rng() % 3);
-      const bool written = rng() % 10 != 0;  // some pairs are found apart: no record
-      steps.push_back({key, written ? write : Write::None});
-      if (written) expected.push_back({key, tag});
-    }
+    std::vector<Record> expected;
+    const std::vector<Step> steps = randomStep(
+        rng, reference, 300, 10, tag,
+        [&](std::uint64_t key, bool had, int draw) {
+          if (mode == 4 && key < 40) return true;  // a run of new records at the front
+          return had ? draw >= (mode == 1 ? 40 : 5) : draw < (mode == 2 ? 60 : mode == 3 ? 2 : 10);
+        },
+        expected);
     const std::vector<Record> read = walk(records, spill, steps, tag);
     ASSERT_EQ(read, reference) << "step " << stepIndex << ": last step's records, each once, in key order";
     ASSERT_EQ(std::vector<Record>(records.begin(), records.end()), expected) << "step " << stepIndex;
@@ -160,23 +161,17 @@ TEST(InPlaceMerge, WalksInBlocksJoinedGiveTheOneWalksArray) {
     std::vector<Record> reference;
     for (int stepIndex = 1; stepIndex <= 200; ++stepIndex) {
       const auto tag = static_cast<std::uint64_t>(stepIndex);
-      std::vector<Step> steps;
-      std::vector<Record> expected;
       // Some steps add records mostly in the first blocks (every later block then moves back), some
       // remove them there (every later block moves to the front).
       const int mode = stepIndex % 4;
-      for (std::uint64_t key = 0; key < 400; ++key) {
-        const bool had = std::binary_search(reference.begin(), reference.end(), Record{key, 0},
-                                            [](const Record& a, const Record& b) { return a.key < b.key; });
-        const int draw = static_cast<int>(rng() % 100);
-        const bool front = key < 100;
-        bool present = had ? draw >= (mode == 1 && front ? 60 : 5) : draw < (mode == 2 && front ? 70 : 8);
-        if (!present) continue;
-        const Write write = static_cast<Write>(1 + rng() % 3);
-        const bool written = rng() % 8 != 0;
-        steps.push_back({key, written ? write : Write::None});
-        if (written) expected.push_back({key, tag});
-      }
+      std::vector<Record> expected;
+      const std::vector<Step> steps = randomStep(
+          rng, reference, 400, 8, tag,
+          [&](std::uint64_t key, bool had, int draw) {
+            const bool front = key < 100;
+            return had ? draw >= (mode == 1 && front ? 60 : 5) : draw < (mode == 2 && front ? 70 : 8);
+          },
+          expected);
       const std::vector<Record> read = walkInBlocks(records, steps, tag, blockCount);
       ASSERT_EQ(read, reference) << blockCount << " blocks, step " << stepIndex;
       ASSERT_EQ(std::vector<Record>(records.begin(), records.end()), expected)
