@@ -4,6 +4,7 @@
 
 #include "dynamics/continuous.h"
 #include "dynamics/joints/joint_rows.h"
+#include "memory/heap_bytes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,56 +32,110 @@ void prepareJoints(const JointSolverView& view, Array<Joint>& joints) {
   }
 }
 
-void warmStartJoints(const JointSolverView& view, Array<Joint>& joints) {
-  for (Joint& joint : joints) {
-    if (!joint.active) continue;
-    switch (joint.type) {
-      case JointType::Distance:
-        warmStartDistance(view, joint);
-        break;
-      case JointType::Ball:
-        warmStartBall(view, joint);
-        break;
-      case JointType::Hinge:
-        warmStartHinge(view, joint);
-        break;
-      case JointType::Slider:
-        warmStartSlider(view, joint);
-        break;
-      case JointType::Fixed:
-        warmStartFixed(view, joint);
-        break;
-      case JointType::Cone:
-        warmStartCone(view, joint);
-        break;
-    }
+namespace {
+
+void warmStartJoint(const JointSolverView& view, Joint& joint) {
+  switch (joint.type) {
+    case JointType::Distance:
+      warmStartDistance(view, joint);
+      break;
+    case JointType::Ball:
+      warmStartBall(view, joint);
+      break;
+    case JointType::Hinge:
+      warmStartHinge(view, joint);
+      break;
+    case JointType::Slider:
+      warmStartSlider(view, joint);
+      break;
+    case JointType::Fixed:
+      warmStartFixed(view, joint);
+      break;
+    case JointType::Cone:
+      warmStartCone(view, joint);
+      break;
   }
 }
 
-void solveJoints(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias) {
-  for (Joint& joint : joints) {
-    if (!joint.active) continue;
-    switch (joint.type) {
-      case JointType::Distance:
-        solveDistance(view, joint, h, rigidHertz, useBias);
-        break;
-      case JointType::Ball:
-        solveBall(view, joint, h, rigidHertz, useBias);
-        break;
-      case JointType::Hinge:
-        solveHinge(view, joint, h, rigidHertz, useBias);
-        break;
-      case JointType::Slider:
-        solveSlider(view, joint, h, rigidHertz, useBias);
-        break;
-      case JointType::Fixed:
-        solveFixed(view, joint, h, rigidHertz, useBias);
-        break;
-      case JointType::Cone:
-        solveCone(view, joint, h, rigidHertz, useBias);
-        break;
-    }
+void solveJoint(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
+  switch (joint.type) {
+    case JointType::Distance:
+      solveDistance(view, joint, h, rigidHertz, useBias);
+      break;
+    case JointType::Ball:
+      solveBall(view, joint, h, rigidHertz, useBias);
+      break;
+    case JointType::Hinge:
+      solveHinge(view, joint, h, rigidHertz, useBias);
+      break;
+    case JointType::Slider:
+      solveSlider(view, joint, h, rigidHertz, useBias);
+      break;
+    case JointType::Fixed:
+      solveFixed(view, joint, h, rigidHertz, useBias);
+      break;
+    case JointType::Cone:
+      solveCone(view, joint, h, rigidHertz, useBias);
+      break;
   }
+}
+
+}  // namespace
+
+void JointWaves::prepare(const JointSolverView& view, const Array<Joint>& joints) {
+  // The solver body a joint writes: a dynamic one (a particle's, a stopped body's too).
+  const auto written = [&](std::uint32_t body) {
+    const std::int32_t j = view.solverOf[body];
+    return j != kNoSolverBody && view.infos[static_cast<std::size_t>(j)].dynamic ? j : std::int32_t{-1};
+  };
+  lastWave_.assign(view.bodies.size(), 0);
+  waveOf_.clear();
+  waveStart_.assign(1, 0);
+  for (const Joint& joint : joints) {
+    if (!joint.active) continue;
+    const std::int32_t a = written(joint.bodyA);
+    const std::int32_t b = written(joint.bodyB);
+    std::uint32_t wave = 0;
+    if (a >= 0) wave = std::max(wave, lastWave_[static_cast<std::size_t>(a)]);
+    if (b >= 0) wave = std::max(wave, lastWave_[static_cast<std::size_t>(b)]);
+    if (a >= 0) lastWave_[static_cast<std::size_t>(a)] = wave + 1;
+    if (b >= 0) lastWave_[static_cast<std::size_t>(b)] = wave + 1;
+    waveOf_.push_back(wave);
+    if (waveStart_.size() < wave + 2) waveStart_.resize(wave + 2, 0);
+    ++waveStart_[wave + 1];
+  }
+  for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) waveStart_[w + 1] += waveStart_[w];
+  order_.resize(waveOf_.size());
+  Array<std::uint32_t>& fill = lastWave_;  // reused: the next slot of each wave
+  fill.assign(waveStart_.begin(), waveStart_.end());
+  std::size_t k = 0;
+  for (std::uint32_t i = 0; i < joints.size(); ++i) {
+    if (joints[i].active) order_[fill[waveOf_[k++]]++] = i;
+  }
+}
+
+template <typename F>
+void JointWaves::forEachJoint(TaskRunner& tasks, F&& f) {
+  for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
+    const std::uint32_t begin = waveStart_[w];
+    tasks.parallelFor(waveStart_[w + 1] - begin, kJointsPerRange,
+                      [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
+                        for (std::uint32_t k = begin + first; k < begin + last; ++k) f(order_[k]);
+                      });
+  }
+}
+
+void JointWaves::warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks) {
+  forEachJoint(tasks, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); });
+}
+
+void JointWaves::solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz,
+                       bool useBias, TaskRunner& tasks) {
+  forEachJoint(tasks, [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); });
+}
+
+std::size_t JointWaves::memoryBytes() const {
+  return heapBytes(order_) + heapBytes(waveStart_) + heapBytes(waveOf_) + heapBytes(lastWave_);
 }
 
 void projectJoints(const JointSolverView& view, Array<Joint>& joints) {

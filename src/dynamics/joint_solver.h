@@ -11,6 +11,7 @@
 // velocity constraints in the relax pass; a joint given a softness (hertz > 0) is a spring in both.
 #pragma once
 
+#include "base/task_runner.h"
 #include "bodies/body_storage.h"
 #include "dynamics/solver_body.h"
 
@@ -84,11 +85,37 @@ struct JointSolverView {
 
 // Once per step: which joints take part (at least one awake dynamic body).
 void prepareJoints(const JointSolverView& view, Array<Joint>& joints);
-// Per substep, over the active joints: apply the accumulated impulses at the current pose.
-void warmStartJoints(const JointSolverView& view, Array<Joint>& joints);
-// Per substep: one pass; useBias = false is the relax pass (rigid rows without position bias).
-// rigidHertz: the stiffness of the rigid rows' position correction (twice the contact hertz).
-void solveJoints(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias);
+
+// The Gauss-Seidel passes over the active joints in waves: a joint's wave is one past the last wave
+// of an earlier joint that writes one of its bodies, so the joints of a wave share no dynamic body
+// (a graph colouring, constraint_graph.h) and every body sees its joints in joint order. The step's
+// workers take a wave's joints in parallel ranges, and the pass gives exactly what one joint after
+// another in joint order gives, at every worker count: a chain built from its anchor keeps the
+// order that converges fastest, and many ragdolls or a net make wide waves.
+class JointWaves {
+ public:
+  // Once per step, after prepareJoints.
+  void prepare(const JointSolverView& view, const Array<Joint>& joints);
+  // Per substep: apply the accumulated impulses at the current pose.
+  void warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks);
+  // Per substep: one pass; useBias = false is the relax pass (rigid rows without position bias).
+  // rigidHertz: the stiffness of the rigid rows' position correction (twice the contact hertz).
+  void solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias,
+             TaskRunner& tasks);
+  std::size_t memoryBytes() const;
+
+ private:
+  // Joints per parallel range: a joint's pass is some tens of nanoseconds. A smaller wave runs on
+  // the calling thread.
+  static constexpr std::uint32_t kJointsPerRange = 64;
+  template <typename F>
+  void forEachJoint(TaskRunner& tasks, F&& f);
+
+  Array<std::uint32_t> order_;      // the active joints by wave, in joint order within a wave
+  Array<std::uint32_t> waveStart_;  // wave w's joints: order_[waveStart_[w] .. waveStart_[w + 1])
+  Array<std::uint32_t> waveOf_;     // per active joint, in joint order
+  Array<std::uint32_t> lastWave_;   // per solver body: 1 + the wave of its last joint so far
+};
 
 // Per substep, after the position update: the length a rigid distance joint lost or gained beyond
 // kJointLengthSlop is removed by moving its bodies (non-linear Gauss-Seidel on positions, Box2D

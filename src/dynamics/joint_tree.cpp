@@ -93,6 +93,12 @@ std::int32_t treeBody(const JointSolverView& view, std::uint32_t body) {
   return info.dynamic && !info.particle && !info.faulted ? j : -1;
 }
 
+// Static, kinematic and sleeping bodies: the joint rows never write them.
+bool isGround(const JointSolverView& view, std::uint32_t body) {
+  const std::int32_t j = view.solverOf[body];
+  return j == kNoSolverBody || !view.infos[static_cast<std::size_t>(j)].dynamic;
+}
+
 std::int32_t findRoot(Array<std::int32_t>& parent, std::int32_t i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
     parent[static_cast<std::size_t>(i)] =
@@ -184,6 +190,9 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
     const std::int32_t a = treeBody(view, joint.bodyA);
     const std::int32_t b = treeBody(view, joint.bodyB);
     if (a == b) continue;  // both ground
+    // A particle (or a body the guard stopped) is no ground: the joint's rows would move it, and two
+    // trees solved side by side would both write it. Its joints stay Gauss-Seidel.
+    if ((a < 0 && !isGround(view, joint.bodyA)) || (b < 0 && !isGround(view, joint.bodyB))) continue;
     if (a < 0 || b < 0) {
       const std::int32_t body = a < 0 ? b : a;
       const std::int32_t root = findRoot(parentOf_, body);
@@ -286,6 +295,21 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   }
   treeStart_.push_back(static_cast<std::uint32_t>(nodes_.size()));
 
+  // Each tree's entries in entry order (a counting sort by tree).
+  const std::size_t treeCount = treeStart_.size() - 1;
+  Array<std::uint32_t> treeOfNode(nodes_.size());
+  for (std::size_t t = 0; t < treeCount; ++t)
+    std::fill(treeOfNode.begin() + treeStart_[t], treeOfNode.begin() + treeStart_[t + 1], std::uint32_t(t));
+  treeEntryStart_.assign(treeCount + 1, 0);
+  for (const Entry& entry : entries_) ++treeEntryStart_[treeOfNode[static_cast<std::size_t>(entry.node)] + 1];
+  for (std::size_t t = 0; t < treeCount; ++t) treeEntryStart_[t + 1] += treeEntryStart_[t];
+  treeEntries_.resize(entries_.size());
+  {
+    Array<std::uint32_t> fill(treeEntryStart_.begin(), treeEntryStart_.end() - 1);
+    for (std::uint32_t e = 0; e < entries_.size(); ++e)
+      treeEntries_[fill[treeOfNode[static_cast<std::size_t>(entries_[e].node)]]++] = e;
+  }
+
   // Sizes and offsets.
   std::uint32_t matrices = 0;
   std::uint32_t vectors = 0;
@@ -324,9 +348,12 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
 // impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
 // The biased pass comes at the warm start's pose (only velocities change in between), so it keeps
 // the warm start's frames and equality rows and takes its limits afresh.
-void JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass) {
+bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass,
+                          std::size_t t) {
   EqualityRows candidates;
-  for (Entry& entry : entries_) {
+  bool tookLimit = false;
+  for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+    Entry& entry = entries_[treeEntries_[k]];
     Joint& joint = joints[entry.joint];
     if (pass == RowPass::SolveAtWarmStartPose) {
       entry.rows.count = entry.equalityCount;
@@ -351,8 +378,10 @@ void JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, flo
       taken |= row.limitBit;
     }
     joint.treeLimits = taken;
+    tookLimit = tookLimit || taken != 0;
   }
-  if (pass != RowPass::SolveAtWarmStartPose) addGeometricStiffness(view, joints, h);
+  if (pass != RowPass::SolveAtWarmStartPose) addGeometricStiffness(view, joints, h, t);
+  return tookLimit;
 }
 
 // Drops the limit rows of a tree whose impulse would pull (the solve's total below 0): those
@@ -395,11 +424,12 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
 // the bodies through it; the joints' internal impulses still cancel, so momentum is kept. The
 // projection uses the bodies' own inertia: through the stiffened one, its Newton steps after a
 // plank chain's hard landing moved the planks off their rows instead of onto them.
-void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h) {
-  for (const Node& node : nodes_) {
-    if (node.body < 0) continue;
-    const std::size_t body = static_cast<std::size_t>(node.body);
-    addedInertia_[body] = Mat3(0.0f);
+void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h,
+                                      std::size_t t) {
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
+  for (std::size_t n = first; n < last; ++n) {
+    if (nodes_[n].body >= 0) addedInertia_[static_cast<std::size_t>(nodes_[n].body)] = Mat3(0.0f);
   }
   const auto add = [&](std::int32_t body, const Vec3& r, float impulse) {
     if (body < 0) return;
@@ -409,22 +439,24 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
     addedInertia_[static_cast<std::size_t>(body)] +=
         (h * impulse * lever) * (Mat3(1.0f) - glm::outerProduct(n, n));
   };
-  for (const Entry& entry : entries_) {
+  for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+    const Entry& entry = entries_[treeEntries_[k]];
     const Joint& joint = joints[entry.joint];
     if (joint.type == JointType::Slider) continue;  // its linear rows hold no point
     const float impulse = glm::length(joint.linearImpulse);
     add(entry.bodyA, entry.frame.rA, impulse);
     add(entry.bodyB, entry.frame.rB, impulse);
   }
-  for (const Node& node : nodes_) {
-    if (node.body < 0) continue;
-    const std::size_t body = static_cast<std::size_t>(node.body);
+  for (std::size_t n = first; n < last; ++n) {
+    if (nodes_[n].body < 0) continue;
+    const std::size_t body = static_cast<std::size_t>(nodes_[n].body);
     const Mat3& inverse = view.infos[body].inverseInertiaWorld;
     effectiveInverseInertia_[body] = addedInertia_[body] == Mat3(0.0f)
                                          ? inverse
                                          : glm::inverse(glm::inverse(inverse) + addedInertia_[body]);
   }
-  for (Entry& entry : entries_) {
+  for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+    Entry& entry = entries_[treeEntries_[k]];
     if (entry.bodyA >= 0)
       entry.frame.a.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyA)];
     if (entry.bodyB >= 0)
@@ -432,68 +464,78 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
   }
 }
 
-void JointTree::warmStart(const JointSolverView& view, Array<Joint>& joints, float h) {
+void JointTree::warmStart(const JointSolverView& view, Array<Joint>& joints, float h, TaskRunner& tasks) {
   if (entries_.empty()) return;
-  buildRows(view, joints, h, RowPass::WarmStart);
-  for (Entry& entry : entries_) {
-    if (!joints[entry.joint].inTree) continue;
-    for (int i = 0; i < entry.rows.count; ++i) {
-      const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
-      applyRow(entry.frame.a, entry.frame.b, row.row, *row.accumulated);
+  forEachTree(tasks, [&](std::size_t t) {
+    buildRows(view, joints, h, RowPass::WarmStart, t);
+    for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+      const Entry& entry = entries_[treeEntries_[k]];
+      if (!joints[entry.joint].inTree) continue;
+      for (int i = 0; i < entry.rows.count; ++i) {
+        const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+        applyRow(entry.frame.a, entry.frame.b, row.row, *row.accumulated);
+      }
     }
-  }
+  });
 }
 
 void JointTree::solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz,
-                      bool useBias) {
+                      bool useBias, TaskRunner& tasks) {
   if (entries_.empty()) return;
   h_ = h;
-  buildRows(view, joints, h, useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve);
   const Softness soft = rowSoftness(JointSoftness{}, rigidHertz, h, useBias);
-  for (std::size_t t = 0; t + 1 < treeStart_.size(); ++t) {
-    const std::size_t first = treeStart_[t];
-    const std::size_t last = treeStart_[t + 1];
-    bool solved = false;
-    for (int round = 0; round < kLimitRounds; ++round) {
-      solved = fillTree(view, first, last, soft.biasRate, false) && factorTree(first, last);
-      if (!solved) break;
-      solveTree(first, last);
-      if (round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
-    }
-    for (std::size_t n = first; n < last; ++n) {
-      if (nodes_[n].joint < 0) continue;
-      Joint& joint = joints[entries_[static_cast<std::size_t>(nodes_[n].joint)].joint];
-      joint.inTree = solved;
-      if (!solved) joint.treeLimits = 0;
-    }
-    if (!solved) continue;
-    forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
-      float impulse = soft.massScale * float(lambda) - soft.impulseScale * *row.accumulated;
-      // A limit still pulling after the last round: held at zero, as the Gauss-Seidel row would.
-      if (row.limitBit != 0) impulse = std::max(impulse, -*row.accumulated);
-      *row.accumulated += impulse;
-      applyRow(entry.frame.a, entry.frame.b, row.row, impulse);
-    });
-  }
+  forEachTree(tasks, [&](std::size_t t) { solveTreePass(view, joints, h, soft, useBias, t); });
 }
 
-void JointTree::project(const JointSolverView& view, Array<Joint>& joints) {
+void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints, float h,
+                              const Softness& soft, bool useBias, std::size_t t) {
+  const bool tookLimit =
+      buildRows(view, joints, h, useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve, t);
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
+  bool solved = false;
+  for (int round = 0; round < kLimitRounds; ++round) {
+    solved = fillTree(view, first, last, soft.biasRate, false) && factorTree(first, last);
+    if (!solved) break;
+    solveTree(first, last);
+    // Without a limit row there is nothing to drop: one round.
+    if (!tookLimit || round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
+  }
+  for (std::size_t n = first; n < last; ++n) {
+    if (nodes_[n].joint < 0) continue;
+    Joint& joint = joints[entries_[static_cast<std::size_t>(nodes_[n].joint)].joint];
+    joint.inTree = solved;
+    if (!solved) joint.treeLimits = 0;
+  }
+  if (!solved) return;
+  forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
+    float impulse = soft.massScale * float(lambda) - soft.impulseScale * *row.accumulated;
+    // A limit still pulling after the last round: held at zero, as the Gauss-Seidel row would.
+    if (row.limitBit != 0) impulse = std::max(impulse, -*row.accumulated);
+    *row.accumulated += impulse;
+    applyRow(entry.frame.a, entry.frame.b, row.row, impulse);
+  });
+}
+
+void JointTree::project(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks) {
   if (entries_.empty()) return;
-  for (std::size_t t = 0; t + 1 < treeStart_.size(); ++t) {
-    const std::size_t first = treeStart_[t];
-    const std::size_t last = treeStart_[t + 1];
-    for (int iteration = 0; iteration < kTreeProjectionIterations; ++iteration) {
-      buildTreeRows(view, joints, first, last);
-      bool off = false;
-      forEachRow(first, last, [&](Entry&, EqualityRow& row, double) {
-        off = off || !(std::abs(row.error) <= kBallJointGapSlop);
-      });
-      if (!off || !fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
-      solveTree(first, last);
-      forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
-        applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
-      });
-    }
+  forEachTree(tasks, [&](std::size_t t) { projectTree(view, joints, t); });
+}
+
+void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, std::size_t t) {
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
+  for (int iteration = 0; iteration < kTreeProjectionIterations; ++iteration) {
+    buildTreeRows(view, joints, first, last);
+    bool off = false;
+    forEachRow(first, last, [&](Entry&, EqualityRow& row, double) {
+      off = off || !(std::abs(row.error) <= kBallJointGapSlop);
+    });
+    if (!off || !fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
+    solveTree(first, last);
+    forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
+      applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
+    });
   }
 }
 

@@ -21,6 +21,7 @@
 // with the tree's coupled effective mass in place of the row's own.
 #pragma once
 
+#include "base/task_runner.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/joints/joint_rows.h"
 
@@ -40,21 +41,25 @@ class JointTree {
  public:
   // Once per step, after prepareJoints: the forest of the active rigid joints and its order.
   void prepare(const JointSolverView& view, Array<Joint>& joints);
-  // Per substep, after warmStartJoints (which leaves a tree joint's rigid rows out): the rows'
+  // Trees share no body that moves, so each pass takes them in parallel on the step's workers
+  // (tasks); the answer does not depend on which worker solved which tree.
+  //
+  // Per substep, after JointWaves::warmStart (which leaves a tree joint's rigid rows out): the rows'
   // accumulated impulses applied, through the inertia the tree's bodies solve with.
-  void warmStart(const JointSolverView& view, Array<Joint>& joints, float h);
-  // One pass (useBias as in solveJoints): each tree's rows at the bodies' current pose, factored and
+  void warmStart(const JointSolverView& view, Array<Joint>& joints, float h, TaskRunner& tasks);
+  // One pass (useBias as in JointWaves::solve): each tree's rows at the bodies' current pose, factored and
   // solved, the impulses applied. A tree whose factor fails (rows that lost their rank) hands its
   // joints to the Gauss-Seidel pass that follows (Joint::inTree false for that pass). The biased
   // pass must follow warmStart with no position update between: it reuses the warm start's rows.
-  void solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias);
+  void solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias,
+             TaskRunner& tasks);
 
   // After the position update: a tree whose rows are off by more than kBallJointGapSlop (m or rad)
   // is moved back onto them by Newton steps on positions through the same system, K lambda = -C
   // (post-stabilisation, Cline and Pai 2003), with the bodies' own inertia. Velocities are not
   // touched. A whipping chain opens its joints by the curvature of its links' paths, which no
   // velocity row sees.
-  void project(const JointSolverView& view, Array<Joint>& joints);
+  void project(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks);
 
   // Joints solved in trees this step (for tests and statistics).
   std::size_t jointCount() const { return entries_.size(); }
@@ -86,9 +91,21 @@ class JointTree {
   bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
                 bool positions);
   enum class RowPass { WarmStart, SolveAtWarmStartPose, Solve };
-  void buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass);
+  // Tree t's rows for the pass; true if it took a limit row.
+  bool buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass, std::size_t t);
   bool dropPullingLimits(Array<Joint>& joints, std::size_t first, std::size_t last, const Softness& soft);
-  void addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h);
+  void addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h, std::size_t t);
+  void solveTreePass(const JointSolverView& view, Array<Joint>& joints, float h, const Softness& soft,
+                     bool useBias, std::size_t t);
+  void projectTree(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
+  // f(t) for every tree, in parallel ranges of trees.
+  template <typename F>
+  void forEachTree(TaskRunner& tasks, F&& f) {
+    const std::uint32_t trees = static_cast<std::uint32_t>(treeStart_.size() - 1);
+    tasks.parallelFor(trees, 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t t = begin; t < end; ++t) f(std::size_t{t});
+    });
+  }
   void buildTreeRows(const JointSolverView& view, Array<Joint>& joints, std::size_t first, std::size_t last);
   bool factorTree(std::size_t first, std::size_t last);
   void solveTree(std::size_t first, std::size_t last);
@@ -109,6 +126,10 @@ class JointTree {
   Array<Entry> entries_;
   Array<Node> nodes_;               // per tree, in elimination order (leaves first, root last)
   Array<std::uint32_t> treeStart_;  // tree t's nodes: [treeStart_[t], treeStart_[t + 1])
+  // Tree t's entries in entry order (the order their loads sum in): treeEntries_[treeEntryStart_[t]
+  // .. treeEntryStart_[t + 1]).
+  Array<std::uint32_t> treeEntries_;
+  Array<std::uint32_t> treeEntryStart_;
   Array<double> matrices_;
   Array<double> rhs_;
   Array<double> solution_;

@@ -123,6 +123,7 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   JointSolverView view{bodies_, infos_, solverOf_, storage};
   prepareJoints(view, joints);
+  jointWaves_.prepare(view, joints);
   jointTree_.prepare(view, joints);
   // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
   // joint past it made a net draped over a ball shiver instead of sleeping).
@@ -133,20 +134,20 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
       integrateVelocities(bodies_, infos_, storage, h, begin, end);
       guard(begin, end);  // before a bad velocity reaches a contact
     });
-    warmStartJoints(view, joints);
-    jointTree_.warmStart(view, joints, h);
+    jointWaves_.warmStart(view, joints, tasks);
+    jointTree_.warmStart(view, joints, h, tasks);
     contacts_.warmStart(bodies_, tasks);
-    solveJoints(view, joints, h, rigidHertz, true);
-    jointTree_.solve(view, joints, h, rigidHertz, true);
+    jointWaves_.solve(view, joints, h, rigidHertz, true, tasks);
+    jointTree_.solve(view, joints, h, rigidHertz, true, tasks);
     contacts_.solve(bodies_, h, true, tasks);
     tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       integratePositions(bodies_, infos_, h, begin, end);
     });
     if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
-    jointTree_.project(view, joints);
+    jointTree_.project(view, joints, tasks);
     projectJoints(view, joints);
-    solveJoints(view, joints, h, rigidHertz, false);
-    jointTree_.solve(view, joints, h, rigidHertz, false);
+    jointWaves_.solve(view, joints, h, rigidHertz, false, tasks);
+    jointTree_.solve(view, joints, h, rigidHertz, false, tasks);
     for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, tasks);
     guard(tasks);
   }

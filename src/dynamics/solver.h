@@ -7,8 +7,9 @@
 //   3. restitution, the impulses back into the contacts, the new poses and velocities back into the
 //      body storage (inertia refreshed), and bodies the guard stopped frozen and reported.
 // Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
-// last word on penetration: first the rigid rows of joint trees, solved directly (joint_tree.h),
-// then the joints' Gauss-Seidel rows (springs, motors, limits, and the joints no tree takes).
+// last word on penetration: first the joints' Gauss-Seidel rows (springs, motors, limits, and the
+// joints no tree takes; in waves, joint_solver.h), then the rigid rows of joint trees, solved
+// directly (joint_tree.h).
 #pragma once
 
 #include "base/task_runner.h"
@@ -48,9 +49,9 @@ class StepSolver {
   // The contacts the last solve took, in solve order (the response models and revert walk them).
   const Array<std::uint32_t>& solvedContacts() const { return contacts_.solvedContacts(); }
 
-  // World::memoryUse: the solver bodies, contact batches and projection; the joint trees apart.
+  // World::memoryUse: the solver bodies, contact batches and projection; the joints' waves and trees apart.
   std::size_t memoryBytes() const;
-  std::size_t jointMemoryBytes() const { return jointTree_.memoryBytes(); }
+  std::size_t jointMemoryBytes() const { return jointWaves_.memoryBytes() + jointTree_.memoryBytes(); }
 
  private:
   void gatherBodies(BodyStorage& storage, const Vec3& gravity);
@@ -65,6 +66,7 @@ class StepSolver {
   Array<std::uint8_t> faultFields_;
   ContactSolver contacts_;
   ContactProjection projection_;
+  JointWaves jointWaves_;
   JointTree jointTree_;
 };
 

@@ -1,6 +1,7 @@
 // The world at several workers (WorldDef::workerCount, include/collide/tasks.h): bad counts are
-// refused; one worker starts no thread; and a pile of boxes and spheres stepped on one worker, on
-// the world's own threads or on an engine's job system ends bit for bit in the same state.
+// refused; one worker starts no thread; and a pile of boxes and spheres, or chains on joints, stepped
+// on one worker, on the world's own threads or on an engine's job system ends bit for bit in the same
+// state.
 #include "support/collide_error.h"
 #include "support/test_job_system.h"
 #include "support/world_helpers.h"
@@ -259,6 +260,70 @@ TEST(Workers, StacksWhoseColoursSplitIntoRangesEndInTheSameState) {
   EXPECT_TRUE(runStacks(def, 30) == one);
   // More tasks than steps times substeps times passes: the solver's passes went through it.
   EXPECT_GT(jobs.tasks(), 30 * 6 * 4);
+}
+
+// 96 chains of four boxes hanging from static anchors and swung into one another: on hinges with
+// limits, a motor and friction (their rigid rows solved as 96 joint trees side by side, the rest
+// in the Gauss-Seidel waves), every third chain on soft ball joints (Gauss-Seidel only). The
+// joints are created a level at a time (every chain's top joint, then every chain's second...), so
+// each wave holds one level, 96 joints, more than one parallel range, and a joint's neighbours in
+// its chain are far from it in joint order: a wave that let a chain's joints run side by side
+// would race, and its order would differ from one joint after another.
+std::vector<unsigned char> runChains(WorldDef def, int steps) {
+  World world(def);
+  world.createBody(test::groundBox());
+  constexpr int kChains = 96;
+  constexpr int kLinks = 4;
+  std::vector<BodyId> anchors;
+  std::vector<BodyId> bodies;  // chain after chain, top link first
+  for (int chain = 0; chain < kChains; ++chain) {
+    const float x = 0.3f * float(chain % 24);
+    const float z = 0.9f * float(chain / 24);
+    anchors.push_back(test::staticAnchor(world, Vec3(x, 4.0f, z)));
+    for (int link = 0; link < kLinks; ++link) {
+      BodyDef box = test::boxBody(Vec3(x, 3.8f - 0.4f * float(link), z), Vec3(0.1f, 0.18f, 0.1f), 1.0f);
+      box.linearVelocity = Vec3(chain % 2 == 0 ? 1.5f : -1.5f, 0.0f, 0.5f * float(link));
+      bodies.push_back(world.createBody(box));
+    }
+  }
+  for (int link = 0; link < kLinks; ++link) {
+    for (int chain = 0; chain < kChains; ++chain) {
+      const BodyId body = bodies[static_cast<std::size_t>(chain * kLinks + link)];
+      const BodyId above = link == 0 ? anchors[static_cast<std::size_t>(chain)]
+                                     : bodies[static_cast<std::size_t>(chain * kLinks + link - 1)];
+      const Vec3 anchor = world.transform(body).position + Vec3(0.0f, 0.2f, 0.0f);
+      if (chain % 3 == 2) {
+        BallJointDef ball{.a = above, .b = body, .anchor = anchor};
+        ball.softness = {20.0f, 0.7f};
+        ball.frictionTorque = 0.05f;
+        world.createBallJoint(ball);
+      } else {
+        HingeJointDef hinge{.a = above, .b = body, .anchor = anchor, .axis = Vec3(0.0f, 0.0f, 1.0f)};
+        hinge.limits = {true, -0.6f, 0.6f};
+        hinge.frictionTorque = 0.02f;
+        if (link == 0) hinge.motor = {true, 2.0f, 5.0f};
+        world.createHingeJoint(hinge);
+      }
+    }
+  }
+  for (int step = 0; step < steps; ++step) world.step(kDt);
+  return stateBytes(world, bodies);
+}
+
+TEST(Workers, JointWavesAndTreesInParallelEndInTheSameState) {
+  const std::vector<unsigned char> one = runChains(WorldDef{}, 60);
+  for (const int workers : {2, 3, 8}) {
+    WorldDef def;
+    def.workerCount = workers;
+    EXPECT_TRUE(runChains(def, 60) == one) << workers << " workers";
+  }
+  test::TestJobSystem jobs(2);
+  WorldDef def;
+  def.enqueueTask = &test::TestJobSystem::enqueue;
+  def.finishTask = &test::TestJobSystem::finish;
+  def.userTaskContext = &jobs;
+  def.workerCount = 2;
+  EXPECT_TRUE(runChains(def, 60) == one) << "an engine's job system";
 }
 
 TEST(Workers, ChangingTheWorkerCountBetweenStepsChangesNothing) {
