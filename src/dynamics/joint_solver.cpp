@@ -138,7 +138,8 @@ std::size_t JointWaves::memoryBytes() const {
   return heapBytes(order_) + heapBytes(waveStart_) + heapBytes(waveOf_) + heapBytes(lastWave_);
 }
 
-void projectJoints(const JointSolverView& view, Array<Joint>& joints) {
+bool projectJoints(const JointSolverView& view, Array<Joint>& joints) {
+  bool moved = false;
   for (int pass = 0; pass < kJointProjectionPasses; ++pass) {
     bool projected = false;
     for (Joint& joint : joints) {
@@ -146,7 +147,9 @@ void projectJoints(const JointSolverView& view, Array<Joint>& joints) {
       if (joint.type == JointType::Distance) projected |= projectDistance(view, joint);
     }
     if (!projected) break;
+    moved = true;
   }
+  return moved;
 }
 
 void jointGroups(const BodyStorage& storage, const Array<Joint>& joints, Array<std::uint32_t>& groupOf) {

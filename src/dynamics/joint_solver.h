@@ -128,7 +128,8 @@ class JointWaves {
 inline constexpr float kJointLengthSlop = 0.005f;   // of the joint's length
 inline constexpr float kBallJointGapSlop = 0.001f;  // m (or rad): the tree's projection slop
 inline constexpr int kJointProjectionPasses = 128;
-void projectJoints(const JointSolverView& view, Array<Joint>& joints);
+// True if it moved a body.
+bool projectJoints(const JointSolverView& view, Array<Joint>& joints);
 
 // The groups of dynamic bodies the step's active joints connect: groupOf[body] is the lowest body
 // index of its group, kNoJointGroup (continuous.h) for a body without such a joint. The continuous

@@ -340,6 +340,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   }
   rhs_.resize(vectors);
   solution_.resize(vectors);
+  rowsAtPose_.assign(treeCount, 0);
 }
 
 // The rows of every tree joint at the current pose: its equality rows and the limits the tree
@@ -355,7 +356,7 @@ bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, flo
   for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
     Entry& entry = entries_[treeEntries_[k]];
     Joint& joint = joints[entry.joint];
-    if (pass == RowPass::SolveAtWarmStartPose) {
+    if (pass == RowPass::SolveAtWarmStartPose || rowsAtPose_[t]) {
       entry.rows.count = entry.equalityCount;
     } else {
       entry.frame = jointFrame(view, joint);
@@ -380,6 +381,7 @@ bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, flo
     joint.treeLimits = taken;
     tookLimit = tookLimit || taken != 0;
   }
+  rowsAtPose_[t] = 1;
   if (pass != RowPass::SolveAtWarmStartPose) addGeometricStiffness(view, joints, h, t);
   return tookLimit;
 }
@@ -527,6 +529,7 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
   const std::size_t last = treeStart_[t + 1];
   for (int iteration = 0; iteration < kTreeProjectionIterations; ++iteration) {
     buildTreeRows(view, joints, first, last);
+    rowsAtPose_[t] = 1;
     bool off = false;
     forEachRow(first, last, [&](Entry&, EqualityRow& row, double) {
       off = off || !(std::abs(row.error) <= kBallJointGapSlop);
@@ -536,6 +539,7 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
     forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
       applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
     });
+    rowsAtPose_[t] = 0;
   }
 }
 
@@ -548,6 +552,7 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
     Joint& joint = joints[entry.joint];
     entry.frame = jointFrame(view, joint);
     equalityRows(entry.frame, joint, entry.rows);
+    entry.equalityCount = entry.rows.count;
   }
 }
 

@@ -61,6 +61,12 @@ class JointTree {
   // velocity row sees.
   void project(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks);
 
+  // The bodies moved (the position update, a projection): the trees' rows are rebuilt at the next
+  // pass. Until then a pass takes the rows the last one built at the same pose (the next
+  // substep's warm start those of the relax pass, the relax pass those of a projection that found
+  // nothing off), with the same values.
+  void posesMoved() { std::fill(rowsAtPose_.begin(), rowsAtPose_.end(), std::uint8_t{0}); }
+
   // Joints solved in trees this step (for tests and statistics).
   std::size_t jointCount() const { return entries_.size(); }
 
@@ -130,6 +136,8 @@ class JointTree {
   // .. treeEntryStart_[t + 1]).
   Array<std::uint32_t> treeEntries_;
   Array<std::uint32_t> treeEntryStart_;
+  // Per tree: its entries' frames and equality rows are those of the bodies' current pose.
+  Array<std::uint8_t> rowsAtPose_;
   Array<double> matrices_;
   Array<double> rhs_;
   Array<double> solution_;

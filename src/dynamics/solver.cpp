@@ -79,6 +79,7 @@ void StepSolver::guard(std::uint32_t begin, std::uint32_t end) {
     info.faulted = true;
     faultFields_[j] = fields;
     b = SolverBody{};
+    stoppedABody_.store(true, std::memory_order_relaxed);
   }
 }
 
@@ -114,6 +115,7 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
   const float h = dt / static_cast<float>(settings.substeps);
   gatherBodies(storage, settings.gravity);
   faultFields_.assign(bodies_.size(), 0);
+  stoppedABody_.store(false, std::memory_order_relaxed);
   ContactSolverSettings contactSettings;
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
@@ -134,6 +136,8 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
       integrateVelocities(bodies_, infos_, storage, h, begin, end);
       guard(begin, end);  // before a bad velocity reaches a contact
     });
+    // A body the guard stopped went back to the step's start: rows built since are off its pose.
+    if (stoppedABody_.load(std::memory_order_relaxed)) jointTree_.posesMoved();
     jointWaves_.warmStart(view, joints, tasks);
     jointTree_.warmStart(view, joints, h, tasks);
     contacts_.warmStart(bodies_, tasks);
@@ -143,9 +147,10 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       integratePositions(bodies_, infos_, h, begin, end);
     });
+    jointTree_.posesMoved();
     if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
     jointTree_.project(view, joints, tasks);
-    projectJoints(view, joints);
+    if (projectJoints(view, joints)) jointTree_.posesMoved();
     jointWaves_.solve(view, joints, h, rigidHertz, false, tasks);
     jointTree_.solve(view, joints, h, rigidHertz, false, tasks);
     for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, tasks);

@@ -24,6 +24,7 @@
 #include <collide/events.h>
 #include <collide/settings.h>
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -64,6 +65,8 @@ class StepSolver {
   Array<SolverBodyInfo> infos_;
   Array<std::int32_t> solverOf_;  // body index -> solver body, kNoSolverBody if none
   Array<std::uint8_t> faultFields_;
+  // The guard stopped a body this step (its pose went back to the step's start).
+  std::atomic<bool> stoppedABody_{false};
   ContactSolver contacts_;
   ContactProjection projection_;
   JointWaves jointWaves_;
