@@ -118,13 +118,24 @@ void jacobianRow(const JointRow& row, bool onB, double out[6]) {
   }
 }
 
+// The kernels of one node are templates on its size N and its parent's size C: 0 is a size known
+// at run time only, and the common shapes (a body of 6 under a joint of 3 to 8 rows, a joint of 3
+// to 8 rows under a body of 6) get loops of fixed length, which the compiler unrolls. The
+// arithmetic is the same in every instance, in the same order.
+template <int kN>
+int fixedOr(int n) {
+  return kN > 0 ? kN : n;
+}
+
 // In place LDL^T of the symmetric n x n matrix a (row-major, lower triangle read): L unit lower
 // below the diagonal, D on it. No pivoting is needed: every node's matrix is quasi-definite, a
 // body's masses (positive definite) and then its ground joint's rows, whose block is negative
 // definite once the body is eliminated, and such a matrix factors stably in any order (Vanderbei,
 // "Symmetric quasi-definite matrices", 1995). False if a pivot falls below a relative tolerance:
 // rows that lost their rank.
-bool factorLdl(double* a, int n) {
+template <int kN>
+bool factorLdl(double* a, int size) {
+  const int n = fixedOr<kN>(size);
   COLLIDE_ASSERT(n >= 0 && n <= kMaxNodeSize);  // the scratch row below holds kMaxNodeSize
   double scale = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -154,7 +165,10 @@ bool factorLdl(double* a, int n) {
 }
 
 // x = L^-1 x, the columns of the n x cols block x (row-major) in turn.
-void forwardSubstitute(const double* ldl, int n, double* x, int cols) {
+template <int kN, int kC>
+void forwardSubstitute(const double* ldl, int size, double* x, int columns) {
+  const int n = fixedOr<kN>(size);
+  const int cols = fixedOr<kC>(columns);
   for (int i = 1; i < n; ++i) {
     for (int k = 0; k < i; ++k) {
       const double l = ldl[i * n + k];
@@ -162,6 +176,81 @@ void forwardSubstitute(const double* ldl, int n, double* x, int cols) {
       for (int c = 0; c < cols; ++c) x[i * cols + c] -= l * x[k * cols + c];
     }
   }
+}
+
+// One node's elimination (JointTree::factorTree): its D factored, its coupling y turned into
+// L^-1 H, and the parent's D (cols x cols) less Y^T D^-1 Y. parentD null for a root.
+template <int kN, int kC>
+bool eliminateNode(double* ldl, int size, double* y, double* parentD, int parentSize) {
+  if (!factorLdl<kN>(ldl, size)) return false;
+  if (parentD == nullptr) return true;
+  const int rows = fixedOr<kN>(size);
+  const int cols = fixedOr<kC>(parentSize);
+  forwardSubstitute<kN, kC>(ldl, rows, y, cols);
+  for (int k = 0; k < rows; ++k) {
+    const double* yk = y + k * cols;
+    const double inversePivot = 1.0 / ldl[k * rows + k];
+    for (int r = 0; r < cols; ++r) {
+      const double scaled = yk[r] * inversePivot;
+      if (scaled == 0.0) continue;
+      for (int c = 0; c <= r; ++c) parentD[r * cols + c] -= scaled * yk[c];
+    }
+  }
+  return true;
+}
+
+// The solve's way down (leaves first) at one node: u = D^-1 L^-1 z, z_parent -= Y^T u.
+template <int kN, int kC>
+void solveNodeDown(const double* ldl, int size, double* z, const double* y, double* zParent, int parentSize) {
+  const int n = fixedOr<kN>(size);
+  forwardSubstitute<kN, 1>(ldl, n, z, 1);
+  for (int k = 0; k < n; ++k) z[k] /= ldl[k * n + k];
+  if (zParent == nullptr) return;
+  const int cols = fixedOr<kC>(parentSize);
+  for (int k = 0; k < n; ++k) {
+    const double* yk = y + k * cols;
+    for (int c = 0; c < cols; ++c) zParent[c] -= yk[c] * z[k];
+  }
+}
+
+// The way back (from the root) at one node: x = L^-T (u - D^-1 Y x_parent).
+template <int kN, int kC>
+void solveNodeUp(const double* ldl, int size, double* x, const double* y, const double* xParent,
+                 int parentSize) {
+  const int n = fixedOr<kN>(size);
+  if (xParent != nullptr) {
+    const int cols = fixedOr<kC>(parentSize);
+    for (int r = 0; r < n; ++r) {
+      double sum = 0.0;
+      for (int k = 0; k < cols; ++k) sum += y[r * cols + k] * xParent[k];
+      x[r] -= sum / ldl[r * n + r];
+    }
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double sum = x[i];
+    for (int k = i + 1; k < n; ++k) sum -= ldl[k * n + i] * x[k];
+    x[i] = sum;
+  }
+}
+
+// The instances for a node of this size under a parent of that size.
+struct NodeKernels {
+  bool (*eliminate)(double*, int, double*, double*, int);
+  void (*down)(const double*, int, double*, const double*, double*, int);
+  void (*up)(const double*, int, double*, const double*, const double*, int);
+};
+template <int kN, int kC>
+constexpr NodeKernels kernelsFor() {
+  return {&eliminateNode<kN, kC>, &solveNodeDown<kN, kC>, &solveNodeUp<kN, kC>};
+}
+constexpr NodeKernels kBodyUnderJoint[] = {kernelsFor<6, 3>(), kernelsFor<6, 4>(), kernelsFor<6, 5>(),
+                                           kernelsFor<6, 6>(), kernelsFor<6, 7>(), kernelsFor<6, 8>()};
+constexpr NodeKernels kJointUnderBody[] = {kernelsFor<3, 6>(), kernelsFor<4, 6>(), kernelsFor<5, 6>(),
+                                           kernelsFor<6, 6>(), kernelsFor<7, 6>(), kernelsFor<8, 6>()};
+NodeKernels nodeKernels(int size, int parentSize) {
+  if (size == 6 && parentSize >= 3 && parentSize <= 8) return kBodyUnderJoint[parentSize - 3];
+  if (parentSize == 6 && size >= 3 && size <= 8) return kJointUnderBody[size - 3];
+  return kernelsFor<0, 0>();
 }
 
 }  // namespace
@@ -562,9 +651,6 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
 // (stopped by the fault guard, or an inertia without an inverse).
 bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
                          bool positions) {
-  const auto begin = matrices_.begin() + nodes_[first].matrix;
-  const auto end = last < nodes_.size() ? matrices_.begin() + nodes_[last].matrix : matrices_.end();
-  std::fill(begin, end, 0.0);
   for (std::size_t n = first; n < last; ++n) {
     Node& node = nodes_[n];
     const int rows = node.joint >= 0 ? entries_[static_cast<std::size_t>(node.joint)].rows.count : 0;
@@ -576,6 +662,10 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
     double* d = matrices_.data() + node.matrix;
     double* rhs = rhs_.data() + node.vector;
     const int size = node.size;
+    // This pass's blocks only, laid out at this pass's sizes within the capacity's.
+    const int parentSize = node.parent >= 0 ? nodes_[static_cast<std::size_t>(node.parent)].size : 0;
+    std::fill_n(d, size * size, 0.0);
+    std::fill_n(matrices_.data() + node.coupling, size * parentSize, 0.0);
     int rowsAt = 0;  // where the node's joint rows start among its unknowns
     if (node.body >= 0) {
       const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(node.body)];
@@ -640,24 +730,14 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
 bool JointTree::factorTree(std::size_t first, std::size_t last) {
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
-    const double* ldl = matrices_.data() + node.matrix;
-    if (!factorLdl(matrices_.data() + node.matrix, node.size)) return false;
-    if (node.parent < 0) continue;
-    const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
-    const int rows = node.size;
-    const int cols = parent.size;
-    double* y = matrices_.data() + node.coupling;
-    forwardSubstitute(ldl, rows, y, cols);
-    double* d = matrices_.data() + parent.matrix;
-    for (int k = 0; k < rows; ++k) {
-      const double* yk = y + k * cols;
-      const double inversePivot = 1.0 / ldl[k * rows + k];
-      for (int r = 0; r < cols; ++r) {
-        const double scaled = yk[r] * inversePivot;
-        if (scaled == 0.0) continue;
-        for (int c = 0; c <= r; ++c) d[r * cols + c] -= scaled * yk[c];
-      }
-    }
+    const bool root = node.parent < 0;
+    const Node* parent = root ? nullptr : &nodes_[static_cast<std::size_t>(node.parent)];
+    const int parentSize = root ? 0 : parent->size;
+    double* parentD = root ? nullptr : matrices_.data() + parent->matrix;
+    if (!nodeKernels(node.size, parentSize)
+             .eliminate(matrices_.data() + node.matrix, node.size, matrices_.data() + node.coupling, parentD,
+                        parentSize))
+      return false;
   }
   return true;
 }
@@ -668,42 +748,26 @@ void JointTree::solveTree(std::size_t first, std::size_t last) {
   std::copy(rhs_.begin() + nodes_[first].vector,
             rhs_.begin() + nodes_[last - 1].vector + nodes_[last - 1].size,
             solution_.begin() + nodes_[first].vector);
+  const auto parentOf = [&](const Node& node) {
+    return node.parent < 0 ? nullptr : &nodes_[static_cast<std::size_t>(node.parent)];
+  };
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
-    const double* ldl = matrices_.data() + node.matrix;
-    double* z = solution_.data() + node.vector;
-    const int size = node.size;
-    forwardSubstitute(ldl, size, z, 1);
-    for (int k = 0; k < size; ++k) z[k] /= ldl[k * size + k];
-    if (node.parent < 0) continue;
-    const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
-    const double* y = matrices_.data() + node.coupling;
-    double* zParent = solution_.data() + parent.vector;
-    for (int k = 0; k < size; ++k) {
-      const double* yk = y + k * parent.size;
-      for (int c = 0; c < parent.size; ++c) zParent[c] -= yk[c] * z[k];
-    }
+    const Node* parent = parentOf(node);
+    const int parentSize = parent ? parent->size : 0;
+    nodeKernels(node.size, parentSize)
+        .down(matrices_.data() + node.matrix, node.size, solution_.data() + node.vector,
+              matrices_.data() + node.coupling, parent ? solution_.data() + parent->vector : nullptr,
+              parentSize);
   }
   for (std::size_t n = last; n-- > first;) {
     const Node& node = nodes_[n];
-    const double* ldl = matrices_.data() + node.matrix;
-    double* x = solution_.data() + node.vector;
-    const int size = node.size;
-    if (node.parent >= 0) {
-      const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
-      const double* y = matrices_.data() + node.coupling;
-      const double* xParent = solution_.data() + parent.vector;
-      for (int r = 0; r < size; ++r) {
-        double sum = 0.0;
-        for (int k = 0; k < parent.size; ++k) sum += y[r * parent.size + k] * xParent[k];
-        x[r] -= sum / ldl[r * size + r];
-      }
-    }
-    for (int i = size - 1; i >= 0; --i) {
-      double sum = x[i];
-      for (int k = i + 1; k < size; ++k) sum -= ldl[k * size + i] * x[k];
-      x[i] = sum;
-    }
+    const Node* parent = parentOf(node);
+    const int parentSize = parent ? parent->size : 0;
+    nodeKernels(node.size, parentSize)
+        .up(matrices_.data() + node.matrix, node.size, solution_.data() + node.vector,
+            matrices_.data() + node.coupling, parent ? solution_.data() + parent->vector : nullptr,
+            parentSize);
   }
 }
 
