@@ -6,6 +6,7 @@
 #include "dynamics/contact_solver.h"
 #include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
+#include "memory/scratch.h"
 #include "simd/simd.h"
 
 #include <algorithm>
@@ -81,9 +82,9 @@ class LaneContactSolver final : public ContactLanes {
       const std::uint32_t count = in.colorStart[color + 1] - in.colorStart[color];
       batchStart_[color + 1] = batchStart_[color] + (count + perBatch - 1) / perBatch;
     }
-    batches_.resize(batchStart_[kGraphColors + 1]);
+    resizeScratch(batches_, batchStart_[kGraphColors + 1]);
     // Each batch's point slots: as many as its first contact's points, which has the most.
-    batchPoints_.resize(batches_.size() + 1);
+    resizeScratch(batchPoints_, batches_.size() + 1);
     batchPoints_[0] = 0;
     for (int color = 0, countBucket = 0; color <= kGraphColors; ++color) {
       const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
@@ -100,7 +101,7 @@ class LaneContactSolver final : public ContactLanes {
         batchPoints_[b + 1] = batchPoints_[b] + static_cast<std::uint32_t>(count);
       }
     }
-    points_.resize(batchPoints_.back());
+    resizeScratch(points_, batchPoints_.back());
     // Batch b's first contact in the order.
     const auto firstContact = [&](std::uint32_t b) {
       int color = 0;
