@@ -88,9 +88,10 @@ void JointWaves::prepare(const JointSolverView& view, const Array<Joint>& joints
     const std::int32_t j = view.solverOf[body];
     return j != kNoSolverBody && view.infos[static_cast<std::size_t>(j)].dynamic ? j : std::int32_t{-1};
   };
-  lastWave_.assign(view.bodies.size(), 0);
   waveOf_.clear();
   waveStart_.assign(1, 0);
+  if (joints.empty()) return;  // and the per-body scratch below is not grown
+  lastWave_.assign(view.bodies.size(), 0);
   for (const Joint& joint : joints) {
     if (!joint.active) continue;
     const std::int32_t a = written(joint.bodyA);

@@ -259,6 +259,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   entries_.clear();
   nodes_.clear();
   treeStart_.clear();
+  if (joints.empty()) return;  // and the per-body scratch below is not grown
   const std::size_t bodyCount = view.bodies.size();
   parentOf_.resize(bodyCount);
   std::iota(parentOf_.begin(), parentOf_.end(), 0);
