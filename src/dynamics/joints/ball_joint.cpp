@@ -4,12 +4,15 @@
 namespace collide::detail {
 
 void warmStartBall(const JointSolverView& view, Joint& joint) {
+  // In a tree with no friction impulse there is nothing to apply here (a net of 10,000 of them).
+  if (joint.inTree && joint.frictionImpulse == Vec3(0.0f)) return;
   const JointFrame f = jointFrame(view, joint);
   applyAngularImpulse(f.a, f.b, joint.frictionImpulse);
   if (!joint.inTree) applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
 }
 
 void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
+  if (joint.inTree && !(joint.friction > 0.0f)) return;
   const JointFrame f = jointFrame(view, joint);
   solveAngularFriction(f, joint.friction, h, joint.frictionImpulse);
   if (joint.inTree) return;
