@@ -431,6 +431,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   rhs_.resize(vectors);
   solution_.resize(vectors);
   rowsAtPose_.assign(treeCount, 0);
+  treeSolved_.assign(treeCount, 1);  // every tree joint starts the step inTree
 }
 
 // The rows of every tree joint at the current pose: its equality rows and the limits the tree
@@ -593,11 +594,16 @@ void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints,
     // Without a limit row there is nothing to drop: one round.
     if (!tookLimit || round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
   }
-  for (std::size_t n = first; n < last; ++n) {
-    if (nodes_[n].joint < 0) continue;
-    Joint& joint = joints[entries_[static_cast<std::size_t>(nodes_[n].joint)].joint];
-    joint.inTree = solved;
-    if (!solved) joint.treeLimits = 0;
+  // The joints learn only of a change: a tree solves pass after pass (joint_grid's 10,000 records
+  // are not touched again).
+  if (solved != (treeSolved_[t] != 0)) {
+    treeSolved_[t] = solved ? 1 : 0;
+    for (std::size_t n = first; n < last; ++n) {
+      if (nodes_[n].joint < 0) continue;
+      Joint& joint = joints[entries_[static_cast<std::size_t>(nodes_[n].joint)].joint];
+      joint.inTree = solved;
+      if (!solved) joint.treeLimits = 0;
+    }
   }
   if (!solved) return;
   forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {

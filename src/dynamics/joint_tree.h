@@ -138,6 +138,8 @@ class JointTree {
   Array<std::uint32_t> treeEntryStart_;
   // Per tree: its entries' frames and equality rows are those of the bodies' current pose.
   Array<std::uint8_t> rowsAtPose_;
+  // Per tree: its last pass solved it (its joints' inTree is true).
+  Array<std::uint8_t> treeSolved_;
   Array<double> matrices_;
   Array<double> rhs_;
   Array<double> solution_;
