@@ -431,6 +431,12 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   rhs_.resize(vectors);
   solution_.resize(vectors);
   rowsAtPose_.assign(treeCount, 0);
+  limitsAtPose_.assign(treeCount, 0);
+  std::size_t limitSlots = 0;
+  for (Entry& entry : entries_) {
+    if (limitRowCapacity(joints[entry.joint]) > 0) entry.limitSlot = static_cast<std::int32_t>(limitSlots++);
+  }
+  limitCandidates_.resize(limitSlots);
   treeSolved_.assign(treeCount, 1);  // every tree joint starts the step inTree
 }
 
@@ -442,7 +448,6 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
 // the warm start's frames and equality rows and takes its limits afresh.
 bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass,
                           std::size_t t) {
-  EqualityRows candidates;
   bool tookLimit = false;
   for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
     Entry& entry = entries_[treeEntries_[k]];
@@ -454,12 +459,16 @@ bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, flo
       equalityRows(entry.frame, joint, entry.rows);
       entry.equalityCount = entry.rows.count;
     }
-    if (!joint.inTree || limitRowCapacity(joint) == 0) {
+    if (entry.limitSlot >= 0 && !limitsAtPose_[t]) {
+      EqualityRows& rows = limitCandidates_[static_cast<std::size_t>(entry.limitSlot)];
+      rows.count = 0;
+      limitRows(entry.frame, joint, rows);
+    }
+    if (!joint.inTree || entry.limitSlot < 0) {
       joint.treeLimits = 0;
       continue;
     }
-    candidates.count = 0;
-    limitRows(entry.frame, joint, candidates);
+    const EqualityRows& candidates = limitCandidates_[static_cast<std::size_t>(entry.limitSlot)];
     std::uint8_t taken = 0;
     for (int i = 0; i < candidates.count; ++i) {
       const EqualityRow& row = candidates.rows[static_cast<std::size_t>(i)];
@@ -473,6 +482,7 @@ bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, flo
     tookLimit = tookLimit || taken != 0;
   }
   rowsAtPose_[t] = 1;
+  limitsAtPose_[t] = 1;
   if (pass != RowPass::SolveAtWarmStartPose) addGeometricStiffness(view, joints, h, t);
   return tookLimit;
 }
@@ -636,6 +646,7 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
       applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
     });
     rowsAtPose_[t] = 0;
+    limitsAtPose_[t] = 0;
   }
 }
 

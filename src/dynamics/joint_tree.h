@@ -65,7 +65,10 @@ class JointTree {
   // pass. Until then a pass takes the rows the last one built at the same pose (the next
   // substep's warm start those of the relax pass, the relax pass those of a projection that found
   // nothing off), with the same values.
-  void posesMoved() { std::fill(rowsAtPose_.begin(), rowsAtPose_.end(), std::uint8_t{0}); }
+  void posesMoved() {
+    std::fill(rowsAtPose_.begin(), rowsAtPose_.end(), std::uint8_t{0});
+    std::fill(limitsAtPose_.begin(), limitsAtPose_.end(), std::uint8_t{0});
+  }
 
   // Joints solved in trees this step (for tests and statistics).
   std::size_t jointCount() const { return entries_.size(); }
@@ -88,9 +91,10 @@ class JointTree {
     std::int32_t node = -1;   // its joint node, or the body node whose ground joint it is
     std::int32_t bodyA = -1;  // its bodies' solver bodies in the tree, -1 for the ground
     std::int32_t bodyB = -1;
-    EqualityRows rows;      // this pass's rows: the equality rows, then the limits taken
-    int equalityCount = 0;  // the equality rows among them
-    JointFrame frame;       // this pass's bodies and frame
+    EqualityRows rows;            // this pass's rows: the equality rows, then the limits taken
+    int equalityCount = 0;        // the equality rows among them
+    JointFrame frame;             // this pass's bodies and frame
+    std::int32_t limitSlot = -1;  // its limit rows' place in limitCandidates_, -1 without limits
   };
 
   // The right-hand side: G v + biasRate C for a velocity pass, C alone for the projection.
@@ -140,6 +144,10 @@ class JointTree {
   Array<std::uint8_t> rowsAtPose_;
   // Per tree: its last pass solved it (its joints' inTree is true).
   Array<std::uint8_t> treeSolved_;
+  // The limit rows each joint with limits could add, at the pose they were built at, and per tree
+  // whether that is the bodies' pose still (a cone's twist is an atan2 each time it is built).
+  Array<EqualityRows> limitCandidates_;
+  Array<std::uint8_t> limitsAtPose_;
   Array<double> matrices_;
   Array<double> rhs_;
   Array<double> solution_;
