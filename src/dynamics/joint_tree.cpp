@@ -790,9 +790,11 @@ void JointTree::solveTree(std::size_t first, std::size_t last) {
 }
 
 std::size_t JointTree::memoryBytes() const {
-  return heapBytes(entries_) + heapBytes(nodes_) + heapBytes(treeStart_) + heapBytes(matrices_) +
-         heapBytes(rhs_) + heapBytes(solution_) + heapBytes(parentOf_) + heapBytes(groundJoint_) +
-         heapBytes(grounded_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
+  return heapBytes(entries_) + heapBytes(nodes_) + heapBytes(treeStart_) + heapBytes(treeEntries_) +
+         heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) + heapBytes(treeSolved_) +
+         heapBytes(limitCandidates_) + heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) +
+         heapBytes(solution_) + heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) +
+         heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
          heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
 }
 
