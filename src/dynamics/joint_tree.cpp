@@ -748,10 +748,9 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
 bool JointTree::factorTree(std::size_t first, std::size_t last) {
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
-    const bool root = node.parent < 0;
-    const Node* parent = root ? nullptr : &nodes_[static_cast<std::size_t>(node.parent)];
-    const int parentSize = root ? 0 : parent->size;
-    double* parentD = root ? nullptr : matrices_.data() + parent->matrix;
+    const Node* parent = parentOf(node);
+    const int parentSize = parent ? parent->size : 0;
+    double* parentD = parent ? matrices_.data() + parent->matrix : nullptr;
     if (!nodeKernels(node.size, parentSize)
              .eliminate(matrices_.data() + node.matrix, node.size, matrices_.data() + node.coupling, parentD,
                         parentSize))
@@ -766,27 +765,17 @@ void JointTree::solveTree(std::size_t first, std::size_t last) {
   std::copy(rhs_.begin() + nodes_[first].vector,
             rhs_.begin() + nodes_[last - 1].vector + nodes_[last - 1].size,
             solution_.begin() + nodes_[first].vector);
-  const auto parentOf = [&](const Node& node) {
-    return node.parent < 0 ? nullptr : &nodes_[static_cast<std::size_t>(node.parent)];
+  // Node n's kernel of one sweep (kernelOf picks it), on its blocks and its parent's unknowns.
+  const auto sweep = [&](std::size_t n, auto kernelOf) {
+    const Node& node = nodes_[n];
+    const Node* parent = parentOf(node);
+    const int parentSize = parent ? parent->size : 0;
+    kernelOf(nodeKernels(node.size, parentSize))(
+        matrices_.data() + node.matrix, node.size, solution_.data() + node.vector,
+        matrices_.data() + node.coupling, parent ? solution_.data() + parent->vector : nullptr, parentSize);
   };
-  for (std::size_t n = first; n < last; ++n) {
-    const Node& node = nodes_[n];
-    const Node* parent = parentOf(node);
-    const int parentSize = parent ? parent->size : 0;
-    nodeKernels(node.size, parentSize)
-        .down(matrices_.data() + node.matrix, node.size, solution_.data() + node.vector,
-              matrices_.data() + node.coupling, parent ? solution_.data() + parent->vector : nullptr,
-              parentSize);
-  }
-  for (std::size_t n = last; n-- > first;) {
-    const Node& node = nodes_[n];
-    const Node* parent = parentOf(node);
-    const int parentSize = parent ? parent->size : 0;
-    nodeKernels(node.size, parentSize)
-        .up(matrices_.data() + node.matrix, node.size, solution_.data() + node.vector,
-            matrices_.data() + node.coupling, parent ? solution_.data() + parent->vector : nullptr,
-            parentSize);
-  }
+  for (std::size_t n = first; n < last; ++n) sweep(n, [](const NodeKernels& k) { return k.down; });
+  for (std::size_t n = last; n-- > first;) sweep(n, [](const NodeKernels& k) { return k.up; });
 }
 
 std::size_t JointTree::memoryBytes() const {

@@ -117,6 +117,9 @@ class JointTree {
     });
   }
   void buildTreeRows(const JointSolverView& view, Array<Joint>& joints, std::size_t first, std::size_t last);
+  const Node* parentOf(const Node& node) const {
+    return node.parent < 0 ? nullptr : &nodes_[static_cast<std::size_t>(node.parent)];
+  }
   bool factorTree(std::size_t first, std::size_t last);
   void solveTree(std::size_t first, std::size_t last);
   // f(entry, row, lambda) for every row of the tree's joints, lambda from the last solveTree.
