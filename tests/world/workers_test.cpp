@@ -116,13 +116,29 @@ TEST(Workers, OneWorkerStartsNoThreadAndFourStartThree) {
   EXPECT_EQ(threadCount(), before);  // joined with the world
 }
 
-TEST(Workers, APileEndsInTheSameStateOnEveryWorkerCount) {
-  const std::vector<unsigned char> one = runPile(WorldDef{}, 240);
+// A world definition that steps on the test's own job system with `workers` workers.
+WorldDef onJobSystem(test::TestJobSystem& jobs, int workers) {
+  WorldDef def;
+  def.workerCount = workers;
+  def.enqueueTask = &test::TestJobSystem::enqueue;
+  def.finishTask = &test::TestJobSystem::finish;
+  def.userTaskContext = &jobs;
+  return def;
+}
+
+// run(def) at 2, 3 and 8 workers of the world's own threads gives `one`, bit for bit.
+template <typename Run>
+void expectTheStateOfOneWorker(const std::vector<unsigned char>& one, Run run) {
   for (const int workers : {2, 3, 8}) {
     WorldDef def;
     def.workerCount = workers;
-    EXPECT_TRUE(runPile(def, 240) == one) << workers << " workers";
+    EXPECT_TRUE(run(def) == one) << workers << " workers";
   }
+}
+
+TEST(Workers, APileEndsInTheSameStateOnEveryWorkerCount) {
+  const std::vector<unsigned char> one = runPile(WorldDef{}, 240);
+  expectTheStateOfOneWorker(one, [](const WorldDef& def) { return runPile(def, 240); });
 }
 
 // The fault guard looks at the bodies in parallel ranges: with bodies enough for several ranges and
@@ -219,12 +235,7 @@ TEST(Workers, FaultsInSeveralRangesAreReportedInBodyOrderOnEveryWorkerCount) {
 TEST(Workers, AnEnginesJobSystemGivesTheSameState) {
   const std::vector<unsigned char> one = runPile(WorldDef{}, 240);
   test::TestJobSystem jobs(3);
-  WorldDef def;
-  def.workerCount = 3;
-  def.enqueueTask = &test::TestJobSystem::enqueue;
-  def.finishTask = &test::TestJobSystem::finish;
-  def.userTaskContext = &jobs;
-  EXPECT_TRUE(runPile(def, 240) == one);
+  EXPECT_TRUE(runPile(onJobSystem(jobs, 3), 240) == one);
   // The contact batches' fill went through it once a step from the first contacts on (this pile's
   // colours are too small for the solver's passes to be split).
   EXPECT_GT(jobs.tasks(), 200);
@@ -254,10 +265,7 @@ TEST(Workers, StacksWhoseColoursSplitIntoRangesEndInTheSameState) {
   def.workerCount = 2;
   EXPECT_TRUE(runStacks(def, 30) == one);
   test::TestJobSystem jobs(2);
-  def.enqueueTask = &test::TestJobSystem::enqueue;
-  def.finishTask = &test::TestJobSystem::finish;
-  def.userTaskContext = &jobs;
-  EXPECT_TRUE(runStacks(def, 30) == one);
+  EXPECT_TRUE(runStacks(onJobSystem(jobs, 2), 30) == one);
   // More tasks than steps times substeps times passes: the solver's passes went through it.
   EXPECT_GT(jobs.tasks(), 30 * 6 * 4);
 }
@@ -312,18 +320,9 @@ std::vector<unsigned char> runChains(WorldDef def, int steps) {
 
 TEST(Workers, JointWavesAndTreesInParallelEndInTheSameState) {
   const std::vector<unsigned char> one = runChains(WorldDef{}, 60);
-  for (const int workers : {2, 3, 8}) {
-    WorldDef def;
-    def.workerCount = workers;
-    EXPECT_TRUE(runChains(def, 60) == one) << workers << " workers";
-  }
+  expectTheStateOfOneWorker(one, [](const WorldDef& def) { return runChains(def, 60); });
   test::TestJobSystem jobs(2);
-  WorldDef def;
-  def.enqueueTask = &test::TestJobSystem::enqueue;
-  def.finishTask = &test::TestJobSystem::finish;
-  def.userTaskContext = &jobs;
-  def.workerCount = 2;
-  EXPECT_TRUE(runChains(def, 60) == one) << "an engine's job system";
+  EXPECT_TRUE(runChains(onJobSystem(jobs, 2), 60) == one) << "an engine's job system";
 }
 
 TEST(Workers, ChangingTheWorkerCountBetweenStepsChangesNothing) {
