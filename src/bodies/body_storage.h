@@ -62,6 +62,12 @@ struct BodyRecord {
   float scale = 1.0f;
   float boundingRadius = 0.0f;  // around the centre of mass, for the speculative margin
   float originRadius = 0.0f;    // around the body origin, every body type (the manifold cache)
+  // A body made of parts (BodyDef::parts): one record per child of `shape`, a compound; empty for a
+  // body of one shape, whose part 0 is the shape and the record's own fields. For a body made of
+  // parts, the record's fields summarise the parts: sensor when every part is one, layer and mask
+  // the union of the parts', group 0, the material part 0's. Here, not with the other arrays: every
+  // pair asks whether its bodies have parts.
+  Array<PartRecord> parts;
   float bounciness = 0.0f;
   float friction = 0.5f;
   float rollingResistance = 0.0f;  // m
@@ -89,11 +95,6 @@ struct BodyRecord {
   Vec3 torque{0.0f};
   std::string name;
   std::uint64_t userData = 0;
-  // A body made of parts (BodyDef::parts): one record per child of `shape`, a compound; empty for a
-  // body of one shape, whose part 0 is the shape and the fields above. For a body made of parts, the
-  // fields above summarise the parts: sensor when every part is one, layer and mask the union of the
-  // parts', group 0, the material part 0's.
-  Array<PartRecord> parts;
   std::optional<float> givenMass;  // BodyDef::mass: kept when parts are added or removed
   float density = 1000.0f;         // BodyDef::density: a body of one shape's part 0, if parts are added
 };
