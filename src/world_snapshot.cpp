@@ -165,7 +165,12 @@ void fields(A& a, detail::Contact& v) {
     v.touching, v.wasTouching, v.stuck, v.sliding, v.prolongedPoints, v.consecutiveSteps, v.impactSpeed,
     v.impactImpulse, v.frictionImpulse, v.twistImpulse, v.stickLocalA, v.stickLocalB, v.cache);
 }
-COLLIDE_SNAPSHOT_SIZE(detail::ApartPair, 176);
+COLLIDE_SNAPSHOT_SIZE(detail::ApartCache, 56);
+template <typename A>
+void fields(A& a, detail::ApartCache& v) {
+  a(v.normal, v.relativePosition, v.relativeRotation, v.separatingAxis, v.valid, v.hasAxis);
+}
+COLLIDE_SNAPSHOT_SIZE(detail::ApartPair, 80);
 template <typename A>
 void fields(A& a, detail::ApartPair& v) {
   a(v.key, v.bodyA, v.bodyB, v.generationA, v.generationB, v.cache);
@@ -320,19 +325,12 @@ class Writer {
     put(value.has_value());
     if (value) put(*value);
   }
-  // A contact and a pair apart as their meaning has them: the points beyond the manifold's count
-  // (and the cache's, which an apart pair has none of) hold whatever an earlier manifold or another
-  // worker's scratch left there, which nothing reads; written as defaults, so that the same state
-  // gives the same bytes at any worker count.
+  // A contact as its meaning has it: the points beyond the manifold's count hold whatever an
+  // earlier manifold or another worker's scratch left there, which nothing reads; written as
+  // defaults, so that the same state gives the same bytes at any worker count.
   void put(const detail::Contact& contact) {
     detail::Contact canonical = contact;
     clearUnusedPoints(canonical.manifold, canonical.points, canonical.cache, contact.manifold.count);
-    fields(*this, canonical);
-  }
-  void put(const detail::ApartPair& pair) {
-    detail::ApartPair canonical = pair;
-    for (int i = 0; i < Manifold::kMaxPoints; ++i)
-      canonical.cache.pointsOnA[i] = canonical.cache.pointsOnB[i] = Vec3(0.0f);
     fields(*this, canonical);
   }
   template <typename T>
@@ -851,7 +849,7 @@ void checkWorld(Reader& r, const WorldImpl& w) {
   }
   // A manifold cache's directions and turn, as the narrow phase takes them: a separating axis is a
   // unit direction (a support query along it refuses a zero one), a kept pose has a unit rotation.
-  const auto checkCache = [&](const detail::ManifoldCache& cache) {
+  const auto checkCache = [&](const auto& cache) {  // a contact's ManifoldCache or an ApartCache
     if (cache.hasAxis &&
         !(isFinite(cache.separatingAxis) && std::abs(glm::length(cache.separatingAxis) - 1.0f) < 1e-3f))
       return r.fail("a separating axis that is not a unit direction");

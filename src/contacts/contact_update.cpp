@@ -54,7 +54,7 @@ const Contact* viewOf(const ApartPair& apart, Contact& view) {
   view.generationA = apart.generationA;
   view.generationB = apart.generationB;
   view.enabled = false;
-  view.cache = apart.cache;
+  restoreCache(apart.cache, view.cache);
   return &view;
 }
 
@@ -473,8 +473,8 @@ class PairPass {
   // A pair found apart keeps its cache (ApartPair), so that next step can take the same "apart"
   // while the pair does not move.
   void keepApart(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const ManifoldCache& cache) {
-    apart_.emplace(
-        ApartPair{key, ia, ib, bodies_.records[ia].generation, bodies_.records[ib].generation, cache});
+    apart_.emplace(ApartPair{key, ia, ib, bodies_.records[ia].generation, bodies_.records[ib].generation,
+                             apartCacheOf(cache)});
   }
 
   // A touching or speculative contact: the two parts' materials combined, and last step's points and
