@@ -167,14 +167,30 @@ class TreeBroadPhase final : public BroadPhase {
     } else {
       judge(0, keyCount, 0);
     }
-    merged_.clear();
-    merged_.reserve(keyCount);
+    // Without branches: in a heap a key is about as often kept as reported, and a branch on it
+    // would be mispredicted every other key. Each key is written to both lists, and each list's end
+    // moves past it when the verdict keeps it there; the reported keys are gathered at the front of
+    // union_ itself (never ahead of the key being read), then appended to the output.
+    if (merged_.capacity() < keyCount) {
+      merged_.clear();
+      merged_.reserve(keyCount);  // exactly: resize alone would double last step's pairs
+    }
+    merged_.resize(keyCount);
+    std::size_t kept = 0, reported = 0;
     for (std::uint32_t k = 0; k < keyCount; ++k) {
       const PairVerdict v = verdicts_[k];
+      const std::uint64_t key = union_[k];
       outBoxTests += (v >= PairVerdict::FatApart ? 1 : 0) + (v >= PairVerdict::Kept ? 1 : 0);
-      if (v >= PairVerdict::Kept) merged_.push_back(union_[k]);
-      if (v == PairVerdict::Reported) outKeys.push_back(union_[k]);
+      merged_[kept] = key;
+      kept += v >= PairVerdict::Kept ? 1 : 0;
+      union_[reported] = key;
+      reported += v == PairVerdict::Reported ? 1 : 0;
     }
+    merged_.resize(kept);
+    // Grown as push_back would grow it (insert would take the exact size, and grow again next step).
+    const std::size_t needed = outKeys.size() + reported;
+    if (outKeys.capacity() < needed) outKeys.reserve(std::max(needed, 2 * outKeys.capacity()));
+    outKeys.insert(outKeys.end(), union_.begin(), union_.begin() + static_cast<std::ptrdiff_t>(reported));
     pairs_.swap(merged_);
     return true;
   }
