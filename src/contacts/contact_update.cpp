@@ -45,6 +45,17 @@ bool sameBodies(const Record& old, const BodyStorage& bodies, std::uint32_t ia, 
          old.generationB == bodies.records[ib].generation;
 }
 
+// Whether a pair keeps its manifold in the cache (ManifoldCache), to place it again while the pair
+// holds still. Not a sphere against a sphere or a plane: their test (a distance and a normal) costs
+// less than checking the cache, and it is exact where the cached points drift by up to the cache's
+// tolerance as the sphere rolls. Their manifold is computed every step, and when they are apart
+// they keep no record.
+bool cachesManifold(const Shape& a, const Shape& b) {
+  const ShapeType ta = a.type(), tb = b.type();
+  if (ta == ShapeType::Sphere) return tb != ShapeType::Sphere && tb != ShapeType::Plane;
+  return !(tb == ShapeType::Sphere && ta == ShapeType::Plane);
+}
+
 // Last step's record of a pair found apart, as the walk reads a previous contact: one with no
 // points, its cache (every other field of it was the default). `view` starts as Contact{}.
 const Contact* viewOf(const ApartPair& apart, Contact& view) {
@@ -429,6 +440,7 @@ class PairPass {
     // An empty manifold is cached only if the margin exceeds the cache's tolerance: a pair found
     // apart by more than the margin then cannot touch before it moves beyond the tolerance.
     const bool cacheApart = margin > 2.0f * tuning.manifoldCacheDistance;
+    const bool cached = !sensor && cachesManifold(ra.shape, rb.shape);
     // The stage ran ahead found the route of a pair it tested (and of one found apart).
     const ManifoldRoute route =
         staged ? (staged->reused ? ManifoldRoute::Reused : ManifoldRoute::Test)
@@ -446,7 +458,7 @@ class PairPass {
         return true;
       case ManifoldRoute::SpheresApart:
         c.manifold.count = 0;
-        if (!sensor && cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
+        if (cached && cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
         return false;
       case ManifoldRoute::AxisApart:
         c.manifold.count = 0;
@@ -459,7 +471,7 @@ class PairPass {
     }
     const ContactUpdate::StagedTest test = staged ? *staged : runTest(ra, ta, rb, tb, margin);
     c.manifold = test.manifold;
-    if (!sensor && (c.manifold.count > 0 || cacheApart)) storeManifold(c.manifold, ta, tb, c.cache);
+    if (cached && (c.manifold.count > 0 || cacheApart)) storeManifold(c.manifold, ta, tb, c.cache);
     if (test.hasApart) {
       const DistanceResult& apart = test.apart;
       if (!apart.overlapping && apart.distance > margin) {
