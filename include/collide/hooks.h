@@ -28,8 +28,11 @@ struct Allocator {
   void* context = nullptr;
 };
 
-// Installs `allocator` (both functions set) for the arrays created or grown from now on, or the C++
-// heap again (a default Allocator{}). At most 63 allocators in a process's life.
+// Installs `allocator` (both functions set) for the arrays created or grown from now on, or the
+// default again (a default Allocator{}): the C++ heap, except that on systems with mmap a block of
+// 1 MiB or more is mapped from the system and unmapped when freed, so that a large array's old
+// block goes back at once instead of staying resident in the heap. At most 63 allocators in a
+// process's life.
 void setAllocator(const Allocator& allocator);
 
 // Blocks the library's arrays hold now, and the bytes their arrays asked for (headers not counted).

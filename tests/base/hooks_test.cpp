@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -169,6 +170,54 @@ TEST(AllocatorHook, BlocksGoBackToTheAllocatorThatGaveThem) {
   EXPECT_EQ(first.allocations, first.frees);
   EXPECT_EQ(second.allocations, second.frees);
 }
+
+// The default allocator maps a block of 1 MiB or more from the system (collide/hooks.h): the block
+// is the start of a mapping of its own, after its header, while it lives; its contents move with
+// the array when it grows into another such block; the bytes it counts come back when it is freed.
+// Sanitized builds keep every block in the heap, where AddressSanitizer checks its bounds.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define COLLIDE_TEST_ADDRESS_SANITIZER 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define COLLIDE_TEST_ADDRESS_SANITIZER 1
+#endif
+#if defined(__linux__) && !defined(COLLIDE_TEST_ADDRESS_SANITIZER)
+bool startsAMapping(const void* address) {
+  std::FILE* maps = std::fopen("/proc/self/maps", "r");
+  if (maps == nullptr) return false;
+  bool found = false;
+  unsigned long start = 0, end = 0;
+  char line[512];
+  while (!found && std::fgets(line, sizeof line, maps) != nullptr)
+    found =
+        std::sscanf(line, "%lx-%lx", &start, &end) == 2 && start == reinterpret_cast<std::uintptr_t>(address);
+  std::fclose(maps);
+  return found;
+}
+
+TEST(AllocatorHook, TheDefaultMapsALargeBlockAndGivesItBack) {
+  const std::size_t bytesBefore = liveAllocatedBytes();
+  {
+    Array<std::uint32_t> large(std::size_t{1} << 19);  // 2 MiB
+    for (std::size_t i = 0; i < large.size(); ++i) large[i] = static_cast<std::uint32_t>(i * 2654435761u);
+    // The header before the block is the size of its alignment, at least max_align_t's.
+    const auto* mapping = reinterpret_cast<const unsigned char*>(large.data()) - alignof(std::max_align_t);
+    EXPECT_TRUE(startsAMapping(mapping)) << "a 2 MiB block is not a mapping of its own";
+    EXPECT_EQ(liveAllocatedBytes(), bytesBefore + large.capacity() * sizeof(std::uint32_t));
+    large.resize(std::size_t{1} << 21);  // 8 MiB: a new mapping, the contents copied over
+    bool kept = true;
+    for (std::size_t i = 0; i < (std::size_t{1} << 19); ++i)
+      kept = kept && large[i] == static_cast<std::uint32_t>(i * 2654435761u);
+    EXPECT_TRUE(kept);
+    Array<std::uint32_t> small(1024);  // 4 KiB: from the heap
+    const auto* smallBlock = reinterpret_cast<const unsigned char*>(small.data()) - alignof(std::max_align_t);
+    EXPECT_FALSE(startsAMapping(smallBlock));
+  }
+  EXPECT_EQ(liveAllocatedBytes(), bytesBefore);
+}
+#endif
 
 TEST(AllocatorHook, HalfAnAllocatorIsRefused) {
   Allocator half;
