@@ -49,9 +49,10 @@ constexpr std::size_t kMaxAllocators = 64;
 // and its unused capacity holds no memory until touched. Through the C++ heap, glibc raises its own
 // mapping threshold to the size of each mapped block freed (a contact array that doubled), and
 // from then on serves every smaller block, the solver's and the broad phase's arrays among them,
-// from its heap, whose freed holes stay resident: the heap of 8,000 spheres (rain-jittered) peaked
-// 8 MB higher. Below 1 MiB the heap's reuse of its holes wins (mapping from 256 KiB raised R1's and
-// R4's peaks by 1 and 2 MB).
+// from its heap, whose freed holes stay resident (docs/benchmarks.md, Memory). Below 1 MiB the
+// heap's reuse of its holes wins (mapping from 256 KiB raised R1's and R4's peaks by 1 and 2 MB).
+// What the mapped blocks cannot reuse is what the program freed in the heap before them (a scene
+// file's text and document): `collide run` hands that back before it builds the world.
 #if COLLIDE_MAPS_LARGE_BLOCKS
 constexpr std::size_t kMappedBlockBytes = std::size_t{1} << 20;
 constexpr std::size_t kPageBytes = 4096;  // the smallest page of these systems: a mapping's alignment
