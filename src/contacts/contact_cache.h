@@ -105,7 +105,7 @@ struct Contact {
 };
 
 // What a pair found apart keeps of its ManifoldCache: all of it but the points, which an empty
-// manifold has none of (80 bytes of the cache's 152).
+// manifold has none of (56 bytes of the cache's 152).
 struct ApartCache {
   Vec3 normal{0.0f};
   Vec3 relativePosition{0.0f};

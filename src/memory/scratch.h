@@ -21,8 +21,8 @@ void resizeScratch(std::vector<T, Allocator>& v, std::size_t n) {
 }
 
 // Frees a scratch array grown for a burst that is over: one of a megabyte or more whose last use
-// needed less than a quarter of it. The next use takes a block its size (the allocator maps blocks
-// of this size from the system, so the freed one goes back to it at once).
+// needed less than a quarter of it. The next use takes a block its size (the default allocator
+// maps blocks of this size from the system, so the freed one goes back to it at once).
 template <typename T, typename Allocator>
 void releaseOversizedScratch(std::vector<T, Allocator>& v, std::size_t lastUse) {
   constexpr std::size_t kLargeBytes = std::size_t{1} << 20;
