@@ -11,13 +11,13 @@ namespace {
 
 // The nearest untaken point of `previous` that passes `accept`, or -1.
 template <typename Accept>
-int nearestPrevious(const Contact& previous, const ContactPoint& point,
+int nearestPrevious(const Manifold& previous, const ContactPoint& point,
                     const std::array<bool, Manifold::kMaxPoints>& taken, Accept accept) {
   int best = -1;
   float bestDistance2 = 0.0f;
-  for (int j = 0; j < previous.manifold.count; ++j) {
-    if (taken[j] || !accept(previous.manifold.points[j])) continue;
-    const Vec3 d = previous.manifold.points[j].midpoint() - point.midpoint();
+  for (int j = 0; j < previous.count; ++j) {
+    if (taken[j] || !accept(previous.points[j])) continue;
+    const Vec3 d = previous.points[j].midpoint() - point.midpoint();
     const float distance2 = glm::dot(d, d);
     if (best < 0 || distance2 < bestDistance2) {
       best = j;
@@ -30,6 +30,12 @@ int nearestPrevious(const Contact& previous, const ContactPoint& point,
 }  // namespace
 
 void matchContactPoints(const Contact& previous, Contact& current, float matchDistance) {
+  matchContactPoints(previous.manifold, previous.points, current, matchDistance);
+}
+
+void matchContactPoints(const Manifold& previous,
+                        const std::array<ContactPointState, Manifold::kMaxPoints>& previousPoints,
+                        Contact& current, float matchDistance) {
   std::array<bool, Manifold::kMaxPoints> taken{};
   std::array<int, Manifold::kMaxPoints> match{};
   match.fill(-1);
@@ -59,7 +65,7 @@ void matchContactPoints(const Contact& previous, Contact& current, float matchDi
     ContactPointState& state = current.points[i];
     state = ContactPointState{};
     if (match[i] >= 0) {
-      state.normalImpulse = previous.points[match[i]].normalImpulse;
+      state.normalImpulse = previousPoints[match[i]].normalImpulse;
       current.prolongedPoints |= static_cast<std::uint8_t>(1u << i);
     }
   }

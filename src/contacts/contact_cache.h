@@ -149,6 +149,10 @@ struct ApartPair {
 // them prolonged. current.manifold must already hold the new points. A point whose id finds no
 // partner takes the nearest unmatched old point within matchDistance (m), if any.
 void matchContactPoints(const Contact& previous, Contact& current, float matchDistance = 0.0f);
+// The same from last step's manifold and point states alone (a contact renewed where it lies).
+void matchContactPoints(const Manifold& previous,
+                        const std::array<ContactPointState, Manifold::kMaxPoints>& previousPoints,
+                        Contact& current, float matchDistance);
 
 // The whole contact carried over from last step: the points matched as above, and the friction
 // patch's impulses and static anchor. A manifold placed again from the cache (reuseManifold) is

@@ -310,10 +310,24 @@ class PairPass {
       finishContact(ia, ib, c);
       return;
     }
+    const bool previousIsContact = previous != nullptr;
     if (!previous && previousApart) previous = viewOf(*previousApart, apartView_);
-    Contact& c = *std::construct_at(&building_);
     ++counts_.narrowPhaseTests;
-    const bool reused = computeManifold(ia, ib, previous, reuseTried, c, pairIndex);
+    if (previousIsContact && !sensor && !cachesManifold(ra.shape, rb.shape)) {
+      // A sphere that touched last step (a heap): its manifold is computed (no cache), and the
+      // contact renewed where it lies rather than made aside and copied over it.
+      computeManifold(ia, ib, previous, reuseTried, uncached_, unusedCache_, pairIndex);
+      if (uncached_.count == 0) {
+        events_.endVanished(bodies_, *previous);
+        return;
+      }
+      Contact& c = contacts_.keep(*previous);
+      renewUncached(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), c);
+      finishContact(ia, ib, c);
+      return;
+    }
+    Contact& c = *std::construct_at(&building_);
+    const bool reused = computeManifold(ia, ib, previous, reuseTried, c.manifold, c.cache, pairIndex);
     if (c.manifold.count == 0) {
       if (previous) events_.endVanished(bodies_, *previous);
       if (c.cache.valid) keepApart(key, ia, ib, c.cache);
@@ -322,6 +336,26 @@ class PairPass {
     fillContact(key, ia, ib, partMaterial(ra, 0), partMaterial(rb, 0), sensor, previous, reused, c);
     finishContact(ia, ib, c);
     contacts_.emplace(c);  // last: it may spill over where `previous` lies
+  }
+
+  // Last step's contact `c` of a pair that keeps no manifold cache, made this step's from the
+  // manifold just computed (uncached_): what fillContact gives a new contact made from it, and a
+  // new contact's defaults where fillContact leaves them; what a new contact inherits (the
+  // friction patch, its anchor and state) is there already.
+  void renewUncached(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
+                     const BodyMaterial& mb, Contact& c) const {
+    const Manifold previousManifold = c.manifold;
+    const std::array<ContactPointState, Manifold::kMaxPoints> previousPoints = c.points;
+    setPairFields(key, ia, ib, ma, mb, false, c.consecutiveSteps + 1, c.touching, c);
+    c.partA = c.partB = 0;
+    c.surfaceVelocity = Vec3(0.0f);
+    c.asleep = false;
+    c.impactSpeed = c.impactImpulse = 0.0f;
+    c.manifold = uncached_;
+    if (c.cache.valid || c.cache.hasAxis) c.cache = ManifoldCache{};
+    c.points = {};
+    matchContactPoints(previousManifold, previousPoints, c, settings_.tuning.linearSlop);
+    c.enabled = true;
   }
 
   // Whether last step's contact's manifold is placed again this step (ManifoldRoute::Reused, as
@@ -428,7 +462,7 @@ class PairPass {
   // `reuseTried`: the walk already tried to place last step's manifold again (placedAgain), in vain.
   // Returns whether last step's manifold was placed again.
   bool computeManifold(std::uint32_t ia, std::uint32_t ib, const Contact* previous, bool reuseTried,
-                       Contact& c, std::size_t pairIndex) {
+                       Manifold& manifold, ManifoldCache& cache, std::size_t pairIndex) {
     const ContactUpdate::StagedTest* staged = s_.stagedTest(pairIndex);
     const BodyRecord& ra = bodies_.records[ia];
     const BodyRecord& rb = bodies_.records[ib];
@@ -447,36 +481,36 @@ class PairPass {
         : s_.stagedRoute(pairIndex, ManifoldRoute::SpheresApart) ? ManifoldRoute::SpheresApart
         : s_.stagedRoute(pairIndex, ManifoldRoute::AxisApart)
             ? ManifoldRoute::AxisApart
-            : manifoldRoute(s_, bodies_, ia, ib, previous, margin, tuning, reuseTried, c.manifold);
+            : manifoldRoute(s_, bodies_, ia, ib, previous, margin, tuning, reuseTried, manifold);
     switch (route) {
       case ManifoldRoute::Reused:
-        if (staged) c.manifold = staged->manifold;
+        if (staged) manifold = staged->manifold;
         // A pair that has not moved relative to itself since its manifold was computed (a resting
         // stack, a crate on the terrain).
-        c.cache = previous->cache;
+        cache = previous->cache;
         ++counts_.reusedManifolds;
         return true;
       case ManifoldRoute::SpheresApart:
-        c.manifold.count = 0;
-        if (cached && cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
+        manifold.count = 0;
+        if (cached && cacheApart) storeManifold(manifold, ta, tb, cache);
         return false;
       case ManifoldRoute::AxisApart:
-        c.manifold.count = 0;
-        if (cacheApart) storeManifold(c.manifold, ta, tb, c.cache);
-        c.cache.separatingAxis = previous->cache.separatingAxis;
-        c.cache.hasAxis = true;
+        manifold.count = 0;
+        if (cacheApart) storeManifold(manifold, ta, tb, cache);
+        cache.separatingAxis = previous->cache.separatingAxis;
+        cache.hasAxis = true;
         return false;
       case ManifoldRoute::Test:
         break;
     }
     const ContactUpdate::StagedTest test = staged ? *staged : runTest(ra, ta, rb, tb, margin);
-    c.manifold = test.manifold;
-    if (cached && (c.manifold.count > 0 || cacheApart)) storeManifold(c.manifold, ta, tb, c.cache);
+    manifold = test.manifold;
+    if (cached && (manifold.count > 0 || cacheApart)) storeManifold(manifold, ta, tb, cache);
     if (test.hasApart) {
       const DistanceResult& apart = test.apart;
       if (!apart.overlapping && apart.distance > margin) {
-        c.cache.separatingAxis = ta.inverseApplyToDirection(apart.normal);
-        c.cache.hasAxis = true;
+        cache.separatingAxis = ta.inverseApplyToDirection(apart.normal);
+        cache.hasAxis = true;
       }
     }
     return false;
@@ -566,9 +600,11 @@ class PairPass {
   const PairFilters& filters_;
   StepEvents& events_;
   std::string& callbackError_;
-  Contact apartView_;  // the previous contact of a pair that was apart (viewOf)
-  Contact building_;   // this step's contact of the walked pair, until it is kept
-  Manifold placed_;    // last step's manifold placed again (placedAgain)
+  Contact apartView_;          // the previous contact of a pair that was apart (viewOf)
+  Manifold uncached_;          // the manifold of a pair that keeps no cache (renewUncached)
+  ManifoldCache unusedCache_;  // what computeManifold writes for such a pair: nothing
+  Contact building_;           // this step's contact of the walked pair, until it is kept
+  Manifold placed_;            // last step's manifold placed again (placedAgain)
   ContactUpdateCounts counts_;
 };
 
