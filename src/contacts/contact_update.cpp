@@ -346,11 +346,7 @@ class PairPass {
                      const BodyMaterial& mb, Contact& c) const {
     const Manifold previousManifold = c.manifold;
     const std::array<ContactPointState, Manifold::kMaxPoints> previousPoints = c.points;
-    setPairFields(key, ia, ib, ma, mb, false, c.consecutiveSteps + 1, c.touching, c);
-    c.partA = c.partB = 0;
-    c.surfaceVelocity = Vec3(0.0f);
-    c.asleep = false;
-    c.impactSpeed = c.impactImpulse = 0.0f;
+    renewPairFields(key, ia, ib, ma, mb, c);
     c.manifold = uncached_;
     if (c.cache.valid || c.cache.hasAxis) c.cache = ManifoldCache{};
     c.points = {};
@@ -373,18 +369,23 @@ class PairPass {
     return placeAgain(s_, bodies_, ia, ib, previous, settings_.tuning, out);
   }
 
+  // What a contact renewed in its slot (refreshPlaced, renewUncached) takes as a new contact made
+  // from it would: the pair's fields one step on, and the defaults fillContact leaves in place.
+  void renewPairFields(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
+                       const BodyMaterial& mb, Contact& c) const {
+    setPairFields(key, ia, ib, ma, mb, false, c.consecutiveSteps + 1, c.touching, c);
+    c.partA = c.partB = 0;
+    c.surfaceVelocity = Vec3(0.0f);
+    c.asleep = false;
+    c.impactSpeed = c.impactImpulse = 0.0f;
+  }
+
   // Last step's contact `c` turned into this step's, in place, with its manifold placed again
   // (placed_): every field as computeManifold and fillContact give a new contact from it (with
   // reused true), the cache, the friction patch and the anchors kept as they are.
   void refreshPlaced(std::uint64_t key, std::uint32_t ia, std::uint32_t ib, const BodyMaterial& ma,
                      const BodyMaterial& mb, Contact& c) const {
-    const int consecutiveSteps = c.consecutiveSteps + 1;
-    const bool wasTouching = c.touching;
-    setPairFields(key, ia, ib, ma, mb, false, consecutiveSteps, wasTouching, c);
-    c.partA = c.partB = 0;
-    c.surfaceVelocity = Vec3(0.0f);
-    c.asleep = false;
-    c.impactSpeed = c.impactImpulse = 0.0f;
+    renewPairFields(key, ia, ib, ma, mb, c);
     const int count = placed_.count;
     c.manifold.count = count;
     c.manifold.normal = placed_.normal;
