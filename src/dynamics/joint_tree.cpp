@@ -432,6 +432,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   solution_.resize(vectors);
   rowsAtPose_.assign(treeCount, 0);
   limitsAtPose_.assign(treeCount, 0);
+  factored_.assign(treeCount, 0);
   std::size_t limitSlots = 0;
   for (Entry& entry : entries_) {
     if (limitRowCapacity(joints[entry.joint]) > 0) entry.limitSlot = static_cast<std::int32_t>(limitSlots++);
@@ -446,9 +447,10 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
 // impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
 // The biased pass comes at the warm start's pose (only velocities change in between), so it keeps
 // the warm start's frames and equality rows and takes its limits afresh.
-bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass,
-                          std::size_t t) {
-  bool tookLimit = false;
+JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h,
+                                          RowPass pass, std::size_t t) {
+  BuiltRows built;
+  const bool rowsWereAtPose = rowsAtPose_[t] != 0;
   for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
     Entry& entry = entries_[treeEntries_[k]];
     Joint& joint = joints[entry.joint];
@@ -478,13 +480,19 @@ bool JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, flo
       entry.rows.rows[static_cast<std::size_t>(entry.rows.count++)] = row;
       taken |= row.limitBit;
     }
+    built.sameLimits = built.sameLimits && taken == joint.treeLimits;
     joint.treeLimits = taken;
-    tookLimit = tookLimit || taken != 0;
+    built.tookLimit = built.tookLimit || taken != 0;
   }
   rowsAtPose_[t] = 1;
   limitsAtPose_[t] = 1;
-  if (pass != RowPass::SolveAtWarmStartPose) addGeometricStiffness(view, joints, h, t);
-  return tookLimit;
+  // The stiffness comes with the rows of a new pose: the warm start at the relax pass's pose keeps
+  // the relax pass's, and the biased pass after it can take that pass's factor.
+  if (pass == RowPass::Solve || (pass == RowPass::WarmStart && !rowsWereAtPose)) {
+    addGeometricStiffness(view, joints, h, t);
+    factored_[t] = 0;
+  }
+  return built;
 }
 
 // Drops the limit rows of a tree whose impulse would pull (the solve's total below 0): those
@@ -521,12 +529,13 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
 // times h passes 2: the link turns further each substep and the chain tears (a 100 kg ball under
 // 20 such links). Tournier et al. ("Stable Constrained Dynamics", 2015) take the stiffness into
 // the system implicitly; its share of the substep's inertia, h^2 |f| |r| (1 - r r^T / |r|^2), with f
-// the last substep's load, is what the tree's bodies get here. It is inertia only across the
-// anchor's lever, at most a substep's worth: nothing for an unloaded joint, negligible for a limb
-// carrying its weight, and it vanishes as h does. The tree's warm start and velocity passes turn
-// the bodies through it; the joints' internal impulses still cancel, so momentum is kept. The
-// projection uses the bodies' own inertia: through the stiffened one, its Newton steps after a
-// plank chain's hard landing moved the planks off their rows instead of onto them.
+// the joint's load when the rows are built at a new pose, is what the tree's bodies get here. It is
+// inertia only across the anchor's lever, at most a substep's worth: nothing for an unloaded joint,
+// negligible for a limb carrying its weight, and it vanishes as h does. The tree's warm start and
+// velocity passes turn the bodies through it; the joints' internal impulses still cancel, so
+// momentum is kept. The projection uses the bodies' own inertia: through the stiffened one, its
+// Newton steps after a plank chain's hard landing moved the planks off their rows instead of onto
+// them.
 void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h,
                                       std::size_t t) {
   const std::size_t first = treeStart_[t];
@@ -592,18 +601,24 @@ void JointTree::solve(const JointSolverView& view, Array<Joint>& joints, float h
 
 void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints, float h,
                               const Softness& soft, bool useBias, std::size_t t) {
-  const bool tookLimit =
+  const BuiltRows built =
       buildRows(view, joints, h, useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve, t);
   const std::size_t first = treeStart_[t];
   const std::size_t last = treeStart_[t + 1];
+  // The biased pass at the relax pass's pose, with its stiffness and its limits, solves the same
+  // system: the relax pass's factor is still in the blocks.
+  bool factored = factored_[t] != 0 && built.sameLimits;
   bool solved = false;
   for (int round = 0; round < kLimitRounds; ++round) {
-    solved = fillTree(view, first, last, soft.biasRate, false) && factorTree(first, last);
+    solved =
+        fillTree(view, first, last, soft.biasRate, false, !factored) && (factored || factorTree(first, last));
+    factored = false;
     if (!solved) break;
     solveTree(first, last);
     // Without a limit row there is nothing to drop: one round.
-    if (!tookLimit || round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
+    if (!built.tookLimit || round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
   }
+  factored_[t] = solved ? 1 : 0;
   // The joints learn only of a change: a tree solves pass after pass (joint_grid's 10,000 records
   // are not touched again).
   if (solved != (treeSolved_[t] != 0)) {
@@ -640,7 +655,9 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
     forEachRow(first, last, [&](Entry&, EqualityRow& row, double) {
       off = off || !(std::abs(row.error) <= kBallJointGapSlop);
     });
-    if (!off || !fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
+    if (!off) break;
+    factored_[t] = 0;  // the blocks take the projection's system
+    if (!fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
     solveTree(first, last);
     forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
       applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
@@ -668,7 +685,11 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
 // right-hand side G v + b at the bodies' current velocities. False if a body cannot take part
 // (stopped by the fault guard, or an inertia without an inverse).
 bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
-                         bool positions) {
+                         bool positions, bool matrices) {
+  if (!matrices) {
+    fillRightHandSide(first, last, biasRate, positions);
+    return true;
+  }
   for (std::size_t n = first; n < last; ++n) {
     Node& node = nodes_[n];
     const int rows = node.joint >= 0 ? entries_[static_cast<std::size_t>(node.joint)].rows.count : 0;
@@ -678,7 +699,6 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
     double* d = matrices_.data() + node.matrix;
-    double* rhs = rhs_.data() + node.vector;
     const int size = node.size;
     // This pass's blocks only, laid out at this pass's sizes within the capacity's.
     const int parentSize = node.parent >= 0 ? nodes_[static_cast<std::size_t>(node.parent)].size : 0;
@@ -698,20 +718,12 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
         d[k * size + k] = mass;
         for (int c = 0; c < 3; ++c) d[(3 + k) * size + 3 + c] = inertia[c][k];
       }
-      for (int k = 0; k < 6; ++k) rhs[k] = 0.0;
       rowsAt = 6;
     }
-    if (node.joint >= 0) {
+    if (node.joint >= 0 && node.body >= 0) {
       const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
       for (int i = 0; i < entry.rows.count; ++i) {
         const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
-        const double speed = positions ? 0.0 : double(rowSpeed(entry.frame.a, entry.frame.b, row.row));
-        // A limit not reached yet is speculative: only the approach that would cross it this
-        // substep (limitImpulse's rule).
-        const double bias = row.limitBit != 0 && row.error > 0.0f ? double(row.error) / double(h_)
-                                                                  : double(biasRate) * double(row.error);
-        rhs[rowsAt + i] = speed + bias;
-        if (node.body < 0) continue;
         // A ground joint's rows within its body's node: [[M, -G^T], [-G, 0]].
         jacobianRow(row.row, entry.bodyB == node.body, g);
         for (int k = 0; k < 6; ++k) {
@@ -739,7 +751,33 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
       }
     }
   }
+  fillRightHandSide(first, last, biasRate, positions);
   return true;
+}
+
+// The right-hand side alone: G v + biasRate C per row (C alone for the projection), 0 for a body's
+// own unknowns.
+void JointTree::fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions) {
+  for (std::size_t n = first; n < last; ++n) {
+    const Node& node = nodes_[n];
+    double* rhs = rhs_.data() + node.vector;
+    int rowsAt = 0;
+    if (node.body >= 0) {
+      for (int k = 0; k < 6; ++k) rhs[k] = 0.0;
+      rowsAt = 6;
+    }
+    if (node.joint < 0) continue;
+    const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+    for (int i = 0; i < entry.rows.count; ++i) {
+      const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+      const double speed = positions ? 0.0 : double(rowSpeed(entry.frame.a, entry.frame.b, row.row));
+      // A limit not reached yet is speculative: only the approach that would cross it this
+      // substep (limitImpulse's rule).
+      const double bias = row.limitBit != 0 && row.error > 0.0f ? double(row.error) / double(h_)
+                                                                : double(biasRate) * double(row.error);
+      rhs[rowsAt + i] = speed + bias;
+    }
+  }
 }
 
 // Leaves first: each node's D = L D L^T, its coupling turned into Y = L^-1 H(node, parent), and
@@ -780,7 +818,7 @@ void JointTree::solveTree(std::size_t first, std::size_t last) {
 
 std::size_t JointTree::memoryBytes() const {
   return heapBytes(entries_) + heapBytes(nodes_) + heapBytes(treeStart_) + heapBytes(treeEntries_) +
-         heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) + heapBytes(treeSolved_) +
+         heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) + heapBytes(treeSolved_) + heapBytes(factored_) +
          heapBytes(limitCandidates_) + heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) +
          heapBytes(solution_) + heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) +
          heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +

@@ -50,7 +50,8 @@ class JointTree {
   // One pass (useBias as in JointWaves::solve): each tree's rows at the bodies' current pose, factored and
   // solved, the impulses applied. A tree whose factor fails (rows that lost their rank) hands its
   // joints to the Gauss-Seidel pass that follows (Joint::inTree false for that pass). The biased
-  // pass must follow warmStart with no position update between: it reuses the warm start's rows.
+  // pass must follow warmStart with no position update between: it reuses the warm start's rows,
+  // and, where the limits it takes are the last pass's, that pass's factor.
   void solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz, bool useBias,
              TaskRunner& tasks);
 
@@ -68,6 +69,7 @@ class JointTree {
   void posesMoved() {
     std::fill(rowsAtPose_.begin(), rowsAtPose_.end(), std::uint8_t{0});
     std::fill(limitsAtPose_.begin(), limitsAtPose_.end(), std::uint8_t{0});
+    std::fill(factored_.begin(), factored_.end(), std::uint8_t{0});
   }
 
   // Joints solved in trees this step (for tests and statistics).
@@ -97,12 +99,19 @@ class JointTree {
     std::int32_t limitSlot = -1;  // its limit rows' place in limitCandidates_, -1 without limits
   };
 
-  // The right-hand side: G v + biasRate C for a velocity pass, C alone for the projection.
+  // The right-hand side: G v + biasRate C for a velocity pass, C alone for the projection. Without
+  // matrices, the right-hand side alone: the blocks hold the factor of these rows already.
   bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
-                bool positions);
+                bool positions, bool matrices = true);
+  void fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions);
   enum class RowPass { WarmStart, SolveAtWarmStartPose, Solve };
-  // Tree t's rows for the pass; true if it took a limit row.
-  bool buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass, std::size_t t);
+  struct BuiltRows {
+    bool tookLimit = false;  // a limit row is among them
+    bool sameLimits = true;  // each joint took the limits its last pass ended with
+  };
+  // Tree t's rows for the pass.
+  BuiltRows buildRows(const JointSolverView& view, Array<Joint>& joints, float h, RowPass pass,
+                      std::size_t t);
   bool dropPullingLimits(Array<Joint>& joints, std::size_t first, std::size_t last, const Softness& soft);
   void addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h, std::size_t t);
   void solveTreePass(const JointSolverView& view, Array<Joint>& joints, float h, const Softness& soft,
@@ -147,6 +156,9 @@ class JointTree {
   Array<std::uint8_t> rowsAtPose_;
   // Per tree: its last pass solved it (its joints' inTree is true).
   Array<std::uint8_t> treeSolved_;
+  // Per tree: the blocks hold the factor of its rows as they are, at the bodies' pose and with their
+  // stiffness (the last velocity pass's).
+  Array<std::uint8_t> factored_;
   // The limit rows each joint with limits could add, at the pose they were built at, and per tree
   // whether that is the bodies' pose still (a cone's twist is an atan2 each time it is built).
   Array<EqualityRows> limitCandidates_;
