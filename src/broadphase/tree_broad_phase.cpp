@@ -120,9 +120,11 @@ class TreeBroadPhase final : public BroadPhase {
     //    worker collecting into its own list; the sort below makes the order of the lists moot.
     candidates_.clear();
     queries_.clear();
+    // moved_ stays set through the queries (2: queued once, though a slot removed and added again
+    // is in the buffer twice); 0 is a proxy removed since it was buffered.
     for (const std::uint32_t i : moveBuffer_) {
-      if (!moved_[i]) continue;  // removed since it was buffered
-      moved_[i] = 0;
+      if (moved_[i] != 1) continue;
+      moved_[i] = 2;
       queries_.push_back(i);
     }
     moveBuffer_.clear();
@@ -147,7 +149,8 @@ class TreeBroadPhase final : public BroadPhase {
     } else {
       for (const std::uint32_t i : queries_) queryMoved(i, candidates_, outBoxTests);
     }
-    const std::size_t candidateCount = candidates_.size();  // each pair found from both sides
+    for (const std::uint32_t i : queries_) moved_[i] = 0;
+    const std::size_t candidateCount = candidates_.size();
     std::sort(candidates_.begin(), candidates_.end());
     candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
 
@@ -219,11 +222,13 @@ class TreeBroadPhase final : public BroadPhase {
   }
 
   // The new fat-box overlaps of moved proxy i, against both trees (a static one only against the
-  // movable tree: static-static pairs are never wanted).
+  // movable tree: static-static pairs are never wanted). Two moved proxies find each other from
+  // both sides; the lower index keeps the pair (Box2D's rule), so each is a candidate once.
   void queryMoved(std::uint32_t i, Array<std::uint64_t>& keys, std::uint64_t& boxTests) const {
     const Aabb query = fatBox(i);
     auto collect = [&](const DynamicTree::Node& leaf) {
-      if (leaf.proxy != i) keys.push_back(pairKey(i, leaf.proxy));
+      const std::uint32_t j = leaf.proxy;
+      if (j != i && (j > i || !moved_[j])) keys.push_back(pairKey(i, j));
       return true;
     };
     auto overlapsQuery = [&](const Aabb& box) { return box.overlaps(query); };
@@ -307,7 +312,7 @@ class TreeBroadPhase final : public BroadPhase {
   DynamicTree staticTree_;
   DynamicTree movableTree_;
   Array<std::int32_t> leaf_;   // per proxy: its leaf in its tree
-  Array<std::uint8_t> moved_;  // per proxy: in the move buffer
+  Array<std::uint8_t> moved_;  // per proxy: in the move buffer (2 while its query is queued)
   Array<std::uint32_t> moveBuffer_;
   Array<std::uint64_t> pairs_;  // sorted keys of all fat-box overlaps (persistent)
   Array<std::uint64_t> candidates_;
