@@ -74,11 +74,12 @@ struct Joint {
   }
 };
 
-// The step's bodies as the joints see them: the solver bodies of moving bodies, the body storage
-// for the start-of-step poses and for static bodies.
+// The step's bodies as the joints see them: the solver bodies of moving bodies and their poses at
+// the step start, the body storage for static bodies.
 struct JointSolverView {
   Array<SolverBody>& bodies;
   const Array<SolverBodyInfo>& infos;
+  const Array<SolverBodyStart>& starts;
   const Array<std::int32_t>& solverOf;
   const BodyStorage& storage;
 };

@@ -123,7 +123,15 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
   contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h, tasks);
   if (settings.projection)
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
-  JointSolverView view{bodies_, infos_, solverOf_, storage};
+  starts_.clear();
+  if (!joints.empty()) {
+    starts_.resize(bodies_.size());
+    for (std::size_t j = 0; j < bodies_.size(); ++j) {
+      const BodyState& s = storage.states[infos_[j].body];
+      starts_[j] = {s.centerOfMass0, s.rotation0};
+    }
+  }
+  JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
   prepareJoints(view, joints);
   jointWaves_.prepare(view, joints);
   jointTree_.prepare(view, joints);
@@ -163,8 +171,8 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
 }
 
 std::size_t StepSolver::memoryBytes() const {
-  return heapBytes(bodies_) + heapBytes(infos_) + heapBytes(solverOf_) + heapBytes(faultFields_) +
-         contacts_.memoryBytes() + projection_.memoryBytes();
+  return heapBytes(bodies_) + heapBytes(infos_) + heapBytes(starts_) + heapBytes(solverOf_) +
+         heapBytes(faultFields_) + contacts_.memoryBytes() + projection_.memoryBytes();
 }
 
 }  // namespace collide::detail

@@ -63,7 +63,8 @@ class StepSolver {
 
   Array<SolverBody> bodies_;
   Array<SolverBodyInfo> infos_;
-  Array<std::int32_t> solverOf_;  // body index -> solver body, kNoSolverBody if none
+  Array<SolverBodyStart> starts_;  // with joints only
+  Array<std::int32_t> solverOf_;   // body index -> solver body, kNoSolverBody if none
   Array<std::uint8_t> faultFields_;
   // The guard stopped a body this step (its pose went back to the step's start).
   std::atomic<bool> stoppedABody_{false};

@@ -8,17 +8,18 @@ namespace collide::detail {
 
 JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
   JointBody out;
-  const BodyState& s = view.storage.states[body];
   const std::int32_t j = view.solverOf[body];
   if (j == kNoSolverBody) {
+    const BodyState& s = view.storage.states[body];
     out.centerOfMass = s.centerOfMass;
     out.rotation = s.rotation;
     return out;
   }
   SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
   const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
-  out.centerOfMass = s.centerOfMass0 + b.deltaPosition;
-  out.rotation = b.deltaRotation * s.rotation0;
+  const SolverBodyStart& start = view.starts[static_cast<std::size_t>(j)];
+  out.centerOfMass = start.centerOfMass + b.deltaPosition;
+  out.rotation = b.deltaRotation * start.rotation;
   if (info.faulted) return out;
   out.moving = &b;
   if (info.dynamic) {
