@@ -27,11 +27,11 @@ class TreeBroadPhase final : public BroadPhase {
   explicit TreeBroadPhase(const BroadPhaseSettings& settings) : BroadPhase(settings) {}
 
   std::size_t algorithmMemoryBytes() const override {
-    std::size_t bytes = staticTree_.memoryBytes() + movableTree_.memoryBytes() + detail::heapBytes(leaf_) +
-                        detail::heapBytes(moved_) + detail::heapBytes(moveBuffer_) +
-                        detail::heapBytes(pairs_) + detail::heapBytes(candidates_) +
-                        detail::heapBytes(queries_) + detail::heapBytes(workerCandidates_) +
-                        detail::heapBytes(union_) + detail::heapBytes(verdicts_) + detail::heapBytes(merged_);
+    std::size_t bytes =
+        staticTree_.memoryBytes() + movableTree_.memoryBytes() + detail::heapBytes(leaf_) +
+        detail::heapBytes(moved_) + detail::heapBytes(moveBuffer_) + detail::heapBytes(pairs_) +
+        detail::heapBytes(candidates_) + detail::heapBytes(queries_) + detail::heapBytes(workerCandidates_) +
+        detail::heapBytes(chunks_) + detail::heapBytes(merged_) + detail::heapBytes(reported_);
     for (const WorkerCandidates& worker : workerCandidates_) bytes += detail::heapBytes(worker.keys);
     return bytes;
   }
@@ -155,52 +155,118 @@ class TreeBroadPhase final : public BroadPhase {
     candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
 
     // 2. Merge them into the persistent set (both sorted): each key of the union gets its verdict
-    //    (pairVerdict: dropped, kept, or kept and reported), then one walk in key order keeps the
-    //    kept and reports the reported, so the output stays sorted. The verdicts only read boxes:
-    //    with workers, ranges of keys are judged in parallel.
-    union_.clear();
-    union_.reserve(pairs_.size() + candidates_.size());
-    std::set_union(pairs_.begin(), pairs_.end(), candidates_.begin(), candidates_.end(),
-                   std::back_inserter(union_));
-    const auto keyCount = static_cast<std::uint32_t>(union_.size());
-    verdicts_.resize(keyCount);
-    auto judge = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t k = begin; k < end; ++k) verdicts_[k] = pairVerdict(union_[k]);
+    //    (pairVerdict: dropped, kept, or kept and reported), and the kept and the reported keys are
+    //    written in key order, so the output stays sorted. The union is cut into chunks of keys
+    //    (at keys of the longer list, the other split where they fall in it); a chunk's merge only
+    //    reads boxes and writes its own part of the two lists, so chunks run in parallel, and the
+    //    lists are then closed up chunk by chunk: the same keys in the same order at any count.
+    const std::size_t pairCount = pairs_.size();
+    const std::size_t total = pairCount + candidates_.size();
+    const bool byPairs = pairCount >= candidates_.size();
+    const Array<std::uint64_t>& longer = byPairs ? pairs_ : candidates_;
+    const Array<std::uint64_t>& shorter = byPairs ? candidates_ : pairs_;
+    const std::uint32_t chunkCount = static_cast<std::uint32_t>(
+        std::max<std::size_t>(1, (longer.size() + kKeysPerChunk - 1) / kKeysPerChunk));
+    chunks_.resize(chunkCount + 1);
+    for (std::uint32_t c = 0; c <= chunkCount; ++c) {
+      MergeChunk& chunk = chunks_[c];
+      chunk.longerBegin = longer.size() * c / chunkCount;
+      // The shorter list's keys below the chunk's first key of the longer one are the chunk before's.
+      chunk.shorterBegin = c == 0 ? 0
+                           : c == chunkCount
+                               ? shorter.size()
+                               : static_cast<std::size_t>(std::lower_bound(shorter.begin(), shorter.end(),
+                                                                           longer[chunk.longerBegin]) -
+                                                          shorter.begin());
+    }
+    // Each chunk writes at its first keys' offset in both lists (a union is no longer than them).
+    if (merged_.capacity() < total) {
+      merged_.clear();
+      merged_.reserve(total);  // exactly: resize alone would double last step's pairs
+    }
+    merged_.resize(total);
+    reported_.resize(total);
+    auto mergeChunks = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t c = begin; c < end; ++c) {
+        MergeChunk& chunk = chunks_[c];
+        const MergeChunk& next = chunks_[c + 1];
+        const std::size_t at = chunk.longerBegin + chunk.shorterBegin;
+        mergeChunk(
+            byPairs ? chunk.longerBegin : chunk.shorterBegin, byPairs ? next.longerBegin : next.shorterBegin,
+            byPairs ? chunk.shorterBegin : chunk.longerBegin, byPairs ? next.shorterBegin : next.longerBegin,
+            merged_.data() + at, reported_.data() + at, chunk);
+      }
     };
     if (tasks_ != nullptr) {
-      tasks_->parallelFor(keyCount, kKeysPerRange, judge);
+      tasks_->parallelFor(chunkCount, 1, mergeChunks);
     } else {
-      judge(0, keyCount, 0);
+      mergeChunks(0, chunkCount, 0);
     }
-    // Without branches: in a heap a key is about as often kept as reported, and a branch on it
-    // would be mispredicted every other key. Each key is written to both lists, and each list's end
-    // moves past it when the verdict keeps it there; the reported keys are gathered at the front of
-    // union_ itself (never ahead of the key being read), then appended to the output.
-    if (merged_.capacity() < keyCount) {
-      merged_.clear();
-      merged_.reserve(keyCount);  // exactly: resize alone would double last step's pairs
-    }
-    merged_.resize(keyCount);
     std::size_t kept = 0, reported = 0;
-    for (std::uint32_t k = 0; k < keyCount; ++k) {
-      const PairVerdict v = verdicts_[k];
-      const std::uint64_t key = union_[k];
-      outBoxTests += (v >= PairVerdict::FatApart ? 1 : 0) + (v >= PairVerdict::Kept ? 1 : 0);
-      merged_[kept] = key;
-      kept += v >= PairVerdict::Kept ? 1 : 0;
-      union_[reported] = key;
-      reported += v == PairVerdict::Reported ? 1 : 0;
+    for (std::uint32_t c = 0; c < chunkCount; ++c) {
+      const MergeChunk& chunk = chunks_[c];
+      reported += chunk.reported;
+      outBoxTests += chunk.boxTests;
     }
-    merged_.resize(kept);
     // Grown as push_back would grow it (insert would take the exact size, and grow again next step).
     const std::size_t needed = outKeys.size() + reported;
     if (outKeys.capacity() < needed) outKeys.reserve(std::max(needed, 2 * outKeys.capacity()));
-    outKeys.insert(outKeys.end(), union_.begin(), union_.begin() + static_cast<std::ptrdiff_t>(reported));
+    for (std::uint32_t c = 0; c < chunkCount; ++c) {
+      const MergeChunk& chunk = chunks_[c];
+      const std::size_t at = chunk.longerBegin + chunk.shorterBegin;
+      outKeys.insert(outKeys.end(), reported_.begin() + static_cast<std::ptrdiff_t>(at),
+                     reported_.begin() + static_cast<std::ptrdiff_t>(at + chunk.reported));
+      // Never ahead of its own place: kept keys of earlier chunks are at most their chunks' size.
+      if (kept != at)
+        std::copy_n(merged_.begin() + static_cast<std::ptrdiff_t>(at), chunk.kept,
+                    merged_.begin() + static_cast<std::ptrdiff_t>(kept));
+      kept += chunk.kept;
+    }
+    merged_.resize(kept);
     pairs_.swap(merged_);
     // The first step queries every proxy, a later one those that moved out of their fat boxes: the
     // candidates of the first (2 MB in a heap of 8,000 spheres) are not kept for the rest.
     detail::releaseOversizedScratch(candidates_, candidateCount);
     return true;
+  }
+
+  // One chunk of the merge: where it starts in the longer and the shorter list, and what it wrote.
+  struct MergeChunk {
+    std::size_t longerBegin = 0;
+    std::size_t shorterBegin = 0;
+    std::size_t kept = 0;
+    std::size_t reported = 0;
+    std::uint64_t boxTests = 0;
+  };
+
+  // The union of pairs_[p, pEnd) and candidates_[q, qEnd), each key judged once: the kept keys to
+  // kept, the reported ones to reported, in key order. A step's candidates are few beside the
+  // persistent set: the walk runs through the pairs between two candidates without a comparison.
+  void mergeChunk(std::size_t p, std::size_t pEnd, std::size_t q, std::size_t qEnd, std::uint64_t* kept,
+                  std::uint64_t* reported, MergeChunk& out) const {
+    std::size_t keptCount = 0, reportedCount = 0;
+    std::uint64_t boxTests = 0;
+    // Without branches on the verdict: in a heap a key is about as often kept as reported, and a
+    // branch on it would be mispredicted every other key. Each key is written to both lists, and
+    // each list's end moves past it when the verdict keeps it there.
+    const auto judge = [&](std::uint64_t key) {
+      const PairVerdict v = pairVerdict(key);
+      boxTests += (v >= PairVerdict::FatApart ? 1 : 0) + (v >= PairVerdict::Kept ? 1 : 0);
+      kept[keptCount] = key;
+      keptCount += v >= PairVerdict::Kept ? 1 : 0;
+      reported[reportedCount] = key;
+      reportedCount += v == PairVerdict::Reported ? 1 : 0;
+    };
+    for (; q < qEnd; ++q) {
+      const std::uint64_t candidate = candidates_[q];
+      for (; p < pEnd && pairs_[p] < candidate; ++p) judge(pairs_[p]);
+      if (p < pEnd && pairs_[p] == candidate) ++p;  // already in the set: judged once
+      judge(candidate);
+    }
+    for (; p < pEnd; ++p) judge(pairs_[p]);
+    out.kept = keptCount;
+    out.reported = reportedCount;
+    out.boxTests = boxTests;
   }
 
   // What the merge does with a key of the persistent set or the candidates, in order: its box tests
@@ -324,11 +390,11 @@ class TreeBroadPhase final : public BroadPhase {
   };
   Array<WorkerCandidates> workerCandidates_;
   static constexpr std::uint32_t kQueriesPerRange = 128;
-  // The merge's scratch: the union of pairs_ and candidates_, each key's verdict, the kept keys.
-  Array<std::uint64_t> union_;
-  Array<PairVerdict> verdicts_;
-  static constexpr std::uint32_t kKeysPerRange = 2048;
+  // The merge's scratch: its chunks, the kept keys (the next persistent set) and the reported ones.
+  static constexpr std::size_t kKeysPerChunk = 8192;
+  Array<MergeChunk> chunks_;
   Array<std::uint64_t> merged_;
+  Array<std::uint64_t> reported_;
 };
 
 }  // namespace

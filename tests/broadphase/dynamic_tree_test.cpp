@@ -1,12 +1,14 @@
 // The dynamic AABB tree's invariants: containment, parent links, heights, and a logarithmic height
 // whatever the insertion order (the AVL rotations' job).
 #include "broadphase/dynamic_tree.h"
+#include "base/task_runner.h"
 #include "broadphase/broad_phase_internal.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 using namespace collide;
 
@@ -109,4 +111,64 @@ TEST(TreeBroadPhase, FatBoxesAbsorbSmallMotionAndTreesStayBalanced) {
   // A tree query costs at least one box test, so 800 re-insertions would cost 800 tests or more.
   EXPECT_LT(stats.boxTests, 400u);
   bp->validate();
+}
+
+// A persistent set of tens of thousands of pairs is merged in chunks (of the longer list, the
+// candidates split where they fall), in parallel with workers: the pairs and the box tests are those
+// of the brute force, one worker and two alike, as boxes move, leave and come back.
+TEST(TreeBroadPhase, ManyPairsMergeInChunksAsBruteForceAtAnyWorkerCount) {
+  BroadPhaseSettings brute;
+  brute.type = BroadPhaseType::BruteForce;
+  auto reference = createBroadPhase(brute);
+  auto serial = createBroadPhase(BroadPhaseSettings{});
+  auto parallel = createBroadPhase(BroadPhaseSettings{});
+  detail::TaskRunner one, two;
+  two.configure(2, nullptr, nullptr, nullptr);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> position(-6.0f, 6.0f);
+  std::uniform_real_distribution<float> nudge(-0.4f, 0.4f);
+  std::vector<ProxyId> ids;
+  const auto addAll = [&](const ProxyDef& def) {
+    const ProxyId id = reference->add(def);
+    EXPECT_EQ(serial->add(def), id);
+    EXPECT_EQ(parallel->add(def), id);
+    return id;
+  };
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 c(position(rng), position(rng), position(rng));
+    ids.push_back(addAll({Aabb::fromCenterHalfExtents(c, Vec3(0.6f)),
+                          i % 10 == 0 ? MotionType::Static : MotionType::Movable}));
+  }
+  std::size_t most = 0;
+  for (int step = 0; step < 12; ++step) {
+    Array<ProxyPair> expected, fromOne, fromTwo;
+    reference->findPairs(expected);
+    serial->findPairs(fromOne, one);
+    const std::uint64_t oneTests = serial->lastStats().boxTests;
+    parallel->findPairs(fromTwo, two);
+    ASSERT_TRUE(fromOne == expected) << "step " << step;
+    ASSERT_TRUE(fromTwo == expected) << "step " << step;
+    EXPECT_EQ(parallel->lastStats().boxTests, oneTests);
+    most = std::max(most, expected.size());
+    // A third of the movable boxes move (some beyond their fat boxes), a few leave and come back.
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (i % 10 == 0 || i % 3 != static_cast<std::size_t>(step) % 3) continue;
+      Aabb box = reference->bounds(ids[i]);
+      const Vec3 d(nudge(rng), nudge(rng), nudge(rng));
+      box = {box.min + d, box.max + d};
+      reference->update(ids[i], box);
+      serial->update(ids[i], box);
+      parallel->update(ids[i], box);
+    }
+    for (int k = 0; k < 20; ++k) {
+      const std::size_t i = 1 + static_cast<std::size_t>(rng() % (ids.size() - 1));
+      if (i % 10 == 0) continue;
+      const ProxyDef def{reference->bounds(ids[i]), MotionType::Movable};
+      reference->remove(ids[i]);
+      serial->remove(ids[i]);
+      parallel->remove(ids[i]);
+      ids[i] = addAll(def);
+    }
+  }
+  EXPECT_GT(most, 3u * 8192u) << "the scene should need several chunks";
 }
