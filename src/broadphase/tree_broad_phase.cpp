@@ -142,12 +142,18 @@ class TreeBroadPhase final : public BroadPhase {
                             for (std::uint32_t k = begin; k < end; ++k)
                               queryMoved(queries_[k], w.keys, w.boxTests);
                           });
-      for (const WorkerCandidates& w : workerCandidates_) {
+      for (WorkerCandidates& w : workerCandidates_) {
         candidates_.insert(candidates_.end(), w.keys.begin(), w.keys.end());
         outBoxTests += w.boxTests;
+        // As candidates_ below: a worker's share of the first step's burst is not kept.
+        detail::releaseOversizedScratch(w.keys, w.keys.size());
       }
     } else {
       for (const std::uint32_t i : queries_) queryMoved(i, candidates_, outBoxTests);
+      for (WorkerCandidates& w : workerCandidates_) {
+        w.keys.clear();
+        detail::releaseOversizedScratch(w.keys, 0);
+      }
     }
     for (const std::uint32_t i : queries_) moved_[i] = 0;
     const std::size_t candidateCount = candidates_.size();

@@ -9,6 +9,7 @@
 #include "contacts/in_place_merge.h"
 #include "memory/heap_bytes.h"
 #include "memory/prefetch.h"
+#include "memory/scratch.h"
 #include "shapes/shape_functions.h"
 
 #include <algorithm>
@@ -732,6 +733,12 @@ ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPha
   }
   lastTests_ = counts.narrowPhaseTests - counts.reusedManifolds;
   lastPairs_ = counts.narrowPhaseTests;
+  // A landing's staged tests (a manifold a tested pair, per worker) are not kept once the pile
+  // rests: this step's lists, or none when nothing ran ahead, are their last use.
+  for (WorkerTests& list : staged_) {
+    if (stagedIndex_.empty()) list.tests.clear();
+    releaseOversizedScratch(list.tests, list.tests.size());
+  }
   return counts;
 }
 

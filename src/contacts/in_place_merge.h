@@ -19,6 +19,8 @@
 
 #include <collide/hooks.h>
 
+#include "memory/scratch.h"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -146,6 +148,9 @@ class InPlaceMerge {
     } else {
       records_.resize(write_);
     }
+    // A landing (many new contacts ahead of the old ones) can spill tens of megabytes once; a
+    // resting pile spills little or nothing.
+    releaseOversizedScratch(spill_, mostSpilled_);
   }
 
  private:
@@ -160,6 +165,7 @@ class InPlaceMerge {
     if (at >= spill_.size()) at -= spill_.size();
     spill_[at] = record;
     ++spillCount_;
+    mostSpilled_ = std::max(mostSpilled_, spillCount_);
   }
 
   Array<Record>& records_;
@@ -169,8 +175,9 @@ class InPlaceMerge {
   std::size_t read_ = 0;  // and those in the spill ring (spillCount_ from spillHead_) come first
   std::size_t spillHead_ = 0;
   std::size_t spillCount_ = 0;
-  std::size_t write_ = 0;  // this step's records are written from the block's begin (or 0) to here
-  std::size_t limit_;      // writes in the array stop here
+  std::size_t mostSpilled_ = 0;  // this walk's most records in the spill ring at once
+  std::size_t write_ = 0;        // this step's records are written from the block's begin (or 0) to here
+  std::size_t limit_;            // writes in the array stop here
   bool lastOverflowed_ = false;
 };
 

@@ -207,5 +207,27 @@ TEST(InPlaceMerge, KeepingARecordInItsOwnSlotCopiesNothing) {
   EXPECT_TRUE(spill.empty());
 }
 
+// A landing: every old record is preceded by new ones, and the spill ring holds most of last step's
+// records at once (megabytes in a pile of thousands). The next, quiet walk spills nothing and the
+// ring's block goes back; a walk that spills a little keeps what it used.
+TEST(InPlaceMerge, ALandingsSpillIsNotKeptOnceTheWalksAreQuiet) {
+  constexpr std::uint64_t kOld = 100000;  // 16 bytes each: 1.6 MB
+  Array<Record> records, spill;
+  for (std::uint64_t k = 0; k < kOld; ++k) records.push_back({2 * k + 1, 0});
+  std::vector<Step> landing;
+  for (std::uint64_t k = 0; k < 2 * kOld; ++k) landing.push_back({k, Write::FromOld});
+  walk(records, spill, landing, 1);
+  ASSERT_EQ(records.size(), 2 * kOld);
+  // The ring held up to half the old records while the new ones went ahead of them; it was kept
+  // for that walk, its last use.
+  EXPECT_GE(spill.capacity() * sizeof(Record), std::size_t{1} << 20);
+  std::vector<Step> quiet;
+  for (std::uint64_t k = 0; k < 2 * kOld; ++k) quiet.push_back({k, Write::Keep});
+  const std::vector<Record> read = walk(records, spill, quiet, 2);
+  EXPECT_EQ(read.size(), 2 * kOld);
+  EXPECT_EQ(spill.capacity(), 0u);
+  EXPECT_EQ(records.size(), 2 * kOld);
+}
+
 }  // namespace
 }  // namespace collide::detail
