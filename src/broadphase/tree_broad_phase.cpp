@@ -191,7 +191,7 @@ class TreeBroadPhase final : public BroadPhase {
       merged_.reserve(total);  // exactly: resize alone would double last step's pairs
     }
     merged_.resize(total);
-    detail::resizeScratch(reported_, total);
+    reported_.resize(total);
     auto mergeChunks = [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       for (std::uint32_t c = begin; c < end; ++c) {
         MergeChunk& chunk = chunks_[c];
