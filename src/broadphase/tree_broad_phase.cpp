@@ -150,10 +150,8 @@ class TreeBroadPhase final : public BroadPhase {
       }
     } else {
       for (const std::uint32_t i : queries_) queryMoved(i, candidates_, outBoxTests);
-      for (WorkerCandidates& w : workerCandidates_) {
-        w.keys.clear();
-        detail::releaseOversizedScratch(w.keys, 0);
-      }
+      for (WorkerCandidates& w : workerCandidates_)
+        detail::releaseOversizedScratch(w.keys, 0);  // unused this step
     }
     for (const std::uint32_t i : queries_) moved_[i] = 0;
     const std::size_t candidateCount = candidates_.size();

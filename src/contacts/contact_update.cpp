@@ -735,10 +735,8 @@ ContactUpdateCounts ContactUpdate::run(const BodyStorage& bodies, const BroadPha
   lastPairs_ = counts.narrowPhaseTests;
   // A landing's staged tests (a manifold a tested pair, per worker) are not kept once the pile
   // rests: this step's lists, or none when nothing ran ahead, are their last use.
-  for (WorkerTests& list : staged_) {
-    if (stagedIndex_.empty()) list.tests.clear();
-    releaseOversizedScratch(list.tests, list.tests.size());
-  }
+  for (WorkerTests& list : staged_)
+    releaseOversizedScratch(list.tests, stagedIndex_.empty() ? 0 : list.tests.size());
   return counts;
 }
 

@@ -610,8 +610,12 @@ void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints,
   bool factored = factored_[t] != 0 && built.sameLimits;
   bool solved = false;
   for (int round = 0; round < kLimitRounds; ++round) {
-    solved =
-        fillTree(view, first, last, soft.biasRate, false, !factored) && (factored || factorTree(first, last));
+    if (factored) {
+      fillRightHandSide(first, last, soft.biasRate, false);  // the blocks hold this system's factor
+      solved = true;
+    } else {
+      solved = fillTree(view, first, last, soft.biasRate, false) && factorTree(first, last);
+    }
     factored = false;
     if (!solved) break;
     solveTree(first, last);
@@ -685,11 +689,7 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
 // right-hand side G v + b at the bodies' current velocities. False if a body cannot take part
 // (stopped by the fault guard, or an inertia without an inverse).
 bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
-                         bool positions, bool matrices) {
-  if (!matrices) {
-    fillRightHandSide(first, last, biasRate, positions);
-    return true;
-  }
+                         bool positions) {
   for (std::size_t n = first; n < last; ++n) {
     Node& node = nodes_[n];
     const int rows = node.joint >= 0 ? entries_[static_cast<std::size_t>(node.joint)].rows.count : 0;

@@ -99,10 +99,10 @@ class JointTree {
     std::int32_t limitSlot = -1;  // its limit rows' place in limitCandidates_, -1 without limits
   };
 
-  // The right-hand side: G v + biasRate C for a velocity pass, C alone for the projection. Without
-  // matrices, the right-hand side alone: the blocks hold the factor of these rows already.
+  // The blocks and the right-hand side: G v + biasRate C for a velocity pass, C alone for the
+  // projection. fillRightHandSide: the latter alone, where the blocks hold these rows' factor.
   bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
-                bool positions, bool matrices = true);
+                bool positions);
   void fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions);
   enum class RowPass { WarmStart, SolveAtWarmStartPose, Solve };
   struct BuiltRows {

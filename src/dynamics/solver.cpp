@@ -20,11 +20,12 @@ bool finite(const Quat& q) {
 
 }  // namespace
 
-void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity) {
+void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts) {
   const std::size_t n = storage.states.size();
   solverOf_.assign(n, kNoSolverBody);
   bodies_.clear();
   infos_.clear();
+  starts_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     BodyState& s = storage.states[i];
     s.centerOfMass0 = s.centerOfMass;
@@ -32,6 +33,7 @@ void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity) {
     const BodyRecord& r = storage.records[i];
     if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
     solverOf_[i] = static_cast<std::int32_t>(bodies_.size());
+    if (withStarts) starts_.push_back({s.centerOfMass0, s.rotation0});
     SolverBody& body = bodies_.emplace_back();
     body.linearVelocity = s.linearVelocity;
     body.angularVelocity = s.angularVelocity;
@@ -113,7 +115,7 @@ void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, Task
 void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joint>& joints,
                        const StepSettings& settings, float dt, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const float h = dt / static_cast<float>(settings.substeps);
-  gatherBodies(storage, settings.gravity);
+  gatherBodies(storage, settings.gravity, !joints.empty());
   faultFields_.assign(bodies_.size(), 0);
   stoppedABody_.store(false, std::memory_order_relaxed);
   ContactSolverSettings contactSettings;
@@ -123,14 +125,6 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
   contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h, tasks);
   if (settings.projection)
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
-  starts_.clear();
-  if (!joints.empty()) {
-    starts_.resize(bodies_.size());
-    for (std::size_t j = 0; j < bodies_.size(); ++j) {
-      const BodyState& s = storage.states[infos_[j].body];
-      starts_[j] = {s.centerOfMass0, s.rotation0};
-    }
-  }
   JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
   prepareJoints(view, joints);
   jointWaves_.prepare(view, joints);

@@ -55,7 +55,8 @@ class StepSolver {
   std::size_t jointMemoryBytes() const { return jointWaves_.memoryBytes() + jointTree_.memoryBytes(); }
 
  private:
-  void gatherBodies(BodyStorage& storage, const Vec3& gravity);
+  // withStarts: the bodies' start poses too (starts_), which the joints read.
+  void gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts);
   void writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks);
   // Over every solver body, in parallel ranges; and over bodies [begin, end) (each body's own state).
   void guard(TaskRunner& tasks);
