@@ -3,8 +3,10 @@
 y = 1, on R1's 200 x 200 m ground) widened from 16 x 16 x 16 to 32 x 16 x 32 and 64 x 16 x 64
 (65,536 cubes). For each, `collide bench` over the first STEPS steps (ms per step, the world's heap
 by stage) and `/usr/bin/time -f %M collide run` over the same steps (the whole process's peak).
+--spacing S spaces the columns S apart in x and z instead (2.0: stacks that never touch, an island
+each).
 
-    bench/pile_growth.py build/release/tools/collide [--steps 240] [--csv FILE --commit C]
+    bench/pile_growth.py build/release/tools/collide [--steps 240] [--spacing 1.1] [--csv FILE --commit C]
 """
 import argparse
 import json
@@ -15,14 +17,14 @@ from datetime import date
 from pathlib import Path
 
 
-def lattice_scene(nx, ny, nz):
+def lattice_scene(nx, ny, nz, spacing=1.1):
     bodies = [{"name": "ground", "type": "static", "friction": 0.5, "position": [0.0, -0.5, 0.0],
                "shape": {"type": "box", "half_extents": [100.0, 0.5, 100.0]}}]
     for i in range(nx):
         for j in range(ny):
             for k in range(nz):
                 bodies.append({"name": f"box_{i}_{j}_{k}", "type": "dynamic", "mass": 1, "friction": 0.5,
-                               "position": [(i - (nx - 1) / 2) * 1.1, 1.0 + 1.1 * j, (k - (nz - 1) / 2) * 1.1],
+                               "position": [(i - (nx - 1) / 2) * spacing, 1.0 + 1.1 * j, (k - (nz - 1) / 2) * spacing],
                                "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}})
     return {"format": "collide-scene/1",
             "settings": {"broadphase": "tree", "dt": 1.0 / 60.0, "friction_combine": "average",
@@ -34,6 +36,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("collide")
     parser.add_argument("--steps", type=int, default=240)
+    parser.add_argument("--spacing", type=float, default=1.1)
     parser.add_argument("--csv")
     parser.add_argument("--commit", default="")
     args = parser.parse_args()
@@ -41,7 +44,7 @@ def main():
     with tempfile.TemporaryDirectory() as folder:
         for nx, ny, nz in [(16, 16, 16), (32, 16, 32), (64, 16, 64)]:
             path = Path(folder) / f"pile_{nx}x{ny}x{nz}.json"
-            path.write_text(json.dumps(lattice_scene(nx, ny, nz)))
+            path.write_text(json.dumps(lattice_scene(nx, ny, nz, args.spacing)))
             bench = subprocess.run([args.collide, "bench", str(path), "--runs", "1", "--steps", str(args.steps)],
                                    check=True, capture_output=True, text=True).stdout
             ms = float(re.search(r"median: ([0-9.]+) ms/step \(cpu\)", bench).group(1))

@@ -76,50 +76,62 @@ class LaneContactSolver final : public ContactLanes {
   void build(const ContactBatchInput& in, TaskRunner& tasks) override {
     pushOutSpeed_ = in.pushOutSpeed;
     restitutionThreshold_ = in.restitutionThreshold;
-    // Each colour's contacts fill its batches in order, kWidth a batch (the overflow one a batch).
-    for (int color = 0; color <= kGraphColors; ++color) {
-      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      const std::uint32_t count = in.colorStart[color + 1] - in.colorStart[color];
-      batchStart_[color + 1] = batchStart_[color] + (count + perBatch - 1) / perBatch;
+    // Each segment's (block's colour's) contacts fill its batches in order, kWidth a batch (the
+    // overflow one a batch).
+    const std::uint32_t segments = in.blockCount * kColorSegments;
+    batchStart_.resize(segments + 1);
+    batchStart_[0] = 0;
+    for (std::uint32_t s = 0; s < segments; ++s) {
+      const std::uint32_t perBatch = lanesOf(s);
+      const std::uint32_t count = in.segmentStart[s + 1] - in.segmentStart[s];
+      batchStart_[s + 1] = batchStart_[s] + (count + perBatch - 1) / perBatch;
     }
-    resizeScratch(batches_, batchStart_[kGraphColors + 1]);
+    resizeScratch(batches_, batchStart_[segments]);
     // Each batch's point slots: as many as its first contact's points, which has the most.
     resizeScratch(batchPoints_, batches_.size() + 1);
     batchPoints_[0] = 0;
-    for (int color = 0, countBucket = 0; color <= kGraphColors; ++color) {
-      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      for (std::uint32_t b = batchStart_[color]; b < batchStart_[color + 1]; ++b) {
-        const std::uint32_t first = in.colorStart[color] + (b - batchStart_[color]) * perBatch;
+    for (std::uint32_t s = 0, countBucket = 0; s < segments; ++s) {
+      const std::uint32_t perBatch = lanesOf(s);
+      for (std::uint32_t b = batchStart_[s]; b < batchStart_[s + 1]; ++b) {
+        const std::uint32_t first = in.segmentStart[s] + (b - batchStart_[s]) * perBatch;
         int count;
-        if (color == kOverflowColor) {
+        if (perBatch == 1) {
           count = in.contacts[in.order[first]].manifold.count;
         } else {
-          countBucket = std::max(countBucket, color * Manifold::kMaxPoints);
+          countBucket = std::max(countBucket, s * Manifold::kMaxPoints);
           while (in.countStart[countBucket + 1] <= first) ++countBucket;
-          count = Manifold::kMaxPoints - (countBucket - color * Manifold::kMaxPoints);
+          count = Manifold::kMaxPoints - static_cast<int>(countBucket - s * Manifold::kMaxPoints);
         }
         batchPoints_[b + 1] = batchPoints_[b] + static_cast<std::uint32_t>(count);
       }
     }
     resizeScratch(points_, batchPoints_.back());
-    // Batch b's first contact in the order.
-    const auto firstContact = [&](std::uint32_t b) {
-      int color = 0;
-      while (batchStart_[color + 1] <= b && color < kGraphColors) ++color;
-      if (b >= batchStart_[kGraphColors + 1]) return static_cast<std::uint32_t>(in.order.size());
-      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      return in.colorStart[color] + (b - batchStart_[color]) * perBatch;
-    };
-    tasks.parallelFor(static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,
-                      [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-                        fillBatches(in, begin, end, firstContact(begin), firstContact(end));
-                      });
+    tasks.parallelFor(
+        static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,
+        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { fillBatches(in, begin, end); });
   }
 
-  // Batches [begin, end), whose contacts are order[firstOrder, lastOrder): each batch's lanes are
-  // independent of every other batch's, so ranges of batches fill in parallel.
-  void fillBatches(const ContactBatchInput& in, std::uint32_t begin, std::uint32_t end,
-                   std::size_t firstOrder, std::size_t lastOrder) {
+  // Lanes of a batch of segment s: the overflow colour's batches hold one contact.
+  static std::uint32_t lanesOf(std::uint32_t segment) {
+    return segment % kColorSegments == kOverflowColor ? 1 : static_cast<std::uint32_t>(kWidth);
+  }
+
+  // Batches [begin, end): each batch's lanes are independent of every other batch's, so ranges of
+  // batches fill in parallel.
+  void fillBatches(const ContactBatchInput& in, std::uint32_t begin, std::uint32_t end) {
+    // The segment of batch `begin`, and the contacts of the range: order[firstOrder, lastOrder).
+    std::uint32_t segment = static_cast<std::uint32_t>(
+        std::upper_bound(batchStart_.begin(), batchStart_.end(), begin) - batchStart_.begin() - 1);
+    const auto firstOrderOf = [&](std::uint32_t b, std::uint32_t s) {
+      return in.segmentStart[s] + (b - batchStart_[s]) * lanesOf(s);
+    };
+    const std::size_t firstOrder = firstOrderOf(begin, segment);
+    std::size_t lastOrder = in.order.size();
+    if (end < batches_.size()) {
+      const std::uint32_t endSegment = static_cast<std::uint32_t>(
+          std::upper_bound(batchStart_.begin(), batchStart_.end(), end) - batchStart_.begin() - 1);
+      lastOrder = firstOrderOf(end, endSegment);
+    }
     // Filled batch by batch, each cleared just before its first lane (its lines stay in cache while
     // its lanes are written). The contacts lie anywhere in the contact array, and their bodies
     // anywhere in the body arrays, so both are asked for ahead, in two stages: a contact's lines
@@ -146,12 +158,10 @@ class LaneContactSolver final : public ContactLanes {
     };
     for (std::size_t i = firstOrder; i < firstOrder + 2 * kAhead; ++i) prefetchContact(i);
     for (std::size_t i = firstOrder; i < firstOrder + kAhead; ++i) prefetchBodies(i);
-    int color = 0;
     for (std::uint32_t b = begin; b < end; ++b) {
-      while (batchStart_[color + 1] <= b) ++color;
-      const std::uint32_t perBatch = color == kOverflowColor ? 1 : kWidth;
-      const std::uint32_t first = in.colorStart[color] + (b - batchStart_[color]) * perBatch;
-      const std::uint32_t last = std::min(first + perBatch, in.colorStart[color + 1]);
+      while (batchStart_[segment + 1] <= b) ++segment;
+      const std::uint32_t first = firstOrderOf(b, segment);
+      const std::uint32_t last = std::min(first + lanesOf(segment), in.segmentStart[segment + 1]);
       Batch* batch = batches_.data() + b;
       std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
       batch->pointCount = static_cast<int>(batchPoints_[b + 1] - batchPoints_[b]);
@@ -171,16 +181,18 @@ class LaneContactSolver final : public ContactLanes {
     }
   }
 
-  // f(batch) for every batch, colour after colour (the last colour first if `backwards`). A
-  // colour's batches share no body the solver writes, so their ranges run in parallel and give
-  // what one pass in order gives, bit for bit; the overflow's batches may share bodies and run in
-  // order, on the calling thread.
+  // f(batch) for every batch of a block, colour after colour (the last colour first if
+  // `backwards`). A colour's batches share no body the solver writes, so their ranges run in
+  // parallel and give what one pass in order gives, bit for bit; the overflow's batches may share
+  // bodies and run in order, on the calling thread.
   template <typename Body>
-  void forEachBatch(TaskRunner& tasks, bool backwards, Body&& body) {
+  void forEachBatch(TaskRunner& tasks, std::uint32_t block, bool backwards, Body&& body) {
     for (int k = 0; k <= kGraphColors; ++k) {
       const int color = backwards ? kGraphColors - k : k;
-      const std::uint32_t first = batchStart_[color];
-      const std::uint32_t last = batchStart_[color + 1];
+      const std::uint32_t segment = block * kColorSegments + static_cast<std::uint32_t>(color);
+      const std::uint32_t first = batchStart_[segment];
+      const std::uint32_t last = batchStart_[segment + 1];
+      if (first == last) continue;
       if (color == kOverflowColor) {
         if (backwards) {
           for (std::uint32_t i = last; i-- > first;) body(batches_[i]);
@@ -200,10 +212,10 @@ class LaneContactSolver final : public ContactLanes {
     }
   }
 
-  void warmStart(Array<SolverBody>& bodies, TaskRunner& tasks) override {
+  void warmStart(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) override {
     // Backwards: it starts with the batches the last pass (the previous substep's relax) ended
     // with, still in the L2 cache, and ends with those the solve pass starts with.
-    forEachBatch(tasks, true, [&](Batch& c) {
+    forEachBatch(tasks, block, true, [&](Batch& c) {
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
       for (int k = 0; k < c.pointCount; ++k) {
@@ -227,20 +239,21 @@ class LaneContactSolver final : public ContactLanes {
     });
   }
 
-  void solve(Array<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) override {
+  void solve(Array<SolverBody>& bodies, float h, bool useBias, std::uint32_t block,
+             TaskRunner& tasks) override {
     if (useBias) {
-      solvePass<true>(bodies, h, tasks);
+      solvePass<true>(bodies, h, block, tasks);
     } else {
-      solvePass<false>(bodies, h, tasks);
+      solvePass<false>(bodies, h, block, tasks);
     }
   }
 
   // Newton's restitution on the approach velocity measured before the solve: the soft contact has
   // absorbed the impact by now, so the bounce is added at the end (Box2D v3's b2ApplyRestitution).
-  void applyRestitution(Array<SolverBody>& bodies, TaskRunner& tasks) override {
+  void applyRestitution(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) override {
     const F zero = zeroT<F>();
     const F threshold = splatT<F>(-restitutionThreshold_);
-    forEachBatch(tasks, false, [&](Batch& c) {
+    forEachBatch(tasks, block, false, [&](Batch& c) {
       if (!anyW(greaterW(c.restitution, zero))) return;
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
@@ -271,7 +284,7 @@ class LaneContactSolver final : public ContactLanes {
 
   // Each batch writes its own contacts: ranges of batches in parallel.
   std::size_t memoryBytes() const override {
-    return heapBytes(batches_) + heapBytes(points_) + heapBytes(batchPoints_);
+    return heapBytes(batches_) + heapBytes(points_) + heapBytes(batchPoints_) + heapBytes(batchStart_);
   }
 
   void store(Array<Contact>& contacts, TaskRunner& tasks) const override {
@@ -522,10 +535,10 @@ class LaneContactSolver final : public ContactLanes {
   // Each batch: the pose change, then the normal points, the friction patch and the twist, in that
   // order, on the same gathered velocities.
   template <bool useBias>
-  void solvePass(Array<SolverBody>& bodies, float h, TaskRunner& tasks) {
+  void solvePass(Array<SolverBody>& bodies, float h, std::uint32_t block, TaskRunner& tasks) {
     const F inverseH = splatT<F>(1.0f / h);
     const F maxPushOut = splatT<F>(-pushOutSpeed_);
-    forEachBatch(tasks, false, [&](Batch& c) {
+    forEachBatch(tasks, block, false, [&](Batch& c) {
       const PoseChange pose = poseChange<useBias>(bodies, c);
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
@@ -754,9 +767,9 @@ class LaneContactSolver final : public ContactLanes {
   // few. A colour of no more batches than this runs on the calling thread.
   static constexpr std::uint32_t kBatchesPerRange = 4;
   Array<Batch> batches_;
-  Array<BatchPoint<F>> points_;                               // the batches' point slots
-  Array<std::uint32_t> batchPoints_;                          // batch b's slots: [batchPoints_[b], [b + 1])
-  std::array<std::uint32_t, kGraphColors + 2> batchStart_{};  // colour c's batches: [batchStart_[c], [c + 1])
+  Array<BatchPoint<F>> points_;       // the batches' point slots
+  Array<std::uint32_t> batchPoints_;  // batch b's slots: [batchPoints_[b], [b + 1])
+  Array<std::uint32_t> batchStart_;   // segment s's batches: [batchStart_[s], batchStart_[s + 1])
   float pushOutSpeed_ = 3.0f;
   float restitutionThreshold_ = 1.0f;
 };

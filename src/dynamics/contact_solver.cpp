@@ -66,10 +66,12 @@ ContactSolver& ContactSolver::operator=(ContactSolver&&) noexcept = default;
 void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage,
                             const Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
                             const Array<std::int32_t>& solverOf, const ContactSolverSettings& settings,
-                            float h, TaskRunner& tasks) {
+                            SolverBlocks* blocks, float h, TaskRunner& tasks) {
   // The contacts to solve and the solver bodies each may write.
   solvedContacts_.clear();
   writtenBodies_.clear();
+  blockOf_.clear();
+  if (blocks != nullptr) blocks->begin(static_cast<std::uint32_t>(bodies.size()));
   bool unequalMasses = false;
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
     // The lines read here (ids, manifold count, flags) a few contacts ahead: a contact spans several
@@ -84,11 +86,22 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
     const std::int32_t a = solverOf[contact.bodyA];
     const std::int32_t b = solverOf[contact.bodyB];
     solvedContacts_.push_back(ci);
+    // It joins its bodies' islands; its block is that of a side in the solve (kept here, found
+    // once the islands are known).
+    if (blocks != nullptr) {
+      blocks->join(a, b);
+      blockOf_.push_back(static_cast<std::uint32_t>(a >= 0 ? a : b));
+    }
     const std::int32_t writtenA = a >= 0 && infos[a].dynamic ? a : kNoSolverBody;
     const std::int32_t writtenB = b >= 0 && infos[b].dynamic ? b : kNoSolverBody;
     writtenBodies_.push_back({writtenA, writtenB});
     unequalMasses = unequalMasses || (writtenA != kNoSolverBody && writtenB != kNoSolverBody &&
                                       infos[writtenA].inverseMass != infos[writtenB].inverseMass);
+  }
+  if (blocks != nullptr) {
+    blocks->finish();
+    for (std::uint32_t& side : blockOf_)
+      side = side == static_cast<std::uint32_t>(kNoSolverBody) ? 0 : blocks->blockOf(side);
   }
   colorConstraints(writtenBodies_, bodies.size(), colorOf_, colorBits_);
   // Support masses need a body resting on a lighter one: none where every contact between two
@@ -101,26 +114,30 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
     supportMasses_.clear();
   }
 
-  // By colour, then the overflow. Within a colour the contacts share no body that moves, so their
-  // order changes no result: they go by point count, most first, so that a batch's lanes have as
-  // many points as each other and the solver loops over (and loads) no point slot that all its
-  // lanes leave empty. The overflow colour is solved one contact after another and keeps the
-  // contact order. A counting sort, stable (determinism).
-  constexpr int kCounts = Manifold::kMaxPoints;
+  // By block, then by colour within the block, the overflow last. Within a colour the contacts
+  // share no body that moves, so their order changes no result: they go by point count, most
+  // first, so that a batch's lanes have as many points as each other and the solver loops over (and
+  // loads) no point slot that all its lanes leave empty. The overflow colour is solved one contact
+  // after another and keeps the contact order, as does each body's sequence of contacts: its
+  // island's are all in its block. A counting sort, stable (determinism).
+  constexpr std::uint32_t kCounts = Manifold::kMaxPoints;
+  const std::uint32_t blockCount = blocks != nullptr ? blocks->count() : 1;
   const auto bucketOf = [&](std::size_t i) {
-    const int color = colorOf_[i];
-    const int count = contacts[solvedContacts_[i]].manifold.count;
-    return color * kCounts + (color == kOverflowColor ? 0 : kCounts - count);
+    const std::uint32_t color = colorOf_[i];
+    const std::uint32_t count = contacts[solvedContacts_[i]].manifold.count;
+    const std::uint32_t block = blocks != nullptr ? blockOf_[i] : 0;
+    return (block * kColorSegments + color) * kCounts + (color == kOverflowColor ? 0 : kCounts - count);
   };
-  std::array<std::uint32_t, (kGraphColors + 1) * kCounts + 1> bucketStart{};
-  for (std::size_t i = 0; i < solvedContacts_.size(); ++i) ++bucketStart[bucketOf(i) + 1];
-  for (std::size_t k = 1; k < bucketStart.size(); ++k) bucketStart[k] += bucketStart[k - 1];
-  std::array<std::uint32_t, kGraphColors + 2> start{};
-  for (int color = 0; color <= kGraphColors + 1; ++color) start[color] = bucketStart[color * kCounts];
-  const std::array<std::uint32_t, (kGraphColors + 1)* kCounts + 1> countStart = bucketStart;
+  const std::uint32_t segments = blockCount * kColorSegments;
+  bucketStart_.assign(segments * kCounts + 1, 0);
+  for (std::size_t i = 0; i < solvedContacts_.size(); ++i) ++bucketStart_[bucketOf(i) + 1];
+  for (std::size_t k = 1; k < bucketStart_.size(); ++k) bucketStart_[k] += bucketStart_[k - 1];
+  segmentStart_.resize(segments + 1);
+  for (std::uint32_t s = 0; s <= segments; ++s) segmentStart_[s] = bucketStart_[s * kCounts];
+  countStart_ = bucketStart_;
   order_.resize(solvedContacts_.size());
   for (std::size_t i = 0; i < solvedContacts_.size(); ++i)
-    order_[bucketStart[bucketOf(i)]++] = solvedContacts_[i];
+    order_[bucketStart_[bucketOf(i)]++] = solvedContacts_[i];
   solvedContacts_.swap(order_);
 
   // Every spring is capped at a quarter of the substep rate (h omega <= pi / 2), where Gauss-Seidel
@@ -128,7 +145,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
   const float maxHertz = kMaxHertzPerSubstepRate / h;
   const ContactTuning& tuning = settings.tuning;
   const ContactBatchInput input{
-      contacts, solvedContacts_, start, countStart, storage, bodies, infos, solverOf,
+      contacts, solvedContacts_, blockCount, segmentStart_, countStart_, storage, bodies, infos, solverOf,
       makeSoftness(std::min(tuning.hertz, maxHertz), tuning.dampingRatio, h),
       // A one-way pair has half the effective mass to move: Box2D v3 doubles its stiffness, within the cap.
       makeSoftness(std::min(2.0f * tuning.hertz, maxHertz), tuning.dampingRatio, h), settings.friction,
@@ -139,7 +156,8 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
 
 std::size_t ContactSolver::memoryBytes() const {
   return lanes_->memoryBytes() + supportMasses_.memoryBytes() + heapBytes(solvedContacts_) +
-         heapBytes(writtenBodies_) + heapBytes(colorBits_) + heapBytes(order_) + heapBytes(colorOf_);
+         heapBytes(writtenBodies_) + heapBytes(colorBits_) + heapBytes(order_) + heapBytes(colorOf_) +
+         heapBytes(blockOf_) + heapBytes(bucketStart_) + heapBytes(countStart_) + heapBytes(segmentStart_);
 }
 
 }  // namespace collide::detail

@@ -25,6 +25,7 @@
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
 #include "dynamics/constraint_graph.h"
+#include "dynamics/solver_blocks.h"
 #include "dynamics/solver_body.h"
 #include "dynamics/support_masses.h"
 
@@ -62,16 +63,19 @@ struct ContactSolverSettings {
   Vec3 gravity{0.0f};    // "up" for the support masses
 };
 
-// What the lane kernels need to build their batches: the contacts to solve, ordered by colour (the
-// contacts of colour c are order[colorStart[c] .. colorStart[c + 1]), the overflow last), and the
-// step's bodies and settings.
+// What the lane kernels need to build their batches: the contacts to solve, ordered by block of
+// islands (solver_blocks.h), then by colour within a block, and the step's bodies and settings.
+// Segment s = block * kColorSegments + colour holds order[segmentStart[s] .. segmentStart[s + 1])
+// (the overflow colour last in each block).
+inline constexpr int kColorSegments = kGraphColors + 1;
 struct ContactBatchInput {
   Array<Contact>& contacts;
   const Array<std::uint32_t>& order;
-  const std::array<std::uint32_t, kGraphColors + 2>& colorStart;
-  // Within colour c (but the overflow), order[countStart[c * kMaxPoints + 4 - n], ... + 1) are the
-  // contacts of n points: a batch's first contact has the most points of its lanes.
-  const std::array<std::uint32_t, (kGraphColors + 1) * Manifold::kMaxPoints + 1>& countStart;
+  std::uint32_t blockCount;
+  const Array<std::uint32_t>& segmentStart;
+  // Within segment s (but an overflow one), order[countStart[s * kMaxPoints + 4 - n], ... + 1) are
+  // the contacts of n points: a batch's first contact has the most points of its lanes.
+  const Array<std::uint32_t>& countStart;
   const BodyStorage& storage;
   const Array<SolverBody>& bodies;
   const Array<SolverBodyInfo>& infos;
@@ -90,11 +94,13 @@ class ContactLanes {
  public:
   virtual ~ContactLanes() = default;
   virtual int width() const = 0;
-  // Each takes its batches in parallel ranges, a colour at a time (tasks: the step's workers).
+  // Each takes its batches in parallel ranges, a colour at a time (tasks: the step's workers); the
+  // passes take those of one block of islands.
   virtual void build(const ContactBatchInput& input, TaskRunner& tasks) = 0;
-  virtual void warmStart(Array<SolverBody>& bodies, TaskRunner& tasks) = 0;
-  virtual void solve(Array<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) = 0;
-  virtual void applyRestitution(Array<SolverBody>& bodies, TaskRunner& tasks) = 0;
+  virtual void warmStart(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) = 0;
+  virtual void solve(Array<SolverBody>& bodies, float h, bool useBias, std::uint32_t block,
+                     TaskRunner& tasks) = 0;
+  virtual void applyRestitution(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) = 0;
   virtual void store(Array<Contact>& contacts, TaskRunner& tasks) const = 0;
   virtual std::size_t memoryBytes() const = 0;
 };
@@ -121,18 +127,22 @@ class ContactSolver {
   // The contacts in the batches, in solve order (the response models and revert walk them).
   const Array<std::uint32_t>& solvedContacts() const { return solvedContacts_; }
 
+  // blocks: built here from the contacts taken (the step's blocks of islands), or null for one
+  // block of every contact.
   void prepare(Array<Contact>& contacts, const BodyStorage& storage, const Array<SolverBody>& bodies,
                const Array<SolverBodyInfo>& infos, const Array<std::int32_t>& solverOf,
-               const ContactSolverSettings& settings, float h, TaskRunner& tasks);
-  // Per substep: apply the accumulated impulses.
-  void warmStart(Array<SolverBody>& bodies, TaskRunner& tasks) { lanes_->warmStart(bodies, tasks); }
+               const ContactSolverSettings& settings, SolverBlocks* blocks, float h, TaskRunner& tasks);
+  // Per substep, the contacts of one block: apply the accumulated impulses.
+  void warmStart(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) {
+    lanes_->warmStart(bodies, block, tasks);
+  }
   // Per substep: one pass; useBias = false is the relax pass.
-  void solve(Array<SolverBody>& bodies, float h, bool useBias, TaskRunner& tasks) {
-    lanes_->solve(bodies, h, useBias, tasks);
+  void solve(Array<SolverBody>& bodies, float h, bool useBias, std::uint32_t block, TaskRunner& tasks) {
+    lanes_->solve(bodies, h, useBias, block, tasks);
   }
   // Once at the end: Newton's restitution from the approach velocity taken in prepare().
-  void applyRestitution(Array<SolverBody>& bodies, TaskRunner& tasks) {
-    lanes_->applyRestitution(bodies, tasks);
+  void applyRestitution(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) {
+    lanes_->applyRestitution(bodies, block, tasks);
   }
   // The impulses back into the contacts (warm starting next step, events, response models).
   void store(Array<Contact>& contacts, TaskRunner& tasks) const { lanes_->store(contacts, tasks); }
@@ -148,6 +158,12 @@ class ContactSolver {
   Array<std::uint64_t> colorBits_;
   Array<std::uint32_t> order_;
   Array<std::uint8_t> colorOf_;
+  // Per solved contact its block (its solver body on one side until the blocks are known); per
+  // (block, colour, point count) bucket its start in the order.
+  Array<std::uint32_t> blockOf_;
+  Array<std::uint32_t> bucketStart_;
+  Array<std::uint32_t> countStart_;
+  Array<std::uint32_t> segmentStart_;
 };
 
 }  // namespace collide::detail

@@ -13,12 +13,18 @@ namespace collide::detail {
 
 namespace {
 
+std::atomic<bool> solveInBlocks{true};
+std::atomic<std::uint32_t> lastBlockCount{0};
+
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite(const Quat& q) {
   return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
 }
 
 }  // namespace
+
+void setSolveInBlocks(bool enabled) { solveInBlocks.store(enabled, std::memory_order_relaxed); }
+std::uint32_t lastSolveBlockCount() { return lastBlockCount.load(std::memory_order_relaxed); }
 
 void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts) {
   const std::size_t n = storage.states.size();
@@ -62,27 +68,33 @@ void StepSolver::guard(TaskRunner& tasks) {
 }
 
 void StepSolver::guard(std::uint32_t begin, std::uint32_t end) {
-  for (std::size_t j = begin; j < end; ++j) {
-    SolverBodyInfo& info = infos_[j];
-    if (info.faulted) continue;
-    SolverBody& b = bodies_[j];
-    // x * 0 is 0 for every finite x and NaN otherwise: one sum tells whether all sixteen floats
-    // (the pads are 0) are finite, and only a bad body pays for the field-by-field look.
-    const float* f = reinterpret_cast<const float*>(&b);
-    const FloatW zero = zeroW();
-    const FloatW sum = (loadW(f) * zero + loadW(f + 4) * zero) + (loadW(f + 8) * zero + loadW(f + 12) * zero);
-    if (!anyW(notEqualW(sum, zero))) continue;
-    std::uint8_t fields = 0;
-    if (!finite(b.deltaPosition)) fields |= FaultEvent::kPosition;
-    if (!finite(b.deltaRotation)) fields |= FaultEvent::kRotation;
-    if (!finite(b.linearVelocity)) fields |= FaultEvent::kLinearVelocity;
-    if (!finite(b.angularVelocity)) fields |= FaultEvent::kAngularVelocity;
-    if (fields == 0) continue;
-    info.faulted = true;
-    faultFields_[j] = fields;
-    b = SolverBody{};
-    stoppedABody_.store(true, std::memory_order_relaxed);
-  }
+  for (std::uint32_t j = begin; j < end; ++j) guardBody(j);
+}
+
+void StepSolver::guard(std::span<const std::uint32_t> which) {
+  for (const std::uint32_t j : which) guardBody(j);
+}
+
+void StepSolver::guardBody(std::uint32_t j) {
+  SolverBodyInfo& info = infos_[j];
+  if (info.faulted) return;
+  SolverBody& b = bodies_[j];
+  // x * 0 is 0 for every finite x and NaN otherwise: one sum tells whether all sixteen floats
+  // (the pads are 0) are finite, and only a bad body pays for the field-by-field look.
+  const float* f = reinterpret_cast<const float*>(&b);
+  const FloatW zero = zeroW();
+  const FloatW sum = (loadW(f) * zero + loadW(f + 4) * zero) + (loadW(f + 8) * zero + loadW(f + 12) * zero);
+  if (!anyW(notEqualW(sum, zero))) return;
+  std::uint8_t fields = 0;
+  if (!finite(b.deltaPosition)) fields |= FaultEvent::kPosition;
+  if (!finite(b.deltaRotation)) fields |= FaultEvent::kRotation;
+  if (!finite(b.linearVelocity)) fields |= FaultEvent::kLinearVelocity;
+  if (!finite(b.angularVelocity)) fields |= FaultEvent::kAngularVelocity;
+  if (fields == 0) return;
+  info.faulted = true;
+  faultFields_[j] = fields;
+  b = SolverBody{};
+  stoppedABody_.store(true, std::memory_order_relaxed);
 }
 
 void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks) {
@@ -115,6 +127,9 @@ void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, Task
 void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joint>& joints,
                        const StepSettings& settings, float dt, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const float h = dt / static_cast<float>(settings.substeps);
+  // Joints and the projection have passes of their own over the whole world: one block then.
+  const bool inBlocks =
+      joints.empty() && !settings.projection && solveInBlocks.load(std::memory_order_relaxed);
   gatherBodies(storage, settings.gravity, !joints.empty());
   faultFields_.assign(bodies_.size(), 0);
   stoppedABody_.store(false, std::memory_order_relaxed);
@@ -122,13 +137,30 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
   contactSettings.gravity = settings.gravity;
-  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings, h, tasks);
-  if (settings.projection)
-    projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
+  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings,
+                    inBlocks ? &blocks_ : nullptr, h, tasks);
   JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
   prepareJoints(view, joints);
   jointWaves_.prepare(view, joints);
   jointTree_.prepare(view, joints);
+  if (inBlocks) {
+    // The large islands one after another, each on every worker; the blocks of small ones a worker
+    // each. No block reads what another writes, so the order they run in changes nothing.
+    const std::uint32_t blockCount = blocks_.count();
+    lastBlockCount.store(blockCount, std::memory_order_relaxed);
+    for (std::uint32_t b = 0; b < blockCount; ++b)
+      if (blocks_.large(b)) solveBlock(b, storage, settings, h, tasks);
+    tasks.parallelFor(blockCount, 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t b = begin; b < end; ++b)
+        if (!blocks_.large(b)) solveBlock(b, storage, settings, h, inline_);
+    });
+    contacts_.store(contacts, tasks);
+    writeBack(storage, faults, tasks);
+    return;
+  }
+  lastBlockCount.store(1, std::memory_order_relaxed);
+  if (settings.projection)
+    projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
   // joint past it made a net draped over a ball shiver instead of sleeping).
   const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
@@ -142,10 +174,10 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     if (stoppedABody_.load(std::memory_order_relaxed)) jointTree_.posesMoved();
     jointWaves_.warmStart(view, joints, tasks);
     jointTree_.warmStart(view, joints, h, tasks);
-    contacts_.warmStart(bodies_, tasks);
+    contacts_.warmStart(bodies_, 0, tasks);
     jointWaves_.solve(view, joints, h, rigidHertz, true, tasks);
     jointTree_.solve(view, joints, h, rigidHertz, true, tasks);
-    contacts_.solve(bodies_, h, true, tasks);
+    contacts_.solve(bodies_, h, true, 0, tasks);
     tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
       integratePositions(bodies_, infos_, h, begin, end);
     });
@@ -155,18 +187,44 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     if (projectJoints(view, joints)) jointTree_.posesMoved();
     jointWaves_.solve(view, joints, h, rigidHertz, false, tasks);
     jointTree_.solve(view, joints, h, rigidHertz, false, tasks);
-    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, tasks);
+    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, 0, tasks);
     guard(tasks);
   }
-  contacts_.applyRestitution(bodies_, tasks);
+  contacts_.applyRestitution(bodies_, 0, tasks);
   guard(tasks);
   contacts_.store(contacts, tasks);
   writeBack(storage, faults, tasks);
 }
 
+// The loop above without joints or projection, over one block's bodies and contacts.
+void StepSolver::solveBlock(std::uint32_t block, BodyStorage& storage, const StepSettings& settings, float h,
+                            TaskRunner& tasks) {
+  const std::span<const std::uint32_t> bodies = blocks_.bodies(block);
+  const auto overBodies = [&](auto&& f) {
+    tasks.parallelFor(static_cast<std::uint32_t>(bodies.size()), kBodiesPerRange,
+                      [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                        f(bodies.subspan(begin, end - begin));
+                      });
+  };
+  for (int i = 0; i < settings.substeps; ++i) {
+    overBodies([&](std::span<const std::uint32_t> which) {
+      integrateVelocities(bodies_, infos_, storage, h, which);
+      guard(which);
+    });
+    contacts_.warmStart(bodies_, block, tasks);
+    contacts_.solve(bodies_, h, true, block, tasks);
+    overBodies([&](std::span<const std::uint32_t> which) { integratePositions(bodies_, infos_, h, which); });
+    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, block, tasks);
+    overBodies([&](std::span<const std::uint32_t> which) { guard(which); });
+  }
+  contacts_.applyRestitution(bodies_, block, tasks);
+  overBodies([&](std::span<const std::uint32_t> which) { guard(which); });
+}
+
 std::size_t StepSolver::memoryBytes() const {
   return heapBytes(bodies_) + heapBytes(infos_) + heapBytes(starts_) + heapBytes(solverOf_) +
-         heapBytes(faultFields_) + contacts_.memoryBytes() + projection_.memoryBytes();
+         heapBytes(faultFields_) + blocks_.memoryBytes() + contacts_.memoryBytes() +
+         projection_.memoryBytes();
 }
 
 }  // namespace collide::detail

@@ -6,6 +6,9 @@
 //      integrate positions -> relax both without it -> fault guard;
 //   3. restitution, the impulses back into the contacts, the new poses and velocities back into the
 //      body storage (inertia refreshed), and bodies the guard stopped frozen and reported.
+// Without joints or the projection, each block of islands (solver_blocks.h) runs steps 2 and the
+// restitution on its own: the blocks of a few hundred contacts in parallel, a worker each, a larger
+// island on every worker, colour by colour. The result is the same as one loop over the world.
 // Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
 // last word on penetration: first the joints' Gauss-Seidel rows (springs, motors, limits, and the
 // joints no tree takes; in waves, joint_solver.h), then the rigid rows of joint trees, solved
@@ -19,6 +22,7 @@
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/joint_tree.h"
+#include "dynamics/solver_blocks.h"
 #include "dynamics/solver_body.h"
 
 #include <collide/events.h>
@@ -26,6 +30,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace collide::detail {
@@ -38,6 +43,12 @@ struct StepSettings {
   bool friction = true;     // Coulomb friction in the solver (off under the viscous and damping models)
   bool projection = false;  // PenetrationResponse::Project (contact_projection.h)
 };
+
+// For tests and benchmarks: whether worlds solve in blocks of islands where they can (the default)
+// or always as one block, which gives the same result; and how many blocks the last solve of any
+// world ran.
+void setSolveInBlocks(bool enabled);
+std::uint32_t lastSolveBlockCount();
 
 // Solver bodies a parallel range takes (integration, the fault guard).
 inline constexpr std::uint32_t kBodiesPerRange = 1024;
@@ -57,10 +68,15 @@ class StepSolver {
  private:
   // withStarts: the bodies' start poses too (starts_), which the joints read.
   void gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts);
+  // Steps 2 and the restitution for the contacts and bodies of one block (no joints, no projection).
+  void solveBlock(std::uint32_t block, BodyStorage& storage, const StepSettings& settings, float h,
+                  TaskRunner& tasks);
   void writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks);
   // Over every solver body, in parallel ranges; and over bodies [begin, end) (each body's own state).
   void guard(TaskRunner& tasks);
   void guard(std::uint32_t begin, std::uint32_t end);
+  void guard(std::span<const std::uint32_t> which);
+  void guardBody(std::uint32_t j);
 
   Array<SolverBody> bodies_;
   Array<SolverBodyInfo> infos_;
@@ -69,6 +85,8 @@ class StepSolver {
   Array<std::uint8_t> faultFields_;
   // The guard stopped a body this step (its pose went back to the step's start).
   std::atomic<bool> stoppedABody_{false};
+  SolverBlocks blocks_;
+  TaskRunner inline_;  // runs a block on the worker that took it
   ContactSolver contacts_;
   ContactProjection projection_;
   JointWaves jointWaves_;

@@ -6,6 +6,8 @@
 #include "support/test_job_system.h"
 #include "support/world_helpers.h"
 
+#include "dynamics/solver.h"
+
 #include <collide/world.h>
 
 #include <gtest/gtest.h>
@@ -241,8 +243,9 @@ TEST(Workers, AnEnginesJobSystemGivesTheSameState) {
   EXPECT_GT(jobs.tasks(), 200);
 }
 
-// 12 x 12 stacks of 10 boxes, resting on each other from the start: about 700 contacts a colour,
-// so that every pass of the solver splits its colours into ranges.
+// 12 x 12 stacks of 10 boxes, resting on each other and side by side from the start: one island
+// (solver_blocks.h) of about 1,000 contacts a colour, so that every pass of the solver splits its
+// colours into ranges.
 std::vector<unsigned char> runStacks(const WorldDef& def, int steps) {
   World world(def);
   world.createBody(test::groundBox());
@@ -250,7 +253,7 @@ std::vector<unsigned char> runStacks(const WorldDef& def, int steps) {
   for (int x = 0; x < 12; ++x) {
     for (int z = 0; z < 12; ++z) {
       for (int y = 0; y < 10; ++y) {
-        const Vec3 at(0.6f * float(x) - 3.3f, 0.25f + 0.5f * float(y), 0.6f * float(z) - 3.3f);
+        const Vec3 at(0.5f * float(x) - 2.75f, 0.25f + 0.5f * float(y), 0.5f * float(z) - 2.75f);
         boxes.push_back(world.createBody(test::boxBody(at, Vec3(0.25f), 1.0f)));
       }
     }
@@ -268,6 +271,65 @@ TEST(Workers, StacksWhoseColoursSplitIntoRangesEndInTheSameState) {
   EXPECT_TRUE(runStacks(onJobSystem(jobs, 2), 30) == one);
   // More tasks than steps times substeps times passes: the solver's passes went through it.
   EXPECT_GT(jobs.tasks(), 30 * 6 * 4);
+}
+
+// Islands the solver takes in blocks (solver_blocks.h): a kinematic platform carrying two stacks,
+// a carpet of boxes side by side (one island of more contacts than a block), 60 stacks apart from
+// each other, spheres falling free, and the platform's stacks made last, so that only their contacts
+// with the platform put them in its block. Solved in blocks (on one worker, or several blocks at a
+// time on the world's threads or an engine's job system) and as one block, it ends bit for bit in
+// the same state.
+std::vector<unsigned char> runIslands(const WorldDef& def, int steps, std::uint32_t* blocks = nullptr) {
+  World world(def);
+  world.createBody(test::groundBox());
+  std::vector<BodyId> bodies;
+  BodyDef platform = test::boxBody(Vec3(-20.0f, 3.0f, 0.0f), Vec3(1.5f, 0.1f, 1.5f), 1.0f);
+  platform.type = BodyType::Kinematic;
+  platform.linearVelocity = Vec3(0.5f, 0.0f, 0.2f);
+  platform.angularVelocity = Vec3(0.0f, 0.3f, 0.0f);
+  bodies.push_back(world.createBody(platform));
+  for (int x = 0; x < 14; ++x) {
+    for (int z = 0; z < 14; ++z) {
+      for (int y = 0; y < 2; ++y) {
+        const Vec3 at(0.5f * float(x) - 3.25f, 0.25f + 0.5f * float(y), 0.5f * float(z) - 3.25f);
+        bodies.push_back(world.createBody(test::boxBody(at, Vec3(0.25f), 1.0f)));
+      }
+    }
+  }
+  for (int i = 0; i < 60; ++i) {
+    const float x = 2.0f * float(i % 10) - 9.0f;
+    const float z = 6.0f + 2.0f * float(i / 10);
+    for (int y = 0; y < 3; ++y) {
+      const Vec3 at(x + 0.02f * float(y), 0.25f + 0.5f * float(y), z);
+      bodies.push_back(world.createBody(test::boxBody(at, Vec3(0.25f), 1.0f + 0.5f * float(y))));
+    }
+  }
+  for (int i = 0; i < 8; ++i)
+    bodies.push_back(
+        world.createBody(test::sphereBody(Vec3(3.0f * float(i) - 10.0f, 6.0f, -8.0f), 0.3f, 1.0f)));
+  for (const float x : {-20.6f, -19.4f}) {
+    for (int y = 0; y < 2; ++y) {
+      const Vec3 at(x, 3.35f + 0.5f * float(y), 0.3f);
+      bodies.push_back(world.createBody(test::boxBody(at, Vec3(0.25f), 2.0f)));
+    }
+  }
+  for (int step = 0; step < steps; ++step) world.step(kDt);
+  if (blocks != nullptr) *blocks = detail::lastSolveBlockCount();
+  return stateBytes(world, bodies);
+}
+
+TEST(Workers, IslandsSolvedInBlocksEndAsSolvedTogether) {
+  detail::setSolveInBlocks(false);
+  std::uint32_t blocks = 0;
+  const std::vector<unsigned char> together = runIslands(WorldDef{}, 90, &blocks);
+  detail::setSolveInBlocks(true);
+  EXPECT_EQ(blocks, 1u);
+  EXPECT_TRUE(runIslands(WorldDef{}, 90, &blocks) == together);
+  // The platform's, the carpet (a large island, its own block) and the stacks' and spheres' after it.
+  EXPECT_GE(blocks, 3u);
+  expectTheStateOfOneWorker(together, [](const WorldDef& def) { return runIslands(def, 90); });
+  test::TestJobSystem jobs(2);
+  EXPECT_TRUE(runIslands(onJobSystem(jobs, 2), 90) == together);
 }
 
 // 96 chains of four boxes hanging from static anchors and swung into one another: on hinges with
