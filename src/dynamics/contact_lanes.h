@@ -28,17 +28,17 @@ struct BatchPoint {
   F normalImpulse;  // accumulated per substep (warm start)
   F maxNormalImpulse;
   F totalNormalImpulse;
-  F approachVelocity;  // normal relative velocity before the solve (restitution, events)
 };
 
-// kLaneCount<F> manifolds, solved together (Box2D v3's b2ContactConstraintSIMD).
+// kLaneCount<F> manifolds, solved together (Box2D v3's b2ContactConstraintSIMD): what every pass
+// reads. The solver streams each batch several times a substep, so what only the biased pass reads
+// (BatchBias) and what only the step's end reads (BatchEnd) lie in arrays of their own.
 template <typename F>
 struct ContactBatch {
   static constexpr int kWidth = kLaneCount<F>;
   std::array<std::int32_t, kWidth> bodyA;  // solver body, or kNoSolverBody
   std::array<std::int32_t, kWidth> bodyB;
-  std::array<std::int32_t, kWidth> contact;  // index in the contact array, -1 for an empty lane
-  std::array<bool, kWidth> writeA;           // a dynamic body takes the result (not kinematic)
+  std::array<bool, kWidth> writeA;  // a dynamic body takes the result (not kinematic)
   std::array<bool, kWidth> writeB;
   int pointCount;  // the most points of the manifolds
   // Its pointCount points, in the solver's point array: a batch of spheres holds one point slot,
@@ -46,8 +46,7 @@ struct ContactBatch {
   BatchPoint<F>* points;
   F inverseMassA, inverseMassB;
   Vec3T<F> normal, tangent1, tangent2;
-  F friction, restitution;
-  F biasRate, massScale, impulseScale;
+  F friction;
   // Friction patch.
   Vec3T<F> patchA, patchB;  // from each centre of mass to the centroid, world, at the step start
   Vec3T<F> tangent1TurnA, tangent2TurnA, tangent1TurnB, tangent2TurnB;  // I^-1 of those
@@ -56,12 +55,25 @@ struct ContactBatch {
   F surfaceSpeed1, surfaceSpeed2;   // the sliding friction drives towards (a conveyor belt)
   Vec3T<F> twistTurnA, twistTurnB;  // I^-1 normal
   F twistMass, twistRadius, twistImpulse;
+};
+
+// What the biased pass alone reads of a batch: the softness and the static-friction anchor.
+template <typename F>
+struct BatchBias {
+  F biasRate, massScale, impulseScale;
   // Static-friction anchor: offsets of the anchored points from the centres at the step start, and
   // their tangential gap B - A then.
   Vec3T<F> stickA, stickB;
   F stickGap1, stickGap2;
   F stickRate;  // the softness's bias rate, or 0 where the patch has no anchor (a belt)
   F sliding;    // lane mask: the patch reached the friction bound in a biased pass
+};
+
+// What the restitution and the store read of a batch at the step's end.
+template <typename F>
+struct BatchEnd {
+  std::array<std::int32_t, kLaneCount<F>> contact;  // index in the contact array, -1 for an empty lane
+  F restitution;
 };
 
 template <typename F>
@@ -87,6 +99,8 @@ class LaneContactSolver final : public ContactLanes {
       batchStart_[s + 1] = batchStart_[s] + (count + perBatch - 1) / perBatch;
     }
     resizeScratch(batches_, batchStart_[segments]);
+    resizeScratch(biases_, batches_.size());
+    resizeScratch(ends_, batches_.size());
     // Each batch's point slots: as many as its first contact's points, which has the most.
     resizeScratch(batchPoints_, batches_.size() + 1);
     batchPoints_[0] = 0;
@@ -106,6 +120,7 @@ class LaneContactSolver final : public ContactLanes {
       }
     }
     resizeScratch(points_, batchPoints_.back());
+    resizeScratch(approach_, points_.size());
     tasks.parallelFor(
         static_cast<std::uint32_t>(batches_.size()), kBatchesPerRange,
         [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { fillBatches(in, begin, end); });
@@ -163,21 +178,25 @@ class LaneContactSolver final : public ContactLanes {
       const std::uint32_t first = firstOrderOf(b, segment);
       const std::uint32_t last = std::min(first + lanesOf(segment), in.segmentStart[segment + 1]);
       Batch* batch = batches_.data() + b;
+      BatchBias<F>* bias = biases_.data() + b;
+      BatchEnd<F>* batchEnd = ends_.data() + b;
       std::memset(static_cast<void*>(batch), 0, sizeof(Batch));
+      std::memset(static_cast<void*>(bias), 0, sizeof(BatchBias<F>));
+      std::memset(static_cast<void*>(batchEnd), 0, sizeof(BatchEnd<F>));
       batch->pointCount = static_cast<int>(batchPoints_[b + 1] - batchPoints_[b]);
       batch->points = points_.data() + batchPoints_[b];
       std::memset(static_cast<void*>(batch->points), 0, sizeof(BatchPoint<F>) * batch->pointCount);
       batch->bodyA.fill(kNoSolverBody);
       batch->bodyB.fill(kNoSolverBody);
-      batch->contact.fill(-1);
+      batchEnd->contact.fill(-1);
       LaneInputs inputs;
       std::memset(static_cast<void*>(&inputs), 0, sizeof(LaneInputs));
       for (std::uint32_t i = first; i < last; ++i) {
         prefetchContact(i + 2 * kAhead);
         prefetchBodies(i + kAhead);
-        fillLane(in, *batch, inputs, static_cast<int>(i - first), in.order[i]);
+        fillLane(in, *batch, *bias, *batchEnd, inputs, static_cast<int>(i - first), in.order[i]);
       }
-      finishBatch(*batch, inputs);
+      finishBatch(*batch, approach_.data() + batchPoints_[b], inputs);
     }
   }
 
@@ -254,20 +273,22 @@ class LaneContactSolver final : public ContactLanes {
     const F zero = zeroT<F>();
     const F threshold = splatT<F>(-restitutionThreshold_);
     forEachBatch(tasks, block, false, [&](Batch& c) {
-      if (!anyW(greaterW(c.restitution, zero))) return;
+      const std::size_t index = static_cast<std::size_t>(&c - batches_.data());
+      const F restitution = ends_[index].restitution;
+      if (!anyW(greaterW(restitution, zero))) return;
+      const F* approach = approach_.data() + batchPoints_[index];
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
       for (int k = 0; k < c.pointCount; ++k) {
         BatchPoint<F>& p = c.points[k];
-        const F bounce =
-            andW(andW(greaterW(threshold, p.approachVelocity), greaterW(p.maxNormalImpulse, zero)),
-                 greaterW(c.restitution, zero));
+        const F bounce = andW(andW(greaterW(threshold, approach[k]), greaterW(p.maxNormalImpulse, zero)),
+                              greaterW(restitution, zero));
         if (!anyW(bounce)) continue;
         // w . (r x n) = r . (n x w): the anchors' crosses are not stored, to keep the batch small
         // (the solver streams every batch several times a substep).
         const F vn = dot(b.v - a.v, c.normal) + dot(p.anchorB, cross(c.normal, b.w)) -
                      dot(p.anchorA, cross(c.normal, a.w));
-        F impulse = -(p.normalMass * (vn + c.restitution * p.approachVelocity));
+        F impulse = -(p.normalMass * (vn + restitution * approach[k]));
         const F total = maxW(p.normalImpulse + impulse, zero);
         impulse = selectW(bounce, total - p.normalImpulse, zero);
         p.normalImpulse = p.normalImpulse + impulse;
@@ -284,7 +305,8 @@ class LaneContactSolver final : public ContactLanes {
 
   // Each batch writes its own contacts: ranges of batches in parallel.
   std::size_t memoryBytes() const override {
-    return heapBytes(batches_) + heapBytes(points_) + heapBytes(batchPoints_) + heapBytes(batchStart_);
+    return heapBytes(batches_) + heapBytes(biases_) + heapBytes(ends_) + heapBytes(points_) +
+           heapBytes(approach_) + heapBytes(batchPoints_) + heapBytes(batchStart_);
   }
 
   void store(Array<Contact>& contacts, TaskRunner& tasks) const override {
@@ -298,28 +320,30 @@ class LaneContactSolver final : public ContactLanes {
     constexpr std::size_t kAhead = 2;
     const auto prefetchContacts = [&](std::size_t batch) {
       if (batch >= end) return;
-      for (const std::int32_t index : batches_[batch].contact)
+      for (const std::int32_t index : ends_[batch].contact)
         if (index >= 0) prefetchBytes(&contacts[static_cast<std::size_t>(index)], offsetof(Contact, cache));
     };
     for (std::size_t i = begin; i < begin + kAhead; ++i) prefetchContacts(i);
     for (std::size_t i = begin; i < end; ++i) {
       prefetchContacts(i + kAhead);
       const Batch& c = batches_[i];
+      const BatchEnd<F>& batchEnd = ends_[i];
+      const F* approach = approach_.data() + batchPoints_[i];
       for (int lane = 0; lane < kWidth; ++lane) {
-        if (c.contact[lane] < 0) continue;
-        Contact& contact = contacts[static_cast<std::size_t>(c.contact[lane])];
+        if (batchEnd.contact[lane] < 0) continue;
+        Contact& contact = contacts[static_cast<std::size_t>(batchEnd.contact[lane])];
         for (int k = 0; k < contact.manifold.count; ++k) {
           const BatchPoint<F>& p = c.points[k];
           ContactPointState& state = contact.points[k];
           state.normalImpulse = laneOf(p.normalImpulse, lane);
           state.maxNormalImpulse = laneOf(p.maxNormalImpulse, lane);
           state.totalNormalImpulse = laneOf(p.totalNormalImpulse, lane);
-          state.relativeVelocity = laneOf(p.approachVelocity, lane);
+          state.relativeVelocity = laneOf(approach[k], lane);
         }
         contact.frictionImpulse = laneOf(c.tangentImpulse1, lane) * laneOf(c.tangent1, lane) +
                                   laneOf(c.tangentImpulse2, lane) * laneOf(c.tangent2, lane);
         contact.twistImpulse = laneOf(c.twistImpulse, lane);
-        contact.sliding = laneSet(c.sliding, lane);
+        contact.sliding = laneSet(biases_[i].sliding, lane);
       }
     }
   }
@@ -415,7 +439,8 @@ class LaneContactSolver final : public ContactLanes {
   // without a new narrow-phase query (Box2D v3): n . (dq r) = (conj(dq) n) . r. Its own function so
   // that the poses are dropped before the velocities are read, which then keep the registers.
   template <bool useBias>
-  static COLLIDE_INLINE PoseChange poseChange(const Array<SolverBody>& bodies, const Batch& c) {
+  static COLLIDE_INLINE PoseChange poseChange(const Array<SolverBody>& bodies, const Batch& c,
+                                              const BatchBias<F>& bias) {
     const F zero = zeroT<F>();
     PoseChange out;
     out.drift1 = zero;
@@ -427,9 +452,9 @@ class LaneContactSolver final : public ContactLanes {
     const Vec dp = pb.dp - pa.dp;
     out.moved = dot(dp, c.normal);
     if constexpr (useBias) {
-      const Vec drift = dp + cross(smallRotation(pb), c.stickB) - cross(smallRotation(pa), c.stickA);
-      out.drift1 = c.stickGap1 + dot(drift, c.tangent1);
-      out.drift2 = c.stickGap2 + dot(drift, c.tangent2);
+      const Vec drift = dp + cross(smallRotation(pb), bias.stickB) - cross(smallRotation(pa), bias.stickA);
+      out.drift1 = bias.stickGap1 + dot(drift, c.tangent1);
+      out.drift2 = bias.stickGap2 + dot(drift, c.tangent2);
     }
     return out;
   }
@@ -437,8 +462,8 @@ class LaneContactSolver final : public ContactLanes {
   // The batch's normal points, in order; returns the sum of their accumulated impulses, which bounds
   // the friction patch and the twist that follow.
   template <bool useBias>
-  static COLLIDE_INLINE F solveNormalPoints(Batch& c, Velocities& a, Velocities& b, const PoseChange& pose,
-                                            F inverseH, F maxPushOut) {
+  static COLLIDE_INLINE F solveNormalPoints(Batch& c, const BatchBias<F>& soft, Velocities& a, Velocities& b,
+                                            const PoseChange& pose, F inverseH, F maxPushOut) {
     const F zero = zeroT<F>();
     const F one = splatT<F>(1.0f);
     F normalSum = zero;
@@ -452,9 +477,9 @@ class LaneContactSolver final : public ContactLanes {
       F massScale = one;
       F impulseScale = zero;
       if constexpr (useBias) {
-        bias = selectW(apart, bias, maxW(c.biasRate * separation, maxPushOut));
-        massScale = selectW(apart, one, c.massScale);
-        impulseScale = selectW(apart, zero, c.impulseScale);
+        bias = selectW(apart, bias, maxW(soft.biasRate * separation, maxPushOut));
+        massScale = selectW(apart, one, soft.massScale);
+        impulseScale = selectW(apart, zero, soft.impulseScale);
       } else {
         bias = selectW(apart, bias, zero);
       }
@@ -481,8 +506,8 @@ class LaneContactSolver final : public ContactLanes {
   // plus in the biased pass the gap of the static anchors, driven to zero inside the Coulomb disc
   // whose radius the normal impulses set.
   template <bool useBias>
-  static COLLIDE_INLINE void solveFriction(Batch& c, Velocities& a, Velocities& b, F normalSum,
-                                           const PoseChange& pose) {
+  static COLLIDE_INLINE void solveFriction(Batch& c, BatchBias<F>& soft, Velocities& a, Velocities& b,
+                                           F normalSum, const PoseChange& pose) {
     const F zero = zeroT<F>();
     const F one = splatT<F>(1.0f);
     const Vec dv = b.v - a.v;
@@ -492,10 +517,10 @@ class LaneContactSolver final : public ContactLanes {
     F massScale = one;
     F impulseScale = zero;
     if constexpr (useBias) {
-      v1 = v1 + c.stickRate * pose.drift1;
-      v2 = v2 + c.stickRate * pose.drift2;
-      massScale = c.massScale;
-      impulseScale = c.impulseScale;
+      v1 = v1 + soft.stickRate * pose.drift1;
+      v2 = v2 + soft.stickRate * pose.drift2;
+      massScale = soft.massScale;
+      impulseScale = soft.impulseScale;
     }
     F next1 = c.tangentImpulse1 - massScale * (c.tangentMass11 * v1 + c.tangentMass12 * v2) -
               impulseScale * c.tangentImpulse1;
@@ -507,7 +532,7 @@ class LaneContactSolver final : public ContactLanes {
     const F scale = selectW(beyond, limit / maxW(length, splatT<F>(1e-30f)), one);
     next1 = next1 * scale;
     next2 = next2 * scale;
-    if constexpr (useBias) c.sliding = orW(c.sliding, beyond);
+    if constexpr (useBias) soft.sliding = orW(soft.sliding, beyond);
     const F d1 = next1 - c.tangentImpulse1;
     const F d2 = next2 - c.tangentImpulse2;
     c.tangentImpulse1 = next1;
@@ -539,11 +564,13 @@ class LaneContactSolver final : public ContactLanes {
     const F inverseH = splatT<F>(1.0f / h);
     const F maxPushOut = splatT<F>(-pushOutSpeed_);
     forEachBatch(tasks, block, false, [&](Batch& c) {
-      const PoseChange pose = poseChange<useBias>(bodies, c);
+      // The biased pass's part of the batch; the relax pass never reads it.
+      BatchBias<F>& soft = biases_[static_cast<std::size_t>(&c - batches_.data())];
+      const PoseChange pose = poseChange<useBias>(bodies, c, soft);
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
-      const F normalSum = solveNormalPoints<useBias>(c, a, b, pose, inverseH, maxPushOut);
-      solveFriction<useBias>(c, a, b, normalSum, pose);
+      const F normalSum = solveNormalPoints<useBias>(c, soft, a, b, pose, inverseH, maxPushOut);
+      solveFriction<useBias>(c, soft, a, b, normalSum, pose);
       solveTwist(c, a, b, normalSum);
       scatter(bodies, c.bodyA, c.writeA, a);
       scatter(bodies, c.bodyB, c.writeB, b);
@@ -623,12 +650,12 @@ class LaneContactSolver final : public ContactLanes {
   // One contact into one lane, the scalar part: bodies, masses, basis, settings and the friction
   // patch's warm start and static anchor; the rest (anchors, effective masses, approach velocity)
   // is finishBatch's, for all lanes at once.
-  static void fillLane(const ContactBatchInput& in, Batch& c, LaneInputs& inputs, int lane,
-                       std::uint32_t contactIndex) {
+  static void fillLane(const ContactBatchInput& in, Batch& c, BatchBias<F>& bias, BatchEnd<F>& end,
+                       LaneInputs& inputs, int lane, std::uint32_t contactIndex) {
     Contact& contact = in.contacts[contactIndex];
     const BodyState& stateA = in.storage.states[contact.bodyA];
     const BodyState& stateB = in.storage.states[contact.bodyB];
-    c.contact[lane] = static_cast<std::int32_t>(contactIndex);
+    end.contact[lane] = static_cast<std::int32_t>(contactIndex);
     const LaneMasses masses = fillBodies(in, c, inputs, lane, contactIndex, contact, stateA, stateB);
     const float mA = masses.a, mB = masses.b;
 
@@ -640,11 +667,11 @@ class LaneContactSolver final : public ContactLanes {
     setLane(c.tangent2, lane, t2);
     const float friction = in.friction ? contact.friction : 0.0f;
     laneOf(c.friction, lane) = friction;
-    laneOf(c.restitution, lane) = contact.restitution;
+    laneOf(end.restitution, lane) = contact.restitution;
     const Softness& s = (mA == 0.0f || mB == 0.0f) ? in.oneWaySoftness : in.softness;
-    laneOf(c.biasRate, lane) = s.biasRate;
-    laneOf(c.massScale, lane) = s.massScale;
-    laneOf(c.impulseScale, lane) = s.impulseScale;
+    laneOf(bias.biasRate, lane) = s.biasRate;
+    laneOf(bias.massScale, lane) = s.massScale;
+    laneOf(bias.impulseScale, lane) = s.impulseScale;
 
     const int count = contact.manifold.count;
     laneOf(inputs.count, lane) = static_cast<float>(count);
@@ -683,7 +710,7 @@ class LaneContactSolver final : public ContactLanes {
     laneOf(c.surfaceSpeed1, lane) = glm::dot(contact.surfaceVelocity, t1);
     laneOf(c.surfaceSpeed2, lane) = glm::dot(contact.surfaceVelocity, t2);
     const bool anchored = friction > 0.0f && contact.surfaceVelocity == Vec3(0.0f);
-    laneOf(c.stickRate, lane) = anchored ? s.biasRate : 0.0f;
+    laneOf(bias.stickRate, lane) = anchored ? s.biasRate : 0.0f;
     if (!contact.stuck || contact.sliding || !anchored) anchorHere();
     Vec3 stickA = stateA.rotation * contact.stickLocalA;
     Vec3 stickB = stateB.rotation * contact.stickLocalB;
@@ -697,16 +724,16 @@ class LaneContactSolver final : public ContactLanes {
     }
     contact.stuck = anchored;
     contact.sliding = false;
-    setLane(c.stickA, lane, stickA);
-    setLane(c.stickB, lane, stickB);
-    laneOf(c.stickGap1, lane) = glm::dot(gap, t1);
-    laneOf(c.stickGap2, lane) = glm::dot(gap, t2);
+    setLane(bias.stickA, lane, stickA);
+    setLane(bias.stickB, lane, stickB);
+    laneOf(bias.stickGap1, lane) = glm::dot(gap, t1);
+    laneOf(bias.stickGap2, lane) = glm::dot(gap, t2);
   }
 
   // The batch's vectorised part, all lanes at once: each point's anchors, turns, effective mass,
   // base separation and approach velocity; the patch's tangent turns and 2x2 mass; the twist. Each
   // lane computes what the scalar formulas give for its contact, operation for operation.
-  static void finishBatch(Batch& c, const LaneInputs& in) {
+  static void finishBatch(Batch& c, F* approach, const LaneInputs& in) {
     const F zero = zeroT<F>();
     const F one = splatT<F>(1.0f);
     const Vec& n = c.normal;
@@ -730,7 +757,7 @@ class LaneContactSolver final : public ContactLanes {
       const F positive = andW(present, greaterW(kn, zero));
       p.normalMass = selectW(positive, one / selectW(positive, kn, one), zero);
       const Vec dv = in.linearB + cross(in.angularB, rB) - in.linearA - cross(in.angularA, rA);
-      p.approachVelocity = selectW(present, dot(dv, n), zero);
+      approach[k] = selectW(present, dot(dv, n), zero);
       const Vec offset = in.points[k] - in.centroid;
       radius = radius + selectW(present, sqrtW(dot(offset, offset)), zero);
     }
@@ -767,7 +794,10 @@ class LaneContactSolver final : public ContactLanes {
   // few. A colour of no more batches than this runs on the calling thread.
   static constexpr std::uint32_t kBatchesPerRange = 4;
   Array<Batch> batches_;
+  Array<BatchBias<F>> biases_;        // batch b's biased-pass part
+  Array<BatchEnd<F>> ends_;           // batch b's contacts and restitution
   Array<BatchPoint<F>> points_;       // the batches' point slots
+  Array<F> approach_;                 // per point slot: the normal relative velocity before the solve
   Array<std::uint32_t> batchPoints_;  // batch b's slots: [batchPoints_[b], [b + 1])
   Array<std::uint32_t> batchStart_;   // segment s's batches: [batchStart_[s], batchStart_[s + 1])
   float pushOutSpeed_ = 3.0f;
