@@ -6,6 +6,7 @@
 
 #include "bodies/body_storage.h"
 #include "contacts/contact_cache.h"
+#include "contacts/contact_update.h"
 #include "dynamics/joint_solver.h"
 
 #include <collide/world.h>
@@ -15,6 +16,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace collide {
 namespace {
@@ -158,6 +160,38 @@ TEST(WorldMemory, ASettledSceneStopsGrowing) {
   const WorldMemory later = world.memoryUse();
   for (const WorldMemory::Category& category : WorldMemory::kCategories)
     EXPECT_EQ(later.*category.bytes, settled.*category.bytes) << category.label;
+}
+
+}  // namespace
+}  // namespace collide
+
+namespace collide {
+namespace {
+
+// At two workers the narrow phase tests the pairs ahead of its walk, each worker into its own list
+// (a manifold a pair). A burst of new pairs grows those lists past a megabyte; once the burst is
+// over they are handed back, not kept for the rest of the run.
+TEST(WorldMemory, ABurstOfStagedTestsIsNotKeptOnceItIsOver) {
+  WorldDef def = test::zeroGravityWorld();
+  def.workerCount = 2;
+  World world(def);
+  // 20 x 20 x 20 spheres of radius 0.3, 0.5 apart: each overlaps its six neighbours, a new pair each.
+  std::vector<BodyId> spheres;
+  for (int x = 0; x < 20; ++x)
+    for (int y = 0; y < 20; ++y)
+      for (int z = 0; z < 20; ++z)
+        spheres.push_back(world.createBody(test::sphereBody(0.5f * Vec3(x, y, z), 0.3f, 1.0f)));
+  world.step(kDt);
+  const std::size_t burst = world.memoryUse().contacts;
+  // Each touching pair's test was staged (its manifold in a worker's list).
+  const std::size_t staged = world.touchingContactCount();
+  ASSERT_EQ(staged, 3u * 20u * 20u * 19u);
+  // The spheres far apart: no pair, and the next step's lists are empty.
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    world.setTransform(spheres[i], Vec3(10.0f * float(i), 0.0f, 0.0f), Quat(1.0f, 0.0f, 0.0f, 0.0f));
+  world.step(kDt);
+  const std::size_t quiet = world.memoryUse().contacts;
+  EXPECT_GT(burst, quiet + staged * sizeof(detail::ContactUpdate::StagedTest));
 }
 
 }  // namespace
