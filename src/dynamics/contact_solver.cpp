@@ -71,7 +71,6 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
   solvedContacts_.clear();
   writtenBodies_.clear();
   blockOf_.clear();
-  if (blocks != nullptr) blocks->begin(static_cast<std::uint32_t>(bodies.size()));
   bool unequalMasses = false;
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
     // The lines read here (ids, manifold count, flags) a few contacts ahead: a contact spans several

@@ -127,8 +127,8 @@ class ContactSolver {
   // The contacts in the batches, in solve order (the response models and revert walk them).
   const Array<std::uint32_t>& solvedContacts() const { return solvedContacts_; }
 
-  // blocks: built here from the contacts taken (the step's blocks of islands), or null for one
-  // block of every contact.
+  // blocks: the step's blocks of islands, begun by the caller (its joints joined); the contacts
+  // taken join their islands here and the blocks are finished. Null for one block of every contact.
   void prepare(Array<Contact>& contacts, const BodyStorage& storage, const Array<SolverBody>& bodies,
                const Array<SolverBodyInfo>& infos, const Array<std::int32_t>& solverOf,
                const ContactSolverSettings& settings, SolverBlocks* blocks, float h, TaskRunner& tasks);

@@ -127,93 +127,105 @@ void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, Task
 void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joint>& joints,
                        const StepSettings& settings, float dt, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const float h = dt / static_cast<float>(settings.substeps);
-  // Joints and the projection have passes of their own over the whole world: one block then.
-  const bool inBlocks =
-      joints.empty() && !settings.projection && solveInBlocks.load(std::memory_order_relaxed);
   gatherBodies(storage, settings.gravity, !joints.empty());
   faultFields_.assign(bodies_.size(), 0);
   stoppedABody_.store(false, std::memory_order_relaxed);
+  JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
+  prepareJoints(view, joints);
+  // The projection response has a pass over the whole world of its own: one block then.
+  const bool inBlocks = !settings.projection && solveInBlocks.load(std::memory_order_relaxed);
+  if (inBlocks) {
+    // The joints' islands, which their passes over the world take together (one block).
+    blocks_.begin(static_cast<std::uint32_t>(bodies_.size()));
+    for (const Joint& joint : joints)
+      if (joint.active) blocks_.joinJoint(solverOf_[joint.bodyA], solverOf_[joint.bodyB]);
+  }
   ContactSolverSettings contactSettings;
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
   contactSettings.gravity = settings.gravity;
   contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings,
                     inBlocks ? &blocks_ : nullptr, h, tasks);
-  JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
-  prepareJoints(view, joints);
-  jointWaves_.prepare(view, joints);
-  jointTree_.prepare(view, joints);
-  if (inBlocks) {
-    // The large islands one after another, each on every worker; the blocks of small ones a worker
-    // each. No block reads what another writes, so the order they run in changes nothing.
-    const std::uint32_t blockCount = blocks_.count();
-    lastBlockCount.store(blockCount, std::memory_order_relaxed);
-    for (std::uint32_t b = 0; b < blockCount; ++b)
-      if (blocks_.large(b)) solveBlock(b, storage, settings, h, tasks);
-    tasks.parallelFor(blockCount, 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      for (std::uint32_t b = begin; b < end; ++b)
-        if (!blocks_.large(b)) solveBlock(b, storage, settings, h, inline_);
-    });
-    contacts_.store(contacts, tasks);
-    writeBack(storage, faults, tasks);
-    return;
-  }
-  lastBlockCount.store(1, std::memory_order_relaxed);
   if (settings.projection)
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
-  // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
-  // joint past it made a net draped over a ball shiver instead of sleeping).
-  const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
-  const std::uint32_t bodyCount = static_cast<std::uint32_t>(bodies_.size());
-  for (int i = 0; i < settings.substeps; ++i) {
-    tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      integrateVelocities(bodies_, infos_, storage, h, begin, end);
-      guard(begin, end);  // before a bad velocity reaches a contact
+  jointWaves_.prepare(view, joints);
+  jointTree_.prepare(view, joints);
+  const Substeps loop{storage, view, joints, settings, h};
+  if (inBlocks) {
+    // The joints' block and the large islands one after another, each on every worker; the blocks
+    // of small islands a worker each. No block reads what another writes, so the order they run in
+    // changes nothing.
+    const std::uint32_t blockCount = blocks_.count();
+    lastBlockCount.store(blockCount, std::memory_order_relaxed);
+    const auto ownThread = [&](std::uint32_t b) { return blocks_.large(b) || blocks_.jointed(b); };
+    for (std::uint32_t b = 0; b < blockCount; ++b)
+      if (ownThread(b)) substeps(loop, b, blocks_.bodies(b), blocks_.jointed(b), tasks);
+    tasks.parallelFor(blockCount, 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+      for (std::uint32_t b = begin; b < end; ++b)
+        if (!ownThread(b)) substeps(loop, b, blocks_.bodies(b), false, inline_);
     });
-    // A body the guard stopped went back to the step's start: rows built since are off its pose.
-    if (stoppedABody_.load(std::memory_order_relaxed)) jointTree_.posesMoved();
-    jointWaves_.warmStart(view, joints, tasks);
-    jointTree_.warmStart(view, joints, h, tasks);
-    contacts_.warmStart(bodies_, 0, tasks);
-    jointWaves_.solve(view, joints, h, rigidHertz, true, tasks);
-    jointTree_.solve(view, joints, h, rigidHertz, true, tasks);
-    contacts_.solve(bodies_, h, true, 0, tasks);
-    tasks.parallelFor(bodyCount, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-      integratePositions(bodies_, infos_, h, begin, end);
-    });
-    jointTree_.posesMoved();
-    if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
-    jointTree_.project(view, joints, tasks);
-    if (projectJoints(view, joints)) jointTree_.posesMoved();
-    jointWaves_.solve(view, joints, h, rigidHertz, false, tasks);
-    jointTree_.solve(view, joints, h, rigidHertz, false, tasks);
-    for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, 0, tasks);
-    guard(tasks);
+  } else {
+    lastBlockCount.store(1, std::memory_order_relaxed);
+    substeps(loop, 0, {}, !joints.empty(), tasks);
   }
-  contacts_.applyRestitution(bodies_, 0, tasks);
-  guard(tasks);
   contacts_.store(contacts, tasks);
   writeBack(storage, faults, tasks);
 }
 
-// The loop above without joints or projection, over one block's bodies and contacts.
-void StepSolver::solveBlock(std::uint32_t block, BodyStorage& storage, const StepSettings& settings, float h,
-                            TaskRunner& tasks) {
-  const std::span<const std::uint32_t> bodies = blocks_.bodies(block);
+// The substep loop and the restitution over the bodies and contacts of one block (an empty list
+// with one block: every solver body), with the joints' passes where it holds the joints.
+void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<const std::uint32_t> bodies,
+                          bool withJoints, TaskRunner& tasks) {
+  const StepSettings& settings = loop.settings;
+  const float h = loop.h;
+  const JointSolverView& view = loop.view;
+  Array<Joint>& joints = loop.joints;
   const auto overBodies = [&](auto&& f) {
-    tasks.parallelFor(static_cast<std::uint32_t>(bodies.size()), kBodiesPerRange,
-                      [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-                        f(bodies.subspan(begin, end - begin));
-                      });
+    if (bodies.empty()) {
+      tasks.parallelFor(static_cast<std::uint32_t>(bodies_.size()), kBodiesPerRange,
+                        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                          f(std::span<const std::uint32_t>(allBodies_).subspan(begin, end - begin));
+                        });
+    } else {
+      tasks.parallelFor(static_cast<std::uint32_t>(bodies.size()), kBodiesPerRange,
+                        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                          f(bodies.subspan(begin, end - begin));
+                        });
+    }
   };
+  if (bodies.empty()) {
+    allBodies_.resize(bodies_.size());
+    for (std::uint32_t j = 0; j < allBodies_.size(); ++j) allBodies_[j] = j;
+  }
+  // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
+  // joint past it made a net draped over a ball shiver instead of sleeping).
+  const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
   for (int i = 0; i < settings.substeps; ++i) {
     overBodies([&](std::span<const std::uint32_t> which) {
-      integrateVelocities(bodies_, infos_, storage, h, which);
-      guard(which);
+      integrateVelocities(bodies_, infos_, loop.storage, h, which);
+      guard(which);  // before a bad velocity reaches a contact
     });
+    if (withJoints) {
+      // A body the guard stopped went back to the step's start: rows built since are off its pose.
+      if (stoppedABody_.load(std::memory_order_relaxed)) jointTree_.posesMoved();
+      jointWaves_.warmStart(view, joints, tasks);
+      jointTree_.warmStart(view, joints, h, tasks);
+    }
     contacts_.warmStart(bodies_, block, tasks);
+    if (withJoints) {
+      jointWaves_.solve(view, joints, h, rigidHertz, true, tasks);
+      jointTree_.solve(view, joints, h, rigidHertz, true, tasks);
+    }
     contacts_.solve(bodies_, h, true, block, tasks);
     overBodies([&](std::span<const std::uint32_t> which) { integratePositions(bodies_, infos_, h, which); });
+    if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
+    if (withJoints) {
+      jointTree_.posesMoved();
+      jointTree_.project(view, joints, tasks);
+      if (projectJoints(view, joints)) jointTree_.posesMoved();
+      jointWaves_.solve(view, joints, h, rigidHertz, false, tasks);
+      jointTree_.solve(view, joints, h, rigidHertz, false, tasks);
+    }
     for (int pass = 0; pass < settings.relaxPasses; ++pass) contacts_.solve(bodies_, h, false, block, tasks);
     overBodies([&](std::span<const std::uint32_t> which) { guard(which); });
   }
@@ -223,7 +235,7 @@ void StepSolver::solveBlock(std::uint32_t block, BodyStorage& storage, const Ste
 
 std::size_t StepSolver::memoryBytes() const {
   return heapBytes(bodies_) + heapBytes(infos_) + heapBytes(starts_) + heapBytes(solverOf_) +
-         heapBytes(faultFields_) + blocks_.memoryBytes() + contacts_.memoryBytes() +
+         heapBytes(faultFields_) + heapBytes(allBodies_) + blocks_.memoryBytes() + contacts_.memoryBytes() +
          projection_.memoryBytes();
 }
 

@@ -68,9 +68,18 @@ class StepSolver {
  private:
   // withStarts: the bodies' start poses too (starts_), which the joints read.
   void gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts);
-  // Steps 2 and the restitution for the contacts and bodies of one block (no joints, no projection).
-  void solveBlock(std::uint32_t block, BodyStorage& storage, const StepSettings& settings, float h,
-                  TaskRunner& tasks);
+  // What the substep loop of every block reads.
+  struct Substeps {
+    BodyStorage& storage;
+    const JointSolverView& view;
+    Array<Joint>& joints;
+    const StepSettings& settings;
+    float h;
+  };
+  // Step 2 and the restitution for the bodies and contacts of one block (an empty list: every
+  // solver body), with the joints' passes where the block holds the joints.
+  void substeps(const Substeps& loop, std::uint32_t block, std::span<const std::uint32_t> bodies,
+                bool withJoints, TaskRunner& tasks);
   void writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks);
   // Over every solver body, in parallel ranges; and over bodies [begin, end) (each body's own state).
   void guard(TaskRunner& tasks);
@@ -86,7 +95,8 @@ class StepSolver {
   // The guard stopped a body this step (its pose went back to the step's start).
   std::atomic<bool> stoppedABody_{false};
   SolverBlocks blocks_;
-  TaskRunner inline_;  // runs a block on the worker that took it
+  Array<std::uint32_t> allBodies_;  // 0, 1, ... every solver body (one block)
+  TaskRunner inline_;               // runs a block on the worker that took it
   ContactSolver contacts_;
   ContactProjection projection_;
   JointWaves jointWaves_;

@@ -13,7 +13,9 @@
 // body, so that the batches of a block fill their SIMD lanes. An island larger than that is a
 // block of its own, solved colour by colour on every worker, as the whole world is otherwise.
 // Kinematic bodies join the islands they touch (their pose moves each substep, and the islands
-// that read it must run with it); static bodies, which are not solver bodies, join none.
+// that read it must run with it); static bodies, which are not solver bodies, join none. The
+// joints' passes go over every joint of the world, so the islands with joints are one block, the
+// first, whatever its size.
 #pragma once
 
 #include <collide/hooks.h>
@@ -31,8 +33,11 @@ inline constexpr std::uint32_t kBlockBodies = 2048;
 
 class SolverBlocks {
  public:
-  // Per step, over the solver bodies: begin, join each contact the solver takes, finish.
+  // Per step, over the solver bodies: begin, join each active joint and each contact the solver
+  // takes, finish.
   void begin(std::uint32_t bodyCount);
+  // A joint between solver bodies a and b (kNoSolverBody for a side not in the solve).
+  void joinJoint(std::int32_t a, std::int32_t b);
   // A contact between solver bodies a and b (kNoSolverBody for a static side): joins their
   // islands, and counts on the island.
   void join(std::int32_t a, std::int32_t b);
@@ -43,6 +48,8 @@ class SolverBlocks {
   std::uint32_t contactCount(std::uint32_t block) const { return contactCount_[block]; }
   // A block of one island larger than a block: solved with every worker, colour by colour.
   bool large(std::uint32_t block) const { return contactCount_[block] > kBlockContacts; }
+  // The block of the islands with joints (block 0, where there are joints).
+  bool jointed(std::uint32_t block) const { return block == 0 && withJoints_; }
   // Block b's solver bodies, ascending (with one block: every solver body).
   std::span<const std::uint32_t> bodies(std::uint32_t block) const {
     return {bodyOrder_.data() + bodyStart_[block], bodyOrder_.data() + bodyStart_[block + 1]};
@@ -53,6 +60,7 @@ class SolverBlocks {
 
  private:
   std::uint32_t findRoot(std::uint32_t i);
+  void unite(std::uint32_t a, std::uint32_t b);
 
   Array<std::uint32_t> parent_;        // union-find over the solver bodies; each body's root after finish
   Array<std::uint32_t> rootContacts_;  // per root: its island's contacts
@@ -61,6 +69,8 @@ class SolverBlocks {
   Array<std::uint32_t> bodyOrder_;
   Array<std::uint32_t> bodyStart_;
   Array<std::uint32_t> contactCount_;
+  Array<std::uint8_t> jointedBody_;  // per body, then per root: a joint holds it (its island)
+  bool withJoints_ = false;
 };
 
 }  // namespace collide::detail

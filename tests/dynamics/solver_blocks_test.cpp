@@ -87,6 +87,30 @@ TEST(SolverBlocks, BodiesFallingFreeFillBlocksOfAtMostKBlockBodies) {
   for (std::uint32_t b = 0; b < blocks.count(); ++b) EXPECT_LE(blocks.bodies(b).size(), kBlockBodies);
 }
 
+TEST(SolverBlocks, TheIslandsWithJointsAreTheFirstBlockWhateverTheirSize) {
+  // 600 pairs as above; pair 300 has a joint between its bodies, body 700's island (pair 499) a
+  // joint to a static body, and bodies 5 and 1150 (pairs 5 and 49) are joined by a joint.
+  SolverBlocks blocks;
+  blocks.begin(1200);
+  blocks.joinJoint(300, 899);
+  blocks.joinJoint(kNoSolverBody, 700);
+  blocks.joinJoint(5, 1150);
+  for (std::int32_t i = 0; i < 600; ++i) blocks.join(i, 1199 - i);
+  blocks.finish();
+  expectAPartition(blocks, 1200);
+  ASSERT_GE(blocks.count(), 2u);
+  EXPECT_TRUE(blocks.jointed(0));
+  EXPECT_FALSE(blocks.jointed(1));
+  const std::set<std::uint32_t> jointed{5, 1194, 49, 1150, 300, 899, 499, 700};
+  const auto first = blocks.bodies(0);
+  EXPECT_EQ(std::set<std::uint32_t>(first.begin(), first.end()), jointed);
+  EXPECT_EQ(blocks.contactCount(0), 4u);
+  // The other 596 pairs fill blocks from block 1 on.
+  EXPECT_EQ(blocks.contactCount(1), kBlockContacts);
+  // Without joints there is no joints' block.
+  EXPECT_FALSE(blocksOf(10, {{0, 1}}).jointed(0));
+}
+
 TEST(SolverBlocks, TheBlocksDoNotDependOnTheContactsOrder) {
   Contacts contacts;
   for (std::int32_t i = 0; i < 400; ++i) contacts.push_back({(i * 7) % 900, (i * 13 + 5) % 900});

@@ -275,10 +275,10 @@ TEST(Workers, StacksWhoseColoursSplitIntoRangesEndInTheSameState) {
 
 // Islands the solver takes in blocks (solver_blocks.h): a kinematic platform carrying two stacks,
 // a carpet of boxes side by side (one island of more contacts than a block), 60 stacks apart from
-// each other, spheres falling free, and the platform's stacks made last, so that only their contacts
-// with the platform put them in its block. Solved in blocks (on one worker, or several blocks at a
-// time on the world's threads or an engine's job system) and as one block, it ends bit for bit in
-// the same state.
+// each other, spheres falling free, a jointed chain and a hinge (the joints' block), and the
+// platform's stacks made last, so that only their contacts with the platform put them in its block. Solved in
+// blocks (on one worker, or several blocks at a time on the world's threads or an engine's job system) and as
+// one block, it ends bit for bit in the same state.
 std::vector<unsigned char> runIslands(const WorldDef& def, int steps, std::uint32_t* blocks = nullptr) {
   World world(def);
   world.createBody(test::groundBox());
@@ -307,6 +307,26 @@ std::vector<unsigned char> runIslands(const WorldDef& def, int steps, std::uint3
   for (int i = 0; i < 8; ++i)
     bodies.push_back(
         world.createBody(test::sphereBody(Vec3(3.0f * float(i) - 10.0f, 6.0f, -8.0f), 0.3f, 1.0f)));
+  // A chain of boxes on ball joints from a static anchor, swinging onto a box on the ground, and two
+  // boxes apart from each other joined by a hinge: the joints' block.
+  BodyId previous = test::staticAnchor(world, Vec3(15.0f, 4.0f, 0.0f));
+  for (int i = 0; i < 4; ++i) {
+    const BodyId link =
+        world.createBody(test::boxBody(Vec3(15.6f + 0.6f * float(i), 4.0f, 0.0f), Vec3(0.25f), 1.0f));
+    world.createBallJoint({previous, link, Vec3(15.3f + 0.6f * float(i), 4.0f, 0.0f)});
+    bodies.push_back(link);
+    previous = link;
+  }
+  bodies.push_back(world.createBody(test::boxBody(Vec3(15.0f, 0.5f, 0.0f), Vec3(0.5f), 3.0f)));
+  const BodyId left = world.createBody(test::boxBody(Vec3(20.0f, 0.25f, 5.0f), Vec3(0.25f), 1.0f));
+  const BodyId right = world.createBody(test::boxBody(Vec3(20.6f, 1.0f, 5.0f), Vec3(0.25f), 1.0f));
+  HingeJointDef hinge;
+  hinge.a = left;
+  hinge.b = right;
+  hinge.anchor = Vec3(20.3f, 0.6f, 5.0f);
+  world.createHingeJoint(hinge);
+  bodies.push_back(left);
+  bodies.push_back(right);
   for (const float x : {-20.6f, -19.4f}) {
     for (int y = 0; y < 2; ++y) {
       const Vec3 at(x, 3.35f + 0.5f * float(y), 0.3f);
@@ -325,8 +345,9 @@ TEST(Workers, IslandsSolvedInBlocksEndAsSolvedTogether) {
   detail::setSolveInBlocks(true);
   EXPECT_EQ(blocks, 1u);
   EXPECT_TRUE(runIslands(WorldDef{}, 90, &blocks) == together);
-  // The platform's, the carpet (a large island, its own block) and the stacks' and spheres' after it.
-  EXPECT_GE(blocks, 3u);
+  // The joints', the platform's, the carpet (a large island, its own block) and the stacks' and
+  // spheres' after it.
+  EXPECT_GE(blocks, 4u);
   expectTheStateOfOneWorker(together, [](const WorldDef& def) { return runIslands(def, 90); });
   test::TestJobSystem jobs(2);
   EXPECT_TRUE(runIslands(onJobSystem(jobs, 2), 90) == together);
