@@ -6,9 +6,10 @@
 //      integrate positions -> relax both without it -> fault guard;
 //   3. restitution, the impulses back into the contacts, the new poses and velocities back into the
 //      body storage (inertia refreshed), and bodies the guard stopped frozen and reported.
-// Without joints or the projection, each block of islands (solver_blocks.h) runs steps 2 and the
-// restitution on its own: the blocks of a few hundred contacts in parallel, a worker each, a larger
-// island on every worker, colour by colour. The result is the same as one loop over the world.
+// Each block of islands (solver_blocks.h) runs step 2 and the restitution on its own: the blocks
+// of a few hundred contacts in parallel, a worker each; a larger island, and the islands with
+// joints, on every worker, colour by colour. The result is the same as one loop over the world,
+// which the projection response (a pass over the whole world of its own) still takes.
 // Joints go before contacts in each pass, so contacts (the stiffer, one-sided constraints) have the
 // last word on penetration: first the joints' Gauss-Seidel rows (springs, motors, limits, and the
 // joints no tree takes; in waves, joint_solver.h), then the rigid rows of joint trees, solved

@@ -1,8 +1,9 @@
-// The step's solve in blocks of islands. Bodies that no chain of contacts joins never act on each
-// other within a step, so each such group (an island, found by union-find over the contacts the
-// solver takes) may run its whole substep loop on its own, before or beside the others, and end
-// exactly where the solve over the whole world would have left it: each body meets its contacts in
-// the same order (by colour, constraint_graph.h), and every other step of the loop is per body.
+// The step's solve in blocks of islands. Bodies that no chain of contacts or joints joins never act
+// on each other within a step, so each such group (an island, found by union-find over the joints
+// and the contacts the solver takes) may run its whole substep loop on its own, before or beside
+// the others, and end exactly where the solve over the whole world would have left it: each body
+// meets its contacts in the same order (by colour, constraint_graph.h), and every other step of the
+// loop is per body.
 //
 // Why: the solver streams every contact's batch several times a substep. Over a world of tens of
 // thousands of contacts that is tens of megabytes a pass, more than the caches hold; a block of
