@@ -2,6 +2,8 @@
 #include "geometry/support_scan.h"
 
 #include <bit>
+#include <cmath>
+#include <limits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -33,10 +35,15 @@ std::uint32_t farthestAlong(const float* blocked, std::uint32_t count, const Vec
   // Two passes, both four points per instruction: the largest dot product (a running maximum per
   // lane), then the first block holding it, recomputed with the same rounding. Cheaper than carrying
   // an index per lane through the first pass (the second stops at the winner, half-way on average).
+  // A NaN product (coordinates near the float range, whose terms overflow to opposite infinities)
+  // counts as -infinity: it never wins, and the maximum is then one number in every lane, which
+  // only the padding's copy of point 0 could share after point 0 itself.
   const __m128 dx = _mm_set1_ps(direction.x), dy = _mm_set1_ps(direction.y), dz = _mm_set1_ps(direction.z);
+  const __m128 lowest = _mm_set1_ps(-std::numeric_limits<float>::infinity());
   auto dots = [&](std::uint32_t i) {
     const __m128 xy = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(xs + i), dx), _mm_mul_ps(_mm_loadu_ps(ys + i), dy));
-    return _mm_add_ps(xy, _mm_mul_ps(_mm_loadu_ps(zs + i), dz));
+    // max(NaN, b) is b: the NaN lanes become -infinity.
+    return _mm_max_ps(_mm_add_ps(xy, _mm_mul_ps(_mm_loadu_ps(zs + i), dz)), lowest);
   };
   __m128 best = dots(0);
   for (std::uint32_t i = 4; i < lanes; i += 4) best = _mm_max_ps(best, dots(i));
@@ -46,12 +53,16 @@ std::uint32_t farthestAlong(const float* blocked, std::uint32_t count, const Vec
     const int equal = _mm_movemask_ps(_mm_cmpeq_ps(dots(i), best));
     if (equal != 0) return i + static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(equal)));
   }
-  return 0;  // a NaN direction: no dot product equals the maximum
+  return 0;  // not reached: some lane holds the maximum
 #else
-  std::uint32_t bestIndex = 0;
-  float best = xs[0] * direction.x + ys[0] * direction.y + zs[0] * direction.z;
-  for (std::uint32_t i = 1; i < count; ++i) {
+  const auto dot = [&](std::uint32_t i) {
     const float value = xs[i] * direction.x + ys[i] * direction.y + zs[i] * direction.z;
+    return std::isnan(value) ? -std::numeric_limits<float>::infinity() : value;
+  };
+  std::uint32_t bestIndex = 0;
+  float best = dot(0);
+  for (std::uint32_t i = 1; i < count; ++i) {
+    const float value = dot(i);
     if (value > best) best = value, bestIndex = i;
   }
   return bestIndex;

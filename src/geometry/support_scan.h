@@ -30,7 +30,8 @@ Array<float> blockCoordinates(std::span<const Vec3> points);
 void blockCoordinatesInto(std::span<const Vec3> points, float* out);
 
 // The index of the first of `count` points with the largest dot product with `direction` (0 for no
-// points or a NaN direction), over coordinates made by blockCoordinates.
+// points or a NaN direction; a NaN product, of coordinates near the float range, counts as
+// -infinity), over coordinates made by blockCoordinates.
 std::uint32_t farthestAlong(const float* blocked, std::uint32_t count, const Vec3& direction);
 
 }  // namespace collide::detail

@@ -3,6 +3,8 @@
 #include <collide/shapes.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -61,6 +63,47 @@ TEST(SupportScan, TiesGoToTheFirstPoint) {
   const Array<Vec3> one{{2.0f, 3.0f, 4.0f}};
   EXPECT_EQ(detail::farthestAlong(detail::blockCoordinates(one).data(), 1, Vec3(-1, 0, 0)), 0u);
   EXPECT_EQ(detail::farthestAlong(nullptr, 0, Vec3(1, 0, 0)), 0u);
+}
+
+// Coordinates near the float range overflow: x dx + y dy + z dz is +inf, -inf or NaN (inf - inf).
+// A NaN never wins, and the index is always one of the points, never the padding after them (a
+// fuzzed world read past its hull's vertices here when the maximum's lanes disagreed).
+TEST(SupportScan, OverflowingProductsPickARealPointAndNeverNaN) {
+  const Array<Vec3> points{{-1.98444f, 0.0f, -1.99219f},
+                           {3e38f, 3e38f, 3e38f},
+                           {-1.99762f, -2.0f, 3e38f},
+                           {-1.76471f, -3e38f, -2.0f},
+                           {3e38f, -2.0f, 2.0f}};
+  const Array<float> blocked = detail::blockCoordinates(points);
+  // Products: -11.98, +inf, -inf, -inf, NaN.
+  EXPECT_EQ(detail::farthestAlong(blocked.data(), 5, Vec3(5.99449f, 3e38f, 0.044826f)), 1u);
+  // Along (1, inf, 0): point 0's product is NaN (0 inf), point 1's -inf, point 2's +inf.
+  const Array<Vec3> first{{-2.0f, 0.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {4.0f, 2.0f, 0.0f}};
+  EXPECT_EQ(detail::farthestAlong(detail::blockCoordinates(first).data(), 3,
+                                  Vec3(1.0f, std::numeric_limits<float>::infinity(), 0.0f)),
+            2u);
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<int> pick(0, 6);
+  const float values[] = {0.0f, 1.0f, -2.0f, 3e38f, -3e38f, 1e-30f, 7.0f};
+  for (int trial = 0; trial < 2000; ++trial) {
+    const std::uint32_t count = 1 + static_cast<std::uint32_t>(trial % 9);
+    Array<Vec3> cloud(count);
+    for (Vec3& p : cloud) p = Vec3(values[pick(rng)], values[pick(rng)], values[pick(rng)]);
+    const Vec3 d(values[pick(rng)], values[pick(rng)], values[pick(rng)]);
+    const std::uint32_t index = detail::farthestAlong(detail::blockCoordinates(cloud).data(), count, d);
+    ASSERT_LT(index, count) << "trial " << trial;
+    // No point's product (NaN as -infinity) is larger than the one picked, and none before it equal.
+    const auto product = [&](std::uint32_t i) {
+      const float v = (cloud[i].x * d.x + cloud[i].y * d.y) + cloud[i].z * d.z;
+      return std::isnan(v) ? -std::numeric_limits<float>::infinity() : v;
+    };
+    for (std::uint32_t i = 0; i < count; ++i) {
+      EXPECT_FALSE(product(i) > product(index)) << "trial " << trial;
+      if (i < index) {
+        EXPECT_FALSE(product(i) == product(index)) << "trial " << trial;
+      }
+    }
+  }
 }
 
 TEST(SupportScan, ConvexHullSupportIsItsFarthestVertex) {
