@@ -42,6 +42,12 @@ std::size_t liveAllocatedBytes();
 namespace detail {
 void* allocateBytes(std::size_t bytes, std::size_t alignment);
 void freeBytes(void* memory, std::size_t bytes, std::size_t alignment) noexcept;
+// Of a block of `bytes` from allocateBytes, the whole pages within [from, from + count) go back to
+// the system where the default allocator mapped the block (elsewhere nothing happens): their
+// contents are lost, and they read as zero if touched again. For a block about to be freed whose
+// contents were copied out (growth without both blocks held whole at once).
+void releaseCopiedPages(void* memory, std::size_t bytes, std::size_t alignment, void* from,
+                        std::size_t count) noexcept;
 
 // The standard allocator interface over the installed hooks.
 template <typename T>

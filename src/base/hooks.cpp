@@ -225,6 +225,25 @@ void freeBytes(void* memory, std::size_t bytes, std::size_t alignment) noexcept 
   allocator->free(block - header, header + bytes, header, allocator->context);
 }
 
+void releaseCopiedPages(void* memory, std::size_t bytes, std::size_t alignment, void* from,
+                        std::size_t count) noexcept {
+#if COLLIDE_MAPS_LARGE_BLOCKS
+  if (!memory || count == 0) return;
+  auto* block = static_cast<unsigned char*>(memory);
+  const Allocator* allocator = nullptr;
+  std::memcpy(&allocator, block - sizeof(allocator), sizeof(allocator));
+  const std::size_t header = headerBytes(alignment);
+  // Only a block the default allocator mapped (heapAllocate): any other is the heap's or a user's.
+  if (allocator != &gAllocators[0] || header + bytes < kMappedBlockBytes || header > kPageBytes) return;
+  const auto first = (reinterpret_cast<std::uintptr_t>(from) + kPageBytes - 1) & ~(kPageBytes - 1);
+  const auto last = (reinterpret_cast<std::uintptr_t>(from) + count) & ~(kPageBytes - 1);
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+#else
+  static_cast<void>(memory), static_cast<void>(bytes), static_cast<void>(alignment), static_cast<void>(from),
+      static_cast<void>(count);
+#endif
+}
+
 void assertFailed(const char* condition, const char* file, int line) {
   const AssertHandler handler = gAssertHandler.load();
   if (handler(condition, file, line)) std::abort();

@@ -108,6 +108,9 @@ class InPlaceMerge {
           lastOverflowed_ = true;
           return block_->overflow.emplace_back(made);
         }
+        // Grown as a vector grows (doubling), but without both blocks held whole (scratch.h).
+        if (records_.size() == records_.capacity())
+          growByStretches(records_, std::max<std::size_t>(16, 2 * records_.capacity()));
         records_.emplace_back();
         ++limit_;
       }

@@ -45,3 +45,37 @@ TEST(Scratch, OnlyALargeArrayUsedBelowAQuarterIsReleased) {
 
 }  // namespace
 }  // namespace collide::detail
+
+namespace collide {
+namespace {
+
+struct Record {
+  std::uint64_t key;
+  float values[30];
+};
+
+// A kept array grown by stretches holds what it held, in order, with the capacity asked for: small
+// (from the heap) and large (mapped by the default allocator, whose copied stretches go back to the
+// system as they are copied).
+TEST(Scratch, GrowingByStretchesKeepsEveryRecord) {
+  for (const std::size_t count : {std::size_t{10}, std::size_t{40000}}) {
+    Array<Record> records(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      records[i].key = i * 7919;
+      for (int k = 0; k < 30; ++k) records[i].values[k] = float(i) + 0.5f * float(k);
+    }
+    detail::growByStretches(records, 2 * count + 3);
+    ASSERT_EQ(records.size(), count);
+    EXPECT_EQ(records.capacity(), 2 * count + 3);
+    for (std::size_t i = 0; i < count; ++i) {
+      ASSERT_EQ(records[i].key, i * 7919) << i;
+      for (int k = 0; k < 30; ++k) ASSERT_EQ(records[i].values[k], float(i) + 0.5f * float(k)) << i;
+    }
+    // Asking for less than it has changes nothing.
+    detail::growByStretches(records, count);
+    EXPECT_EQ(records.capacity(), 2 * count + 3);
+  }
+}
+
+}  // namespace
+}  // namespace collide
