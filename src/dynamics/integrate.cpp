@@ -1,8 +1,6 @@
 // See integrate.h. Sleeping bodies are not in the step.
 #include "dynamics/integrate.h"
 
-#include "simd/simd.h"
-
 #include <algorithm>
 #include <cmath>
 
@@ -56,68 +54,46 @@ constexpr float kMaxRotationPerSubstep = 0.25f * kPi;
 // skips the Newton solve for every resting body.
 constexpr float kGyroscopicMinTurn = 1e-4f;
 
-namespace {
-
-COLLIDE_INLINE void integrateVelocity(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
-                                      const BodyStorage& storage, float h, float maxAngularSpeed,
-                                      std::size_t j) {
-  const SolverBodyInfo& info = infos[j];
-  if (!info.dynamic || info.faulted) return;
-  SolverBody& b = bodies[j];
-  // Damping as Box2D applies it, v <- v / (1 + h c) + h a: stable for any c and h.
-  if (info.linearDamping > 0.0f) b.linearVelocity *= 1.0f / (1.0f + h * info.linearDamping);
-  b.linearVelocity += h * info.linearAcceleration;
-  if (info.particle) return;
-  if (info.angularDamping > 0.0f) b.angularVelocity *= 1.0f / (1.0f + h * info.angularDamping);
-  b.angularVelocity += h * info.angularAcceleration;
-  const float turn2 = h * h * glm::dot(b.angularVelocity, b.angularVelocity);
-  if (info.gyroscopic && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {
-    const BodyRecord& record = storage.records[info.body];
-    const Quat rotation = b.deltaRotation * storage.states[info.body].rotation0;
-    const Vec3 bodyOmega = glm::conjugate(rotation) * b.angularVelocity;
-    b.angularVelocity =
-        rotation * gyroscopicStep(record.inertiaLocal, record.inverseInertiaLocal, bodyOmega, h);
-  }
-  const float speedSquared = glm::dot(b.angularVelocity, b.angularVelocity);
-  if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
-    b.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
-  }
-}
-
-COLLIDE_INLINE void integratePosition(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos, float h,
-                                      std::size_t j) {
-  const SolverBodyInfo& info = infos[j];
-  if (info.faulted) return;
-  SolverBody& b = bodies[j];
-  b.deltaPosition += h * b.linearVelocity;
-  if (info.particle) return;  // a point mass keeps its rotation bit for bit
-  const Vec3& w = b.angularVelocity;
-  const Quat spin(0.0f, w.x, w.y, w.z);
-  b.deltaRotation = glm::normalize(b.deltaRotation + (0.5f * h) * (spin * b.deltaRotation));
-}
-
-}  // namespace
-
-void integrateVelocities(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
-                         const BodyStorage& storage, float h, std::uint32_t begin, std::uint32_t end) {
-  const float maxAngularSpeed = kMaxRotationPerSubstep / h;
-  for (std::size_t j = begin; j < end; ++j) integrateVelocity(bodies, infos, storage, h, maxAngularSpeed, j);
-}
-
 void integrateVelocities(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
                          const BodyStorage& storage, float h, std::span<const std::uint32_t> which) {
   const float maxAngularSpeed = kMaxRotationPerSubstep / h;
-  for (const std::uint32_t j : which) integrateVelocity(bodies, infos, storage, h, maxAngularSpeed, j);
-}
-
-void integratePositions(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos, float h,
-                        std::uint32_t begin, std::uint32_t end) {
-  for (std::size_t j = begin; j < end; ++j) integratePosition(bodies, infos, h, j);
+  for (const std::uint32_t j : which) {
+    const SolverBodyInfo& info = infos[j];
+    if (!info.dynamic || info.faulted) continue;
+    SolverBody& b = bodies[j];
+    // Damping as Box2D applies it, v <- v / (1 + h c) + h a: stable for any c and h.
+    if (info.linearDamping > 0.0f) b.linearVelocity *= 1.0f / (1.0f + h * info.linearDamping);
+    b.linearVelocity += h * info.linearAcceleration;
+    if (info.particle) continue;
+    if (info.angularDamping > 0.0f) b.angularVelocity *= 1.0f / (1.0f + h * info.angularDamping);
+    b.angularVelocity += h * info.angularAcceleration;
+    const float turn2 = h * h * glm::dot(b.angularVelocity, b.angularVelocity);
+    if (info.gyroscopic && turn2 > kGyroscopicMinTurn * kGyroscopicMinTurn) {
+      const BodyRecord& record = storage.records[info.body];
+      const Quat rotation = b.deltaRotation * storage.states[info.body].rotation0;
+      const Vec3 bodyOmega = glm::conjugate(rotation) * b.angularVelocity;
+      b.angularVelocity =
+          rotation * gyroscopicStep(record.inertiaLocal, record.inverseInertiaLocal, bodyOmega, h);
+    }
+    const float speedSquared = glm::dot(b.angularVelocity, b.angularVelocity);
+    if (speedSquared > maxAngularSpeed * maxAngularSpeed) {
+      b.angularVelocity *= maxAngularSpeed / std::sqrt(speedSquared);
+    }
+  }
 }
 
 void integratePositions(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos, float h,
                         std::span<const std::uint32_t> which) {
-  for (const std::uint32_t j : which) integratePosition(bodies, infos, h, j);
+  for (const std::uint32_t j : which) {
+    const SolverBodyInfo& info = infos[j];
+    if (info.faulted) continue;
+    SolverBody& b = bodies[j];
+    b.deltaPosition += h * b.linearVelocity;
+    if (info.particle) continue;  // a point mass keeps its rotation bit for bit
+    const Vec3& w = b.angularVelocity;
+    const Quat spin(0.0f, w.x, w.y, w.z);
+    b.deltaRotation = glm::normalize(b.deltaRotation + (0.5f * h) * (spin * b.deltaRotation));
+  }
 }
 
 }  // namespace collide::detail

@@ -18,18 +18,13 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Mat3& inverseInertia, const Vec3&
 
 // Velocity step of one substep for the dynamic solver bodies: gravity, the body's accumulated force
 // and torque (SolverBodyInfo's accelerations), and the gyroscopic term; the angular speed is bounded
-// (see integrate.cpp). Bodies [begin, end): each body's step reads and writes only its own state.
-void integrateVelocities(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
-                         const BodyStorage& storage, float h, std::uint32_t begin, std::uint32_t end);
-// The same over the listed bodies (a block of islands, solver_blocks.h).
+// (see integrate.cpp). The listed bodies: each body's step reads and writes only its own state.
 void integrateVelocities(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos,
                          const BodyStorage& storage, float h, std::span<const std::uint32_t> which);
 
 // Position step of one substep for dynamic and kinematic solver bodies: the change of position by
-// v h, the change of rotation by dq' = 1/2 (0, w) dq, renormalised; particles never turn. Bodies
-// [begin, end).
-void integratePositions(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos, float h,
-                        std::uint32_t begin, std::uint32_t end);
+// v h, the change of rotation by dq' = 1/2 (0, w) dq, renormalised; particles never turn. The listed
+// bodies.
 void integratePositions(Array<SolverBody>& bodies, const Array<SolverBodyInfo>& infos, float h,
                         std::span<const std::uint32_t> which);
 

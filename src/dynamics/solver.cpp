@@ -62,39 +62,28 @@ void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity, bool wi
 // The guard inside the step: a solver body with a non-finite part is stopped where the step began
 // (its solver state back to rest, unmoved) before its value reaches another body, and frozen and
 // reported at the end of the solve (fault_guard.h).
-void StepSolver::guard(TaskRunner& tasks) {
-  tasks.parallelFor(static_cast<std::uint32_t>(bodies_.size()), kBodiesPerRange,
-                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) { guard(begin, end); });
-}
-
-void StepSolver::guard(std::uint32_t begin, std::uint32_t end) {
-  for (std::uint32_t j = begin; j < end; ++j) guardBody(j);
-}
-
 void StepSolver::guard(std::span<const std::uint32_t> which) {
-  for (const std::uint32_t j : which) guardBody(j);
-}
-
-void StepSolver::guardBody(std::uint32_t j) {
-  SolverBodyInfo& info = infos_[j];
-  if (info.faulted) return;
-  SolverBody& b = bodies_[j];
-  // x * 0 is 0 for every finite x and NaN otherwise: one sum tells whether all sixteen floats
-  // (the pads are 0) are finite, and only a bad body pays for the field-by-field look.
-  const float* f = reinterpret_cast<const float*>(&b);
-  const FloatW zero = zeroW();
-  const FloatW sum = (loadW(f) * zero + loadW(f + 4) * zero) + (loadW(f + 8) * zero + loadW(f + 12) * zero);
-  if (!anyW(notEqualW(sum, zero))) return;
-  std::uint8_t fields = 0;
-  if (!finite(b.deltaPosition)) fields |= FaultEvent::kPosition;
-  if (!finite(b.deltaRotation)) fields |= FaultEvent::kRotation;
-  if (!finite(b.linearVelocity)) fields |= FaultEvent::kLinearVelocity;
-  if (!finite(b.angularVelocity)) fields |= FaultEvent::kAngularVelocity;
-  if (fields == 0) return;
-  info.faulted = true;
-  faultFields_[j] = fields;
-  b = SolverBody{};
-  stoppedABody_.store(true, std::memory_order_relaxed);
+  for (const std::uint32_t j : which) {
+    SolverBodyInfo& info = infos_[j];
+    if (info.faulted) continue;
+    SolverBody& b = bodies_[j];
+    // x * 0 is 0 for every finite x and NaN otherwise: one sum tells whether all sixteen floats
+    // (the pads are 0) are finite, and only a bad body pays for the field-by-field look.
+    const float* f = reinterpret_cast<const float*>(&b);
+    const FloatW zero = zeroW();
+    const FloatW sum = (loadW(f) * zero + loadW(f + 4) * zero) + (loadW(f + 8) * zero + loadW(f + 12) * zero);
+    if (!anyW(notEqualW(sum, zero))) continue;
+    std::uint8_t fields = 0;
+    if (!finite(b.deltaPosition)) fields |= FaultEvent::kPosition;
+    if (!finite(b.deltaRotation)) fields |= FaultEvent::kRotation;
+    if (!finite(b.linearVelocity)) fields |= FaultEvent::kLinearVelocity;
+    if (!finite(b.angularVelocity)) fields |= FaultEvent::kAngularVelocity;
+    if (fields == 0) continue;
+    info.faulted = true;
+    faultFields_[j] = fields;
+    b = SolverBody{};
+    stoppedABody_.store(true, std::memory_order_relaxed);
+  }
 }
 
 void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks) {
@@ -166,14 +155,16 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     });
   } else {
     lastBlockCount.store(1, std::memory_order_relaxed);
-    substeps(loop, 0, {}, !joints.empty(), tasks);
+    allBodies_.resize(bodies_.size());
+    for (std::uint32_t j = 0; j < allBodies_.size(); ++j) allBodies_[j] = j;
+    substeps(loop, 0, allBodies_, !joints.empty(), tasks);
   }
   contacts_.store(contacts, tasks);
   writeBack(storage, faults, tasks);
 }
 
-// The substep loop and the restitution over the bodies and contacts of one block (an empty list
-// with one block: every solver body), with the joints' passes where it holds the joints.
+// The substep loop and the restitution over the bodies and contacts of one block, with the joints'
+// passes where it holds the joints.
 void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<const std::uint32_t> bodies,
                           bool withJoints, TaskRunner& tasks) {
   const StepSettings& settings = loop.settings;
@@ -181,22 +172,11 @@ void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<c
   const JointSolverView& view = loop.view;
   Array<Joint>& joints = loop.joints;
   const auto overBodies = [&](auto&& f) {
-    if (bodies.empty()) {
-      tasks.parallelFor(static_cast<std::uint32_t>(bodies_.size()), kBodiesPerRange,
-                        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-                          f(std::span<const std::uint32_t>(allBodies_).subspan(begin, end - begin));
-                        });
-    } else {
-      tasks.parallelFor(static_cast<std::uint32_t>(bodies.size()), kBodiesPerRange,
-                        [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-                          f(bodies.subspan(begin, end - begin));
-                        });
-    }
+    tasks.parallelFor(static_cast<std::uint32_t>(bodies.size()), kBodiesPerRange,
+                      [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                        f(bodies.subspan(begin, end - begin));
+                      });
   };
-  if (bodies.empty()) {
-    allBodies_.resize(bodies_.size());
-    for (std::uint32_t j = 0; j < allBodies_.size(); ++j) allBodies_[j] = j;
-  }
   // Box2D v3: rigid joints correct at twice the contact stiffness, within the solver's cap (a
   // joint past it made a net draped over a ball shiver instead of sleeping).
   const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);

@@ -77,16 +77,13 @@ class StepSolver {
     const StepSettings& settings;
     float h;
   };
-  // Step 2 and the restitution for the bodies and contacts of one block (an empty list: every
-  // solver body), with the joints' passes where the block holds the joints.
+  // Step 2 and the restitution for the bodies and contacts of one block, with the joints' passes
+  // where the block holds the joints.
   void substeps(const Substeps& loop, std::uint32_t block, std::span<const std::uint32_t> bodies,
                 bool withJoints, TaskRunner& tasks);
   void writeBack(BodyStorage& storage, Array<FaultEvent>& faults, TaskRunner& tasks);
-  // Over every solver body, in parallel ranges; and over bodies [begin, end) (each body's own state).
-  void guard(TaskRunner& tasks);
-  void guard(std::uint32_t begin, std::uint32_t end);
+  // Over the listed solver bodies (each body's own state).
   void guard(std::span<const std::uint32_t> which);
-  void guardBody(std::uint32_t j);
 
   Array<SolverBody> bodies_;
   Array<SolverBodyInfo> infos_;
@@ -96,7 +93,7 @@ class StepSolver {
   // The guard stopped a body this step (its pose went back to the step's start).
   std::atomic<bool> stoppedABody_{false};
   SolverBlocks blocks_;
-  Array<std::uint32_t> allBodies_;  // 0, 1, ... every solver body (one block)
+  Array<std::uint32_t> allBodies_;  // 0, 1, ... every solver body (the solve as one block)
   TaskRunner inline_;               // runs a block on the worker that took it
   ContactSolver contacts_;
   ContactProjection projection_;
