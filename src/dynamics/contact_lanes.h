@@ -95,7 +95,7 @@ class LaneContactSolver final : public ContactLanes {
     batchStart_[0] = 0;
     for (std::uint32_t s = 0; s < segments; ++s) {
       const std::uint32_t perBatch = lanesOf(s);
-      const std::uint32_t count = in.segmentStart[s + 1] - in.segmentStart[s];
+      const std::uint32_t count = in.segmentStart(s + 1) - in.segmentStart(s);
       batchStart_[s + 1] = batchStart_[s] + (count + perBatch - 1) / perBatch;
     }
     resizeScratch(batches_, batchStart_[segments]);
@@ -107,7 +107,7 @@ class LaneContactSolver final : public ContactLanes {
     for (std::uint32_t s = 0, countBucket = 0; s < segments; ++s) {
       const std::uint32_t perBatch = lanesOf(s);
       for (std::uint32_t b = batchStart_[s]; b < batchStart_[s + 1]; ++b) {
-        const std::uint32_t first = in.segmentStart[s] + (b - batchStart_[s]) * perBatch;
+        const std::uint32_t first = in.segmentStart(s) + (b - batchStart_[s]) * perBatch;
         int count;
         if (perBatch == 1) {
           count = in.contacts[in.order[first]].manifold.count;
@@ -138,7 +138,7 @@ class LaneContactSolver final : public ContactLanes {
     std::uint32_t segment = static_cast<std::uint32_t>(
         std::upper_bound(batchStart_.begin(), batchStart_.end(), begin) - batchStart_.begin() - 1);
     const auto firstOrderOf = [&](std::uint32_t b, std::uint32_t s) {
-      return in.segmentStart[s] + (b - batchStart_[s]) * lanesOf(s);
+      return in.segmentStart(s) + (b - batchStart_[s]) * lanesOf(s);
     };
     const std::size_t firstOrder = firstOrderOf(begin, segment);
     std::size_t lastOrder = in.order.size();
@@ -176,7 +176,7 @@ class LaneContactSolver final : public ContactLanes {
     for (std::uint32_t b = begin; b < end; ++b) {
       while (batchStart_[segment + 1] <= b) ++segment;
       const std::uint32_t first = firstOrderOf(b, segment);
-      const std::uint32_t last = std::min(first + lanesOf(segment), in.segmentStart[segment + 1]);
+      const std::uint32_t last = std::min(first + lanesOf(segment), in.segmentStart(segment + 1));
       Batch* batch = batches_.data() + b;
       BatchBias<F>* bias = biases_.data() + b;
       BatchEnd<F>* batchEnd = ends_.data() + b;

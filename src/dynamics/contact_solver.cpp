@@ -131,8 +131,6 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
   bucketStart_.assign(segments * kCounts + 1, 0);
   for (std::size_t i = 0; i < solvedContacts_.size(); ++i) ++bucketStart_[bucketOf(i) + 1];
   for (std::size_t k = 1; k < bucketStart_.size(); ++k) bucketStart_[k] += bucketStart_[k - 1];
-  segmentStart_.resize(segments + 1);
-  for (std::uint32_t s = 0; s <= segments; ++s) segmentStart_[s] = bucketStart_[s * kCounts];
   countStart_ = bucketStart_;
   order_.resize(solvedContacts_.size());
   for (std::size_t i = 0; i < solvedContacts_.size(); ++i)
@@ -144,7 +142,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
   const float maxHertz = kMaxHertzPerSubstepRate / h;
   const ContactTuning& tuning = settings.tuning;
   const ContactBatchInput input{
-      contacts, solvedContacts_, blockCount, segmentStart_, countStart_, storage, bodies, infos, solverOf,
+      contacts, solvedContacts_, blockCount, countStart_, storage, bodies, infos, solverOf,
       makeSoftness(std::min(tuning.hertz, maxHertz), tuning.dampingRatio, h),
       // A one-way pair has half the effective mass to move: Box2D v3 doubles its stiffness, within the cap.
       makeSoftness(std::min(2.0f * tuning.hertz, maxHertz), tuning.dampingRatio, h), settings.friction,
@@ -156,7 +154,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
 std::size_t ContactSolver::memoryBytes() const {
   return lanes_->memoryBytes() + supportMasses_.memoryBytes() + heapBytes(solvedContacts_) +
          heapBytes(writtenBodies_) + heapBytes(colorBits_) + heapBytes(order_) + heapBytes(colorOf_) +
-         heapBytes(blockOf_) + heapBytes(bucketStart_) + heapBytes(countStart_) + heapBytes(segmentStart_);
+         heapBytes(blockOf_) + heapBytes(bucketStart_) + heapBytes(countStart_);
 }
 
 }  // namespace collide::detail

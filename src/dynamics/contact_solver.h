@@ -65,14 +65,13 @@ struct ContactSolverSettings {
 
 // What the lane kernels need to build their batches: the contacts to solve, ordered by block of
 // islands (solver_blocks.h), then by colour within a block, and the step's bodies and settings.
-// Segment s = block * kColorSegments + colour holds order[segmentStart[s] .. segmentStart[s + 1])
+// Segment s = block * kColorSegments + colour holds order[segmentStart(s) .. segmentStart(s + 1))
 // (the overflow colour last in each block).
 inline constexpr int kColorSegments = kGraphColors + 1;
 struct ContactBatchInput {
   Array<Contact>& contacts;
   const Array<std::uint32_t>& order;
   std::uint32_t blockCount;
-  const Array<std::uint32_t>& segmentStart;
   // Within segment s (but an overflow one), order[countStart[s * kMaxPoints + 4 - n], ... + 1) are
   // the contacts of n points: a batch's first contact has the most points of its lanes.
   const Array<std::uint32_t>& countStart;
@@ -87,6 +86,10 @@ struct ContactBatchInput {
   float pushOutSpeed = 0.0f;
   float restitutionThreshold = 0.0f;
   const SupportMasses* supportMasses = nullptr;  // scales on the bodies' masses, if any (support_masses.h)
+
+  std::uint32_t segmentStart(std::uint32_t segment) const {
+    return countStart[segment * Manifold::kMaxPoints];
+  }
 };
 
 // The kernels of one lane width (contact_lanes.h): batches of that many manifolds, and the passes.
@@ -163,7 +166,6 @@ class ContactSolver {
   Array<std::uint32_t> blockOf_;
   Array<std::uint32_t> bucketStart_;
   Array<std::uint32_t> countStart_;
-  Array<std::uint32_t> segmentStart_;
 };
 
 }  // namespace collide::detail
