@@ -21,19 +21,21 @@ struct ConeRows {
   float twist = 0.0f;
 };
 
-ConeRows coneRows(const JointFrame& f, const Joint& joint) {
+// withAngles false: the axes alone, for the warm start, which applies impulses along them and
+// needs no angle (two arc tangents a joint and substep fewer).
+ConeRows coneRows(const JointFrame& f, const Joint& joint, bool withAngles = true) {
   ConeRows rows;
   const Vec3 a = f.frameA * Vec3(1.0f, 0.0f, 0.0f);
   const Vec3 b = f.frameB * Vec3(1.0f, 0.0f, 0.0f);
   const Vec3 s = glm::cross(a, b);
   const float sine = glm::length(s);
-  rows.swing = std::atan2(sine, glm::dot(a, b));
+  if (withAngles) rows.swing = std::atan2(sine, glm::dot(a, b));
   if (joint.swingLimit < kPi && sine > 1e-6f) rows.swingAxis = s / sine;
   const Vec3 mean = a + b;
   const float meanLength = glm::length(mean);
   if (joint.limits.enabled && meanLength > 1e-6f) {
     rows.twistAxis = mean / meanLength;
-    rows.twist = twistAngle(glm::conjugate(f.frameA) * f.frameB);
+    if (withAngles) rows.twist = twistAngle(glm::conjugate(f.frameA) * f.frameB);
   }
   return rows;
 }
@@ -42,7 +44,7 @@ ConeRows coneRows(const JointFrame& f, const Joint& joint) {
 
 void warmStartCone(const JointSolverView& view, Joint& joint) {
   const JointFrame f = jointFrame(view, joint);
-  const ConeRows rows = coneRows(f, joint);
+  const ConeRows rows = coneRows(f, joint, false);
   // The swing limit is an upper limit on phi: its impulse turns b back, about -n.
   const bool treeSwing = joint.treeLimits & kSwingLimitBit;
   const float lower = joint.treeLimits & kLowerLimitBit ? 0.0f : joint.lowerImpulse;
