@@ -193,6 +193,12 @@ struct Story {
       world.step(dt);
     } catch (const Error& e) {
       trace(std::string("  step threw: ") + e.what());
+      // The states the step left, to tell which body went wrong.
+      for (const BodyId id : bodies) {
+        if (!world.isValid(id)) continue;
+        trace("  " + describe(id) + " at " + describe(world.transform(id)) + " v " +
+              describe(world.linearVelocity(id)) + " w " + describe(world.angularVelocity(id)));
+      }
       std::abort();
     }
     checkAfterStep();

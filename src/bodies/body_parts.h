@@ -75,14 +75,16 @@ inline Sweep partSweep(const Sweep& body, const Transform& local) {
 }
 
 // Whether every placement along the sweep is finite in float: Sweep::at computes
-// center0 + t (center1 - center0) - q localCenter, and this bounds each of its terms. A part placed
-// near float's limit from its body's centre, or a body near that limit, has no such sweep: the
-// continuous pass and the sensor sweeps leave the pair (its contact still acts).
+// center0 + t (center1 - center0) - q localCenter, and this bounds each of its terms and the steps
+// in between. glm turns a vector v by a unit quaternion (w, u) as v + 2 (w (u x v) + u x (u x v)),
+// whose parts reach 13 times v's largest component before they cancel: an offset within float's
+// range once turned can overflow on the way. A part placed near float's limit from its body's
+// centre, or a body near that limit, has no such sweep: the continuous pass and the sensor sweeps
+// leave the pair (its contact still acts).
 inline bool sweepStaysFinite(const Sweep& s) {
-  const auto largest = [](const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
-  const Vec3& l = s.localCenter;
-  const float reach =
-      largest(s.center0) + largest(s.center1) + (std::abs(l.x) + std::abs(l.y) + std::abs(l.z));
+  // The sum of the components' sizes bounds the largest, and a NaN carries through it.
+  const auto size = [](const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); };
+  const float reach = size(s.center0) + size(s.center1) + 13.0f * size(s.localCenter);
   return std::isfinite(reach);
 }
 
