@@ -203,7 +203,9 @@ class LaneContactSolver final : public ContactLanes {
   // f(batch) for every batch of a block, colour after colour (the last colour first if
   // `backwards`). A colour's batches share no body the solver writes, so their ranges run in
   // parallel and give what one pass in order gives, bit for bit; the overflow's batches may share
-  // bodies and run in order, on the calling thread.
+  // bodies and run in order (reversed if `backwards`), on the calling thread. For the same reason
+  // the order within a colour changes nothing, and it is ascending either way: batches that
+  // outgrow the cache stream from memory faster forwards than backwards.
   template <typename Body>
   void forEachBatch(TaskRunner& tasks, std::uint32_t block, bool backwards, Body&& body) {
     for (int k = 0; k <= kGraphColors; ++k) {
@@ -222,18 +224,14 @@ class LaneContactSolver final : public ContactLanes {
       }
       tasks.parallelFor(last - first, kBatchesPerRange,
                         [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
-                          if (backwards) {
-                            for (std::uint32_t i = end; i-- > begin;) body(batches_[first + i]);
-                          } else {
-                            for (std::uint32_t i = begin; i < end; ++i) body(batches_[first + i]);
-                          }
+                          for (std::uint32_t i = begin; i < end; ++i) body(batches_[first + i]);
                         });
     }
   }
 
   void warmStart(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) override {
-    // Backwards: it starts with the batches the last pass (the previous substep's relax) ended
-    // with, still in the L2 cache, and ends with those the solve pass starts with.
+    // The colours backwards: it starts with the colour the last pass (the previous substep's
+    // relax) ended with, still in the cache, and ends with the one the solve pass starts with.
     forEachBatch(tasks, block, true, [&](Batch& c) {
       Velocities a = gatherVelocities(bodies, c.bodyA);
       Velocities b = gatherVelocities(bodies, c.bodyB);
@@ -316,12 +314,21 @@ class LaneContactSolver final : public ContactLanes {
   }
 
   void storeBatches(Array<Contact>& contacts, std::size_t begin, std::size_t end) const {
-    // The contacts of a batch two places on, asked for ahead: they lie anywhere in the array.
+    // The contacts of a batch two places on, asked for ahead: they lie anywhere in the array. Only
+    // the part written here (from the manifold's point count to the friction patch's impulses),
+    // not the whole record: a large world's contacts come from memory.
     constexpr std::size_t kAhead = 2;
+    constexpr std::size_t kStoredFrom = offsetof(Contact, manifold) + offsetof(Manifold, count);
+    constexpr std::size_t kStoredTo = offsetof(Contact, twistImpulse) + sizeof(float);
+    static_assert(offsetof(Contact, points) > kStoredFrom && offsetof(Contact, sliding) < kStoredTo &&
+                  offsetof(Contact, frictionImpulse) < kStoredTo);
     const auto prefetchContacts = [&](std::size_t batch) {
       if (batch >= end) return;
-      for (const std::int32_t index : ends_[batch].contact)
-        if (index >= 0) prefetchBytes(&contacts[static_cast<std::size_t>(index)], offsetof(Contact, cache));
+      for (const std::int32_t index : ends_[batch].contact) {
+        if (index < 0) continue;
+        const char* record = reinterpret_cast<const char*>(&contacts[static_cast<std::size_t>(index)]);
+        prefetchBytes(record + kStoredFrom, kStoredTo - kStoredFrom);
+      }
     };
     for (std::size_t i = begin; i < begin + kAhead; ++i) prefetchContacts(i);
     for (std::size_t i = begin; i < end; ++i) {
