@@ -71,6 +71,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
   solvedContacts_.clear();
   writtenBodies_.clear();
   blockOf_.clear();
+  pointCounts_.clear();
   bool unequalMasses = false;
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
     // The lines read here (ids, manifold count, flags) a few contacts ahead: a contact spans several
@@ -85,6 +86,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
     const std::int32_t a = solverOf[contact.bodyA];
     const std::int32_t b = solverOf[contact.bodyB];
     solvedContacts_.push_back(ci);
+    pointCounts_.push_back(static_cast<std::uint8_t>(contact.manifold.count));
     // It joins its bodies' islands; its block is that of a side in the solve (kept here, found
     // once the islands are known).
     if (blocks != nullptr) {
@@ -123,7 +125,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
   const std::uint32_t blockCount = blocks != nullptr ? blocks->count() : 1;
   const auto bucketOf = [&](std::size_t i) {
     const std::uint32_t color = colorOf_[i];
-    const std::uint32_t count = contacts[solvedContacts_[i]].manifold.count;
+    const std::uint32_t count = pointCounts_[i];
     const std::uint32_t block = blocks != nullptr ? blockOf_[i] : 0;
     return (block * kColorSegments + color) * kCounts + (color == kOverflowColor ? 0 : kCounts - count);
   };
@@ -154,7 +156,7 @@ void ContactSolver::prepare(Array<Contact>& contacts, const BodyStorage& storage
 std::size_t ContactSolver::memoryBytes() const {
   return lanes_->memoryBytes() + supportMasses_.memoryBytes() + heapBytes(solvedContacts_) +
          heapBytes(writtenBodies_) + heapBytes(colorBits_) + heapBytes(order_) + heapBytes(colorOf_) +
-         heapBytes(blockOf_) + heapBytes(bucketStart_) + heapBytes(countStart_);
+         heapBytes(blockOf_) + heapBytes(pointCounts_) + heapBytes(bucketStart_) + heapBytes(countStart_);
 }
 
 }  // namespace collide::detail

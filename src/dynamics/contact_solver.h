@@ -164,6 +164,9 @@ class ContactSolver {
   // Per solved contact its block (its solver body on one side until the blocks are known); per
   // (block, colour, point count) bucket its start in the order.
   Array<std::uint32_t> blockOf_;
+  // Per solved contact its manifold's points, read by the scan: the sort below would otherwise
+  // read each contact's record again, long out of the cache in a large world.
+  Array<std::uint8_t> pointCounts_;
   Array<std::uint32_t> bucketStart_;
   Array<std::uint32_t> countStart_;
 };
