@@ -182,7 +182,7 @@ void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<c
   const float rigidHertz = std::min(2.0f * settings.tuning.hertz, kMaxHertzPerSubstepRate / h);
   for (int i = 0; i < settings.substeps; ++i) {
     overBodies([&](std::span<const std::uint32_t> which) {
-      // The last substep's guard, in the same walk over the bodies: each body's own sequence
+      // The previous substep's closing guard, in the same walk over the bodies: each body's sequence
       // (guard, integrate, guard) is unchanged, and a large world's bodies are read once, not twice.
       if (i > 0) guard(which);
       integrateVelocities(bodies_, infos_, loop.storage, h, which);
