@@ -116,23 +116,37 @@ void JointWaves::prepare(const JointSolverView& view, const Array<Joint>& joints
 }
 
 template <typename F>
-void JointWaves::forEachJoint(TaskRunner& tasks, F&& f) {
+void JointWaves::forEachJoint(const JointSolverView& view, const Array<Joint>& joints, TaskRunner& tasks,
+                              F&& f) {
+  // A wave's joints and their bodies lie anywhere in their arrays (a grid's or a pile's): each is
+  // asked for ahead in two stages, the joint's record eight places on, then, four places on and
+  // with its body indices at hand, what jointBody reads of its two bodies (when they outgrow the
+  // cache).
+  constexpr std::uint32_t kAhead = 4;
+  const bool ahead = jointBodiesOutgrowCache(view);
   for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
     const std::uint32_t begin = waveStart_[w];
     tasks.parallelFor(waveStart_[w + 1] - begin, kJointsPerRange,
                       [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
-                        for (std::uint32_t k = begin + first; k < begin + last; ++k) f(order_[k]);
+                        const std::uint32_t end = begin + last;
+                        for (std::uint32_t k = begin + first; k < end; ++k) {
+                          if (ahead && k + 2 * kAhead < end) prefetchRecord(joints[order_[k + 2 * kAhead]]);
+                          if (ahead && k + kAhead < end)
+                            prefetchJointBodies(view, joints[order_[k + kAhead]]);
+                          f(order_[k]);
+                        }
                       });
   }
 }
 
 void JointWaves::warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks) {
-  forEachJoint(tasks, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); });
+  forEachJoint(view, joints, tasks, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); });
 }
 
 void JointWaves::solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz,
                        bool useBias, TaskRunner& tasks) {
-  forEachJoint(tasks, [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); });
+  forEachJoint(view, joints, tasks,
+               [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); });
 }
 
 std::size_t JointWaves::memoryBytes() const {

@@ -110,7 +110,7 @@ class JointWaves {
   // the calling thread.
   static constexpr std::uint32_t kJointsPerRange = 64;
   template <typename F>
-  void forEachJoint(TaskRunner& tasks, F&& f);
+  void forEachJoint(const JointSolverView& view, const Array<Joint>& joints, TaskRunner& tasks, F&& f);
 
   Array<std::uint32_t> order_;      // the active joints by wave, in joint order within a wave
   Array<std::uint32_t> waveStart_;  // wave w's joints: order_[waveStart_[w] .. waveStart_[w + 1])

@@ -447,14 +447,23 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
 // impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
 // The biased pass comes at the warm start's pose (only velocities change in between), so it keeps
 // the warm start's frames and equality rows and takes its limits afresh.
+// How many joints ahead the row builds ask for a joint's bodies (prefetchJointBodies).
+constexpr std::uint32_t kFramesAhead = 4;
+
 JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h,
                                           RowPass pass, std::size_t t) {
   BuiltRows built;
   const bool rowsWereAtPose = rowsAtPose_[t] != 0;
-  for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+  const bool framesNew = !(pass == RowPass::SolveAtWarmStartPose || rowsAtPose_[t]);
+  const bool ahead = framesNew && jointBodiesOutgrowCache(view);
+  const std::uint32_t end = treeEntryStart_[t + 1];
+  for (std::uint32_t k = treeEntryStart_[t]; k < end; ++k) {
+    // As the Gauss-Seidel waves do: the bodies of a joint a few entries on, asked for ahead.
+    if (ahead && k + kFramesAhead < end)
+      prefetchJointBodies(view, joints[entries_[treeEntries_[k + kFramesAhead]].joint]);
     Entry& entry = entries_[treeEntries_[k]];
     Joint& joint = joints[entry.joint];
-    if (pass == RowPass::SolveAtWarmStartPose || rowsAtPose_[t]) {
+    if (!framesNew) {
       entry.rows.count = entry.equalityCount;
     } else {
       entry.frame = jointFrame(view, joint);
@@ -674,7 +683,12 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
 // The rows of one tree at the current pose (the projection's: bodies with their own inertia).
 void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints, std::size_t first,
                               std::size_t last) {
+  const bool ahead = jointBodiesOutgrowCache(view);
   for (std::size_t n = first; n < last; ++n) {
+    // A joint's node is every other one or so: this asks for one a few joints on.
+    const std::size_t next = n + 2 * kFramesAhead;
+    if (ahead && next < last && nodes_[next].joint >= 0)
+      prefetchJointBodies(view, joints[entries_[static_cast<std::size_t>(nodes_[next].joint)].joint]);
     if (nodes_[n].joint < 0) continue;
     Entry& entry = entries_[static_cast<std::size_t>(nodes_[n].joint)];
     Joint& joint = joints[entry.joint];

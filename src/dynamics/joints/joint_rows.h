@@ -6,6 +6,7 @@
 
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
+#include "memory/prefetch.h"
 
 #include <array>
 
@@ -28,6 +29,30 @@ struct JointBody {
 };
 
 JointBody jointBody(const JointSolverView& view, std::uint32_t body);
+
+// Whether asking for joints' bodies ahead pays: only when their solver records outgrow a core's
+// L2 cache (1 MiB on the machines measured). Below that they are in cache, and the prefetches
+// are work for nothing: 100 ragdolls' 1,100 bodies are 0.2 MB, the 10,000-sphere joint grid's 1.9.
+inline bool jointBodiesOutgrowCache(const JointSolverView& view) {
+  constexpr std::size_t kCacheBytes = std::size_t{1} << 20;
+  constexpr std::size_t kBodyBytes = sizeof(SolverBody) + sizeof(SolverBodyInfo) + sizeof(SolverBodyStart);
+  return view.bodies.size() * kBodyBytes > kCacheBytes;
+}
+
+// Asks for what jointBody reads of the joint's two bodies, ahead of the pass that reads them.
+inline void prefetchJointBodies(const JointSolverView& view, const Joint& joint) {
+  for (const std::uint32_t body : {joint.bodyA, joint.bodyB}) {
+    const std::int32_t j = view.solverOf[body];
+    if (j == kNoSolverBody) {
+      prefetchRecord(view.storage.states[body]);
+      continue;
+    }
+    const auto index = static_cast<std::size_t>(j);
+    prefetchRecord(view.bodies[index]);
+    prefetchRecord(view.infos[index]);
+    prefetchRecord(view.starts[index]);
+  }
+}
 
 // A joint's two bodies and its frame at their current pose.
 struct JointFrame {
