@@ -155,6 +155,12 @@ struct Story {
     return std::count_if(bodies.begin(), bodies.end(), [&](BodyId id) { return world.isValid(id); });
   }
 
+  // One body's pose and velocities, as a trace line.
+  void traceState(BodyId id, const char* suffix) const {
+    trace("  " + describe(id) + " at " + describe(world.transform(id)) + " v " +
+          describe(world.linearVelocity(id)) + " w " + describe(world.angularVelocity(id)) + suffix);
+  }
+
   // Every live body's state is finite or reported (the fault guard resets a reported body to its
   // start-of-step pose, so in practice every state must be finite); every event is finite.
   void checkAfterStep() const {
@@ -167,10 +173,7 @@ struct Story {
                           isFinite(world.centerOfMass(id));
       const bool reported =
           std::any_of(faults.begin(), faults.end(), [&](const FaultEvent& f) { return f.body == id; });
-      if (collide::fuzz::tracing()) {
-        trace("  " + describe(id) + " at " + describe(t) + " v " + describe(world.linearVelocity(id)) +
-              " w " + describe(world.angularVelocity(id)) + (reported ? " (fault reported)" : ""));
-      }
+      if (collide::fuzz::tracing()) traceState(id, reported ? " (fault reported)" : "");
       if (!finite && !reported) std::abort();
     }
     // Events only for sane input: a pair far outside float's working range (a 1e30 m sphere
@@ -195,9 +198,7 @@ struct Story {
       trace(std::string("  step threw: ") + e.what());
       // The states the step left, to tell which body went wrong.
       for (const BodyId id : bodies) {
-        if (!world.isValid(id)) continue;
-        trace("  " + describe(id) + " at " + describe(world.transform(id)) + " v " +
-              describe(world.linearVelocity(id)) + " w " + describe(world.angularVelocity(id)));
+        if (world.isValid(id)) traceState(id, "");
       }
       std::abort();
     }

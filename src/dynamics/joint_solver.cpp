@@ -122,7 +122,7 @@ void JointWaves::forEachJoint(const JointSolverView& view, const Array<Joint>& j
   // asked for ahead in two stages, the joint's record eight places on, then, four places on and
   // with its body indices at hand, what jointBody reads of its two bodies (when they outgrow the
   // cache).
-  constexpr std::uint32_t kAhead = 4;
+  constexpr std::uint32_t kAhead = kJointBodiesAhead;
   const bool ahead = jointBodiesOutgrowCache(view);
   for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
     const std::uint32_t begin = waveStart_[w];

@@ -447,9 +447,6 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
 // impulse above 0), the active set of the limits. A limit not taken is the Gauss-Seidel pass's.
 // The biased pass comes at the warm start's pose (only velocities change in between), so it keeps
 // the warm start's frames and equality rows and takes its limits afresh.
-// How many joints ahead the row builds ask for a joint's bodies (prefetchJointBodies).
-constexpr std::uint32_t kFramesAhead = 4;
-
 JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joint>& joints, float h,
                                           RowPass pass, std::size_t t) {
   BuiltRows built;
@@ -459,8 +456,8 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
   const std::uint32_t end = treeEntryStart_[t + 1];
   for (std::uint32_t k = treeEntryStart_[t]; k < end; ++k) {
     // As the Gauss-Seidel waves do: the bodies of a joint a few entries on, asked for ahead.
-    if (ahead && k + kFramesAhead < end)
-      prefetchJointBodies(view, joints[entries_[treeEntries_[k + kFramesAhead]].joint]);
+    if (ahead && k + kJointBodiesAhead < end)
+      prefetchJointBodies(view, joints[entries_[treeEntries_[k + kJointBodiesAhead]].joint]);
     Entry& entry = entries_[treeEntries_[k]];
     Joint& joint = joints[entry.joint];
     if (!framesNew) {
@@ -686,7 +683,7 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
   const bool ahead = jointBodiesOutgrowCache(view);
   for (std::size_t n = first; n < last; ++n) {
     // A joint's node is every other one or so: this asks for one a few joints on.
-    const std::size_t next = n + 2 * kFramesAhead;
+    const std::size_t next = n + 2 * kJointBodiesAhead;
     if (ahead && next < last && nodes_[next].joint >= 0)
       prefetchJointBodies(view, joints[entries_[static_cast<std::size_t>(nodes_[next].joint)].joint]);
     if (nodes_[n].joint < 0) continue;

@@ -39,6 +39,10 @@ inline bool jointBodiesOutgrowCache(const JointSolverView& view) {
   return view.bodies.size() * kBodyBytes > kCacheBytes;
 }
 
+// How many joints ahead a pass asks for a joint's bodies (prefetchJointBodies); the waves ask for
+// the joint's own record twice as far.
+inline constexpr std::uint32_t kJointBodiesAhead = 4;
+
 // Asks for what jointBody reads of the joint's two bodies, ahead of the pass that reads them.
 inline void prefetchJointBodies(const JointSolverView& view, const Joint& joint) {
   for (const std::uint32_t body : {joint.bodyA, joint.bodyB}) {
