@@ -547,6 +547,8 @@ void World::setJointFriction(JointId id, float friction) {
   impl_->wakeJoint(j);
 }
 
+bool World::jointInTree(JointId id) const { return impl_->jointOf(id, "jointInTree").inTree; }
+
 bool World::jointCollideConnected(JointId id) const {
   return impl_->jointOf(id, "jointCollideConnected").collideConnected;
 }

@@ -344,6 +344,10 @@ class World {
   float jointForce(JointId id) const;
   float jointTorque(JointId id) const;
   float jointMotorForce(JointId id) const;
+  // Whether the last step solved the joint's rigid rows in its joint tree, exactly, rather than by
+  // Gauss-Seidel: false for a joint that closes a loop, a mesh's joints, soft and distance joints,
+  // and before the first step (docs/joints.md, "Joint trees").
+  bool jointInTree(JointId id) const;
   // The fields of the definitions, read and changed after creation; each setter checks as the
   // definition does (Error and no change), wakes the joint's bodies, and takes effect next step.
   // Limits, motor and spring belong to hinge, slider (and cone: twist limits; distance: limits,

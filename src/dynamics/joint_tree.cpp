@@ -262,9 +262,8 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   if (joints.empty()) return;  // and the per-body scratch below is not grown
   const std::size_t bodyCount = view.bodies.size();
   parentOf_.resize(bodyCount);
-  std::iota(parentOf_.begin(), parentOf_.end(), 0);
   groundJoint_.assign(bodyCount, -1);
-  grounded_.assign(bodyCount, 0);
+  grounded_.resize(bodyCount);
   adjacencyStart_.assign(bodyCount + 1, 0);
 
   // The forest, in joint order: a joint between two trees joins them, one within a tree closes a
@@ -272,40 +271,89 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   // joint to the ground joins its body's node, and a second (or a joint between two grounded trees)
   // closes a loop through the ground. Loops are where rows can be redundant (a bridge of parallel
   // hinges between two posts repeats its out-of-plane rows three times), which no pivot survives.
-  for (std::uint32_t i = 0; i < joints.size(); ++i) {
-    Joint& joint = joints[i];
-    joint.inTree = false;
-    joint.treeLimits = 0;
-    if (!joint.active || equalityRowCount(joint) == 0) continue;
-    const std::int32_t a = treeBody(view, joint.bodyA);
-    const std::int32_t b = treeBody(view, joint.bodyB);
-    if (a == b) continue;  // both ground
-    // A particle (or a body the guard stopped) is no ground: the joint's rows would move it, and two
-    // trees solved side by side would both write it. Its joints stay Gauss-Seidel.
-    if ((a < 0 && !isGround(view, joint.bodyA)) || (b < 0 && !isGround(view, joint.bodyB))) continue;
-    if (a < 0 || b < 0) {
-      const std::int32_t body = a < 0 ? b : a;
-      const std::int32_t root = findRoot(parentOf_, body);
-      if (grounded_[static_cast<std::size_t>(root)]) continue;
-      grounded_[static_cast<std::size_t>(root)] = 1;
-      groundJoint_[static_cast<std::size_t>(body)] = static_cast<std::int32_t>(entries_.size());
-    } else {
-      const std::int32_t rootA = findRoot(parentOf_, a);
-      const std::int32_t rootB = findRoot(parentOf_, b);
-      if (rootA == rootB) continue;
-      if (grounded_[static_cast<std::size_t>(rootA)] && grounded_[static_cast<std::size_t>(rootB)]) continue;
-      const std::int32_t merged = std::min(rootA, rootB);
-      parentOf_[static_cast<std::size_t>(std::max(rootA, rootB))] = merged;
-      grounded_[static_cast<std::size_t>(merged)] |=
-          grounded_[static_cast<std::size_t>(std::max(rootA, rootB))];
-      ++adjacencyStart_[static_cast<std::size_t>(a) + 1];
-      ++adjacencyStart_[static_cast<std::size_t>(b) + 1];
+  //
+  // A mesh of joints (a grid, a net, a truss), where loops close more than a third of the joints
+  // (more loops than half its tree's joints), stays Gauss-Seidel whole: the loop joints' soft rows
+  // pull its tree's rows open again after every exact solve, so that a projection fires each
+  // substep, and the tree's factors cost four times the waves' passes over the same joints for a
+  // mean gap of 4.2 mm instead of 7.0 (the 10,000-sphere joint grid, docs/joints.md). A chain, a
+  // ragdoll, a bridge between two posts or a closed linkage has a loop or two and keeps its tree.
+  // The first walk counts each component's tree and loop joints (at one of its bodies, added up by
+  // root after); where it finds a mesh, the forest is grown again without the meshes' joints, which
+  // leaves every other tree as it was (a union-find root is the lowest body of its set).
+  forestCounts_.assign(2 * bodyCount, 0);
+  const auto countAt = [&](std::int32_t body, bool loop) {
+    ++forestCounts_[2 * static_cast<std::size_t>(body) + (loop ? 1 : 0)];
+  };
+  const auto growForest = [&](bool skipMeshes) {
+    std::iota(parentOf_.begin(), parentOf_.end(), 0);
+    std::fill(grounded_.begin(), grounded_.end(), std::uint8_t{0});
+    for (std::uint32_t i = 0; i < joints.size(); ++i) {
+      Joint& joint = joints[i];
+      joint.inTree = false;
+      joint.treeLimits = 0;
+      if (!joint.active || equalityRowCount(joint) == 0) continue;
+      const std::int32_t a = treeBody(view, joint.bodyA);
+      const std::int32_t b = treeBody(view, joint.bodyB);
+      if (a == b) continue;  // both ground
+      // A particle (or a body the guard stopped) is no ground: the joint's rows would move it, and
+      // two trees solved side by side would both write it. Its joints stay Gauss-Seidel.
+      if ((a < 0 && !isGround(view, joint.bodyA)) || (b < 0 && !isGround(view, joint.bodyB))) continue;
+      const auto meshBody = [&](std::int32_t s) { return s >= 0 && inMesh_[static_cast<std::size_t>(s)]; };
+      if (skipMeshes && (meshBody(a) || meshBody(b))) continue;
+      if (a < 0 || b < 0) {
+        const std::int32_t body = a < 0 ? b : a;
+        const std::int32_t root = findRoot(parentOf_, body);
+        if (grounded_[static_cast<std::size_t>(root)]) {
+          countAt(body, true);
+          continue;
+        }
+        grounded_[static_cast<std::size_t>(root)] = 1;
+        groundJoint_[static_cast<std::size_t>(body)] = static_cast<std::int32_t>(entries_.size());
+      } else {
+        const std::int32_t rootA = findRoot(parentOf_, a);
+        const std::int32_t rootB = findRoot(parentOf_, b);
+        if (rootA == rootB ||
+            (grounded_[static_cast<std::size_t>(rootA)] && grounded_[static_cast<std::size_t>(rootB)])) {
+          countAt(a, true);
+          if (rootA != rootB) countAt(b, true);  // a loop through the ground for each tree
+          continue;
+        }
+        const std::int32_t merged = std::min(rootA, rootB);
+        parentOf_[static_cast<std::size_t>(std::max(rootA, rootB))] = merged;
+        grounded_[static_cast<std::size_t>(merged)] |=
+            grounded_[static_cast<std::size_t>(std::max(rootA, rootB))];
+        ++adjacencyStart_[static_cast<std::size_t>(a) + 1];
+        ++adjacencyStart_[static_cast<std::size_t>(b) + 1];
+      }
+      countAt(a < 0 ? b : a, false);
+      joint.inTree = true;
+      Entry& entry = entries_.emplace_back();
+      entry.joint = i;
+      entry.bodyA = a;
+      entry.bodyB = b;
     }
-    joint.inTree = true;
-    Entry& entry = entries_.emplace_back();
-    entry.joint = i;
-    entry.bodyA = a;
-    entry.bodyB = b;
+  };
+  growForest(false);
+  // Each component's counts at its root; a mesh's bodies marked.
+  for (std::size_t s = 0; s < bodyCount; ++s) {
+    const auto root = static_cast<std::size_t>(findRoot(parentOf_, static_cast<std::int32_t>(s)));
+    if (root == s) continue;
+    forestCounts_[2 * root] += forestCounts_[2 * s];
+    forestCounts_[2 * root + 1] += forestCounts_[2 * s + 1];
+  }
+  inMesh_.assign(bodyCount, 0);
+  bool anyMesh = false;
+  for (std::size_t s = 0; s < bodyCount; ++s) {
+    const auto root = static_cast<std::size_t>(findRoot(parentOf_, static_cast<std::int32_t>(s)));
+    inMesh_[s] = 2 * forestCounts_[2 * root + 1] > forestCounts_[2 * root] ? 1 : 0;
+    anyMesh = anyMesh || inMesh_[s];
+  }
+  if (anyMesh) {
+    entries_.clear();
+    groundJoint_.assign(bodyCount, -1);
+    adjacencyStart_.assign(bodyCount + 1, 0);
+    growForest(true);
   }
   if (entries_.empty()) return;
 
@@ -832,8 +880,8 @@ std::size_t JointTree::memoryBytes() const {
          heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) + heapBytes(treeSolved_) + heapBytes(factored_) +
          heapBytes(limitCandidates_) + heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) +
          heapBytes(solution_) + heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) +
-         heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
-         heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
+         heapBytes(forestCounts_) + heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) +
+         heapBytes(bodyNode_) + heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
 }
 
 }  // namespace collide::detail

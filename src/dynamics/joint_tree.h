@@ -169,7 +169,9 @@ class JointTree {
   // prepare's scratch
   Array<std::int32_t> parentOf_;
   Array<std::int32_t> groundJoint_;
-  Array<std::uint8_t> grounded_;  // per union-find root: the tree hangs from the ground
+  Array<std::uint8_t> grounded_;       // per union-find root: the tree hangs from the ground
+  Array<std::uint32_t> forestCounts_;  // per body, then per root: tree joints, loop joints
+  Array<std::uint8_t> inMesh_;         // per body: its component is a mesh (Gauss-Seidel whole)
   Array<std::uint32_t> adjacencyStart_;
   Array<std::uint32_t> adjacency_;
   Array<std::int32_t> bodyNode_;

@@ -38,7 +38,7 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"breakable", 0x3ead5165968c2a4f},      {"chain", 0x3f8830e5ab406df8},
     {"tunneling", 0x935a5f9071b1f803},      {"pendulum", 0x5548d76948409d9f},
     {"bridge", 0xa7805e87a066c8c4},         {"ragdolls", 0xf4607bb23ee8bd72},
-    {"machine", 0x5d113ebd6d021b30},        {"joint-grid", 0xcac02b3a3d4a2b79},
+    {"machine", 0x5d113ebd6d021b30},        {"joint-grid", 0x59cf60525bfbd3b9},
     {"ragdoll-pile", 0x9e73cbd5b10f6b0d},   {"large-pile", 0x01d5a781327adae6},
     {"character", 0xcf582801b64f387e},
 };

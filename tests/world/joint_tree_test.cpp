@@ -2,7 +2,8 @@
 // 50-link chain released from the horizontal stretches less than 1 % in total; a 100 kg ball under
 // 20 links of 0.1 kg stays within 2 % of the chain's length, at rest and swinging; internal joint
 // forces keep a tumbling free chain's linear and angular momentum; a chain built from its free end
-// up is solved as a tree too.
+// up is solved as a tree too; a grid of joints (a mesh) is left to Gauss-Seidel whole, a ladder keeps
+// its tree.
 #include "support/world_helpers.h"
 
 #include <collide/world.h>
@@ -161,6 +162,69 @@ TEST(JointTree, TumblingFreeChainKeepsItsMomentum) {
   EXPECT_LT(glm::length(momentum() - before), 1e-3f * glm::length(before));
   EXPECT_LT(glm::length(angularMomentum() - angularBefore), 1e-3f * glm::length(angularBefore));
   EXPECT_LT(totalGap(chain), 0.01f * 2.0f);
+}
+
+// Which joints the trees take, by graph counting. A connected group of V bodies hanging from the
+// ground by a spanning tree has V tree joints (V + 1 nodes with the ground); its other joints close
+// loops. An n x n grid hung by one corner has n^2 tree joints and (n - 1)^2 loops: at n = 8, 64 and
+// 49, more loops than half the tree, a mesh, all Gauss-Seidel. A ladder of two 8-body rails with a
+// rung at each body, hung by one rail's top, has 16 tree joints and 7 loops: it keeps its tree.
+// A chain in the same world keeps its tree beside the mesh.
+TEST(JointTree, AGridIsAMeshLeftToGaussSeidelWhileALadderAndAChainKeepTheirTrees) {
+  World world;
+  constexpr int n = 8;
+  const auto ball = [&](const Vec3& at) { return world.createBody(test::sphereBody(at, 0.1f, 1.0f)); };
+  const auto countInTree = [&](const std::vector<JointId>& joints) {
+    return std::count_if(joints.begin(), joints.end(), [&](JointId j) { return world.jointInTree(j); });
+  };
+
+  std::vector<std::vector<BodyId>> grid(n, std::vector<BodyId>(n));
+  std::vector<JointId> gridJoints;
+  for (int column = 0; column < n; ++column) {
+    for (int row = 0; row < n; ++row) {
+      const Vec3 at(0.5f * float(column), 20.0f - 0.5f * float(row), 0.0f);
+      grid[column][row] = ball(at);
+      if (column > 0)
+        gridJoints.push_back(
+            world.createBallJoint({grid[column - 1][row], grid[column][row], at - Vec3(0.25f, 0, 0)}));
+      if (row > 0)
+        gridJoints.push_back(
+            world.createBallJoint({grid[column][row - 1], grid[column][row], at + Vec3(0, 0.25f, 0)}));
+    }
+  }
+  const Vec3 corner = world.transform(grid[0][0]).position + Vec3(0.0f, 0.25f, 0.0f);
+  gridJoints.push_back(world.createBallJoint({test::staticAnchor(world, corner), grid[0][0], corner}));
+
+  std::vector<JointId> ladderJoints;
+  BodyId left{}, right{};
+  for (int i = 0; i < n; ++i) {
+    const Vec3 at(10.0f, 20.0f - 0.5f * float(i), 0.0f);
+    const BodyId nextLeft = ball(at);
+    const BodyId nextRight = ball(at + Vec3(0.5f, 0.0f, 0.0f));
+    const Vec3 railJoint = at + Vec3(0.0f, 0.25f, 0.0f);
+    ladderJoints.push_back(
+        i == 0 ? world.createBallJoint({test::staticAnchor(world, railJoint), nextLeft, railJoint})
+               : world.createBallJoint({left, nextLeft, railJoint}));
+    if (i > 0)
+      ladderJoints.push_back(world.createBallJoint({right, nextRight, railJoint + Vec3(0.5f, 0.0f, 0.0f)}));
+    ladderJoints.push_back(world.createBallJoint({nextLeft, nextRight, at + Vec3(0.25f, 0.0f, 0.0f)}));
+    left = nextLeft;
+    right = nextRight;
+  }
+
+  std::vector<JointId> chainJoints;
+  BodyId previous = test::staticAnchor(world, Vec3(-10.0f, 20.0f, 0.0f));
+  for (int i = 0; i < 5; ++i) {
+    const Vec3 top(-10.0f, 20.0f - 0.5f * float(i), 0.0f);
+    const BodyId link = ball(top - Vec3(0.0f, 0.25f, 0.0f));
+    chainJoints.push_back(world.createBallJoint({previous, link, top}));
+    previous = link;
+  }
+
+  for (int step = 0; step < 3; ++step) world.step(kDt);
+  EXPECT_EQ(countInTree(gridJoints), 0);
+  EXPECT_EQ(countInTree(ladderJoints), 2 * n);
+  EXPECT_EQ(countInTree(chainJoints), 5);
 }
 
 }  // namespace
