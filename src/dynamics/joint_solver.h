@@ -106,9 +106,10 @@ class JointWaves {
   std::size_t memoryBytes() const;
 
  private:
-  // Joints per parallel range: a joint's pass is some tens of nanoseconds. A smaller wave runs on
-  // the calling thread.
-  static constexpr std::uint32_t kJointsPerRange = 64;
+  // Joints per parallel range: a joint's pass is some tens of nanoseconds, a range's hand-over a few
+  // hundred. A smaller wave runs on the calling thread. The joint grid's waves hold 50 to 67 joints
+  // each (a grid's waves are its diagonals), so that two workers share each one.
+  static constexpr std::uint32_t kJointsPerRange = 32;
   template <typename F>
   void forEachJoint(const JointSolverView& view, const Array<Joint>& joints, TaskRunner& tasks, F&& f);
 
