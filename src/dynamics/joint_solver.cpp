@@ -115,13 +115,14 @@ void JointWaves::prepare(const JointSolverView& view, const Array<Joint>& joints
   }
 }
 
-template <typename F>
-void JointWaves::forEachJoint(const JointSolverView& view, const Array<Joint>& joints, TaskRunner& tasks,
-                              F&& f) {
+template <typename One, typename Four>
+void JointWaves::forEachJoint(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks,
+                              bool solving, One&& one, Four&& four) {
   // A wave's joints and their bodies lie anywhere in their arrays (a grid's or a pile's): each is
   // asked for ahead in two stages, the joint's record eight places on, then, four places on and
   // with its body indices at hand, what jointBody reads of its two bodies (when they outgrow the
-  // cache).
+  // cache). The ball joints the lanes take wait for three more (a wave's joints share no moving
+  // body, so the order within a wave changes nothing); the others, and the last few, go alone.
   constexpr std::uint32_t kAhead = kJointBodiesAhead;
   const bool ahead = jointBodiesOutgrowCache(view);
   for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
@@ -129,24 +130,42 @@ void JointWaves::forEachJoint(const JointSolverView& view, const Array<Joint>& j
     tasks.parallelFor(waveStart_[w + 1] - begin, kJointsPerRange,
                       [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
                         const std::uint32_t end = begin + last;
+                        std::uint32_t waiting[kBallLanes];
+                        int count = 0;
                         for (std::uint32_t k = begin + first; k < end; ++k) {
                           if (ahead && k + 2 * kAhead < end) prefetchRecord(joints[order_[k + 2 * kAhead]]);
                           if (ahead && k + kAhead < end)
                             prefetchJointBodies(view, joints[order_[k + kAhead]]);
-                          f(order_[k]);
+                          const std::uint32_t i = order_[k];
+                          if (!ballInLanes(joints[i], solving)) {
+                            one(i);
+                            continue;
+                          }
+                          waiting[count++] = i;
+                          if (count == kBallLanes) {
+                            four(waiting);
+                            count = 0;
+                          }
                         }
+                        for (int p = 0; p < count; ++p) one(waiting[p]);
                       });
   }
 }
 
 void JointWaves::warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks) {
-  forEachJoint(view, joints, tasks, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); });
+  forEachJoint(
+      view, joints, tasks, false, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); },
+      [&](const std::uint32_t(&which)[kBallLanes]) { warmStartBalls(view, joints, which); });
 }
 
 void JointWaves::solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz,
                        bool useBias, TaskRunner& tasks) {
-  forEachJoint(view, joints, tasks,
-               [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); });
+  forEachJoint(
+      view, joints, tasks, true,
+      [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); },
+      [&](const std::uint32_t(&which)[kBallLanes]) {
+        solveBalls(view, joints, which, h, rigidHertz, useBias);
+      });
 }
 
 std::size_t JointWaves::memoryBytes() const {

@@ -110,8 +110,10 @@ class JointWaves {
   // hundred. A smaller wave runs on the calling thread. The joint grid's waves hold 50 to 67 joints
   // each (a grid's waves are its diagonals), so that two workers share each one.
   static constexpr std::uint32_t kJointsPerRange = 32;
-  template <typename F>
-  void forEachJoint(const JointSolverView& view, const Array<Joint>& joints, TaskRunner& tasks, F&& f);
+  // one(joint) for each active joint, wave by wave; four(joints) for ball joints in SIMD lanes.
+  template <typename One, typename Four>
+  void forEachJoint(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks, bool solving,
+                    One&& one, Four&& four);
 
   Array<std::uint32_t> order_;      // the active joints by wave, in joint order within a wave
   Array<std::uint32_t> waveStart_;  // wave w's joints: order_[waveStart_[w] .. waveStart_[w + 1])

@@ -42,12 +42,16 @@ struct FloatW {
 inline FloatW splat(float x) { return {_mm_set1_ps(x)}; }
 inline FloatW zeroW() { return {_mm_setzero_ps()}; }
 inline FloatW loadW(const float* p) { return {_mm_loadu_ps(p)}; }
+// Lanes 0 to 3 from four values in registers (no store to memory and load back).
+inline FloatW setW(float a, float b, float c, float d) { return {_mm_setr_ps(a, b, c, d)}; }
 inline void storeW(float* p, FloatW a) { _mm_storeu_ps(p, a.v); }
 inline FloatW operator+(FloatW a, FloatW b) { return {_mm_add_ps(a.v, b.v)}; }
 inline FloatW operator-(FloatW a, FloatW b) { return {_mm_sub_ps(a.v, b.v)}; }
 inline FloatW operator*(FloatW a, FloatW b) { return {_mm_mul_ps(a.v, b.v)}; }
 inline FloatW operator/(FloatW a, FloatW b) { return {_mm_div_ps(a.v, b.v)}; }
 inline FloatW operator-(FloatW a) { return {_mm_sub_ps(_mm_setzero_ps(), a.v)}; }
+// -a with its sign flipped, as scalar negation does (0 - a above gives +0 for a = +0).
+inline FloatW negateW(FloatW a) { return {_mm_xor_ps(a.v, _mm_set1_ps(-0.0f))}; }
 inline FloatW maxW(FloatW a, FloatW b) { return {_mm_max_ps(a.v, b.v)}; }
 inline FloatW minW(FloatW a, FloatW b) { return {_mm_min_ps(a.v, b.v)}; }
 inline FloatW sqrtW(FloatW a) { return {_mm_sqrt_ps(a.v)}; }
@@ -86,6 +90,7 @@ inline FloatW lanewise(FloatW a, FloatW b, F f) {
 inline FloatW splat(float x) { return {{x, x, x, x}}; }
 inline FloatW zeroW() { return splat(0.0f); }
 inline FloatW loadW(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+inline FloatW setW(float a, float b, float c, float d) { return {{a, b, c, d}}; }
 inline void storeW(float* p, FloatW a) {
   for (int i = 0; i < kLanes; ++i) p[i] = a.v[i];
 }
@@ -102,6 +107,7 @@ inline FloatW operator/(FloatW a, FloatW b) {
   return lanewise(a, b, [](float x, float y) { return x / y; });
 }
 inline FloatW operator-(FloatW a) { return zeroW() - a; }
+inline FloatW negateW(FloatW a) { return {{-a.v[0], -a.v[1], -a.v[2], -a.v[3]}}; }
 inline FloatW maxW(FloatW a, FloatW b) {
   return lanewise(a, b, [](float x, float y) { return x > y ? x : y; });
 }

@@ -182,6 +182,15 @@ bool projectDistance(const JointSolverView& view, Joint& joint);
 
 void warmStartBall(const JointSolverView& view, Joint& joint);
 void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
+// Four ball joints at once in SIMD lanes, bit for bit what warmStartBall and solveBall give each:
+// the joints `which` of one wave (no moving body shared), each one ballInLanes takes (a ball joint
+// solved by Gauss-Seidel, without friction while solving).
+inline constexpr int kBallLanes = 4;
+bool ballInLanes(const Joint& joint, bool solving);
+void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
+                    const std::uint32_t (&which)[kBallLanes]);
+void solveBalls(const JointSolverView& view, Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
+                float h, float rigidHertz, bool useBias);
 void equalityRowsBall(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 void warmStartHinge(const JointSolverView& view, Joint& joint);
