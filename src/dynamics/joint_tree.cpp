@@ -278,63 +278,57 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   // substep, and the tree's factors cost four times the waves' passes over the same joints for a
   // mean gap of 4.2 mm instead of 7.0 (the 10,000-sphere joint grid, docs/joints.md). A chain, a
   // ragdoll, a bridge between two posts or a closed linkage has a loop or two and keeps its tree.
-  // The first walk counts each component's tree and loop joints (at one of its bodies, added up by
-  // root after); where it finds a mesh, the forest is grown again without the meshes' joints, which
-  // leaves every other tree as it was (a union-find root is the lowest body of its set).
+  // The walk counts each component's tree and loop joints (at one of its bodies, added up by root
+  // after); the meshes' entries then leave the forest, which leaves every other tree as it was.
   forestCounts_.assign(2 * bodyCount, 0);
   const auto countAt = [&](std::int32_t body, bool loop) {
     ++forestCounts_[2 * static_cast<std::size_t>(body) + (loop ? 1 : 0)];
   };
-  const auto growForest = [&](bool skipMeshes) {
-    std::iota(parentOf_.begin(), parentOf_.end(), 0);
-    std::fill(grounded_.begin(), grounded_.end(), std::uint8_t{0});
-    for (std::uint32_t i = 0; i < joints.size(); ++i) {
-      Joint& joint = joints[i];
-      joint.inTree = false;
-      joint.treeLimits = 0;
-      if (!joint.active || equalityRowCount(joint) == 0) continue;
-      const std::int32_t a = treeBody(view, joint.bodyA);
-      const std::int32_t b = treeBody(view, joint.bodyB);
-      if (a == b) continue;  // both ground
-      // A particle (or a body the guard stopped) is no ground: the joint's rows would move it, and
-      // two trees solved side by side would both write it. Its joints stay Gauss-Seidel.
-      if ((a < 0 && !isGround(view, joint.bodyA)) || (b < 0 && !isGround(view, joint.bodyB))) continue;
-      const auto meshBody = [&](std::int32_t s) { return s >= 0 && inMesh_[static_cast<std::size_t>(s)]; };
-      if (skipMeshes && (meshBody(a) || meshBody(b))) continue;
-      if (a < 0 || b < 0) {
-        const std::int32_t body = a < 0 ? b : a;
-        const std::int32_t root = findRoot(parentOf_, body);
-        if (grounded_[static_cast<std::size_t>(root)]) {
-          countAt(body, true);
-          continue;
-        }
-        grounded_[static_cast<std::size_t>(root)] = 1;
-        groundJoint_[static_cast<std::size_t>(body)] = static_cast<std::int32_t>(entries_.size());
-      } else {
-        const std::int32_t rootA = findRoot(parentOf_, a);
-        const std::int32_t rootB = findRoot(parentOf_, b);
-        if (rootA == rootB ||
-            (grounded_[static_cast<std::size_t>(rootA)] && grounded_[static_cast<std::size_t>(rootB)])) {
-          countAt(a, true);
-          if (rootA != rootB) countAt(b, true);  // a loop through the ground for each tree
-          continue;
-        }
-        const std::int32_t merged = std::min(rootA, rootB);
-        parentOf_[static_cast<std::size_t>(std::max(rootA, rootB))] = merged;
-        grounded_[static_cast<std::size_t>(merged)] |=
-            grounded_[static_cast<std::size_t>(std::max(rootA, rootB))];
-        ++adjacencyStart_[static_cast<std::size_t>(a) + 1];
-        ++adjacencyStart_[static_cast<std::size_t>(b) + 1];
+  std::iota(parentOf_.begin(), parentOf_.end(), 0);
+  std::fill(grounded_.begin(), grounded_.end(), std::uint8_t{0});
+  for (std::uint32_t i = 0; i < joints.size(); ++i) {
+    Joint& joint = joints[i];
+    joint.inTree = false;
+    joint.treeLimits = 0;
+    if (!joint.active || equalityRowCount(joint) == 0) continue;
+    const std::int32_t a = treeBody(view, joint.bodyA);
+    const std::int32_t b = treeBody(view, joint.bodyB);
+    if (a == b) continue;  // both ground
+    // A particle (or a body the guard stopped) is no ground: the joint's rows would move it, and
+    // two trees solved side by side would both write it. Its joints stay Gauss-Seidel.
+    if ((a < 0 && !isGround(view, joint.bodyA)) || (b < 0 && !isGround(view, joint.bodyB))) continue;
+    if (a < 0 || b < 0) {
+      const std::int32_t body = a < 0 ? b : a;
+      const std::int32_t root = findRoot(parentOf_, body);
+      if (grounded_[static_cast<std::size_t>(root)]) {
+        countAt(body, true);
+        continue;
       }
-      countAt(a < 0 ? b : a, false);
-      joint.inTree = true;
-      Entry& entry = entries_.emplace_back();
-      entry.joint = i;
-      entry.bodyA = a;
-      entry.bodyB = b;
+      grounded_[static_cast<std::size_t>(root)] = 1;
+      groundJoint_[static_cast<std::size_t>(body)] = static_cast<std::int32_t>(entries_.size());
+    } else {
+      const std::int32_t rootA = findRoot(parentOf_, a);
+      const std::int32_t rootB = findRoot(parentOf_, b);
+      if (rootA == rootB ||
+          (grounded_[static_cast<std::size_t>(rootA)] && grounded_[static_cast<std::size_t>(rootB)])) {
+        countAt(a, true);
+        if (rootA != rootB) countAt(b, true);  // a loop through the ground for each tree
+        continue;
+      }
+      const std::int32_t merged = std::min(rootA, rootB);
+      parentOf_[static_cast<std::size_t>(std::max(rootA, rootB))] = merged;
+      grounded_[static_cast<std::size_t>(merged)] |=
+          grounded_[static_cast<std::size_t>(std::max(rootA, rootB))];
+      ++adjacencyStart_[static_cast<std::size_t>(a) + 1];
+      ++adjacencyStart_[static_cast<std::size_t>(b) + 1];
     }
-  };
-  growForest(false);
+    countAt(a < 0 ? b : a, false);
+    joint.inTree = true;
+    Entry& entry = entries_.emplace_back();
+    entry.joint = i;
+    entry.bodyA = a;
+    entry.bodyB = b;
+  }
   // Each component's counts at its root; a mesh's bodies marked.
   for (std::size_t s = 0; s < bodyCount; ++s) {
     const auto root = static_cast<std::size_t>(findRoot(parentOf_, static_cast<std::int32_t>(s)));
@@ -350,10 +344,31 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
     anyMesh = anyMesh || inMesh_[s];
   }
   if (anyMesh) {
-    entries_.clear();
-    groundJoint_.assign(bodyCount, -1);
-    adjacencyStart_.assign(bodyCount + 1, 0);
-    growForest(true);
+    // The meshes' entries leave; the others keep their order, and the ground joints their entries'
+    // new places.
+    // Reused: the roots are no longer needed, and a forest has at most one entry per body.
+    Array<std::int32_t>& newIndex = parentOf_;
+    std::size_t kept = 0;
+    std::fill(adjacencyStart_.begin(), adjacencyStart_.end(), 0u);
+    for (std::size_t e = 0; e < entries_.size(); ++e) {
+      const Entry entry = entries_[e];
+      const std::int32_t body = entry.bodyA < 0 ? entry.bodyB : entry.bodyA;
+      if (inMesh_[static_cast<std::size_t>(body)]) {
+        joints[entry.joint].inTree = false;
+        continue;
+      }
+      newIndex[e] = static_cast<std::int32_t>(kept);
+      if (entry.bodyA >= 0 && entry.bodyB >= 0) {
+        ++adjacencyStart_[static_cast<std::size_t>(entry.bodyA) + 1];
+        ++adjacencyStart_[static_cast<std::size_t>(entry.bodyB) + 1];
+      }
+      entries_[kept++] = entry;
+    }
+    entries_.resize(kept);
+    for (std::size_t s = 0; s < bodyCount; ++s) {
+      std::int32_t& ground = groundJoint_[s];
+      if (ground >= 0) ground = inMesh_[s] ? -1 : newIndex[static_cast<std::size_t>(ground)];
+    }
   }
   if (entries_.empty()) return;
 
