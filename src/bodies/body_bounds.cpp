@@ -149,7 +149,7 @@ void ProxyUpdate::run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, flo
                       TaskRunner& tasks) {
   // A range's boxes cost from a few ns (a box grown from the last) to a few hundred (a hull's
   // vertices transformed): ranges of this many bodies keep the task overhead small beside them.
-  constexpr std::uint32_t kBodiesPerRange = 512;
+  constexpr std::uint32_t kBodiesPerRange = 256;
   updateInBodyOrder(bodies, broadPhase, tasks, kBodiesPerRange, [&](std::uint32_t begin, std::uint32_t end) {
     BoxVerdicts verdicts(bodies, begin, end);
     for (std::uint32_t i = begin; i < end; ++i) {

@@ -619,7 +619,7 @@ void ContactUpdate::snapshotBodies(const BodyStorage& bodies, const BroadPhase& 
   velocities_.resize(n);
   likelyPlaced_.assign(n, 0);
   // Each body's entries are its own: ranges of bodies in parallel.
-  constexpr std::uint32_t kBodiesPerRange = 1024;
+  constexpr std::uint32_t kBodiesPerRange = 256;
   tasks.parallelFor(static_cast<std::uint32_t>(n), kBodiesPerRange,
                     [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
                       snapshotRange(bodies, dt, cacheDistance, begin, end);
