@@ -275,9 +275,9 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   // A mesh of joints (a grid, a net, a truss), where loops close more than a third of the joints
   // (more loops than half its tree's joints), stays Gauss-Seidel whole: the loop joints' soft rows
   // pull its tree's rows open again after every exact solve, so that a projection fires each
-  // substep, and the tree's factors cost four times the waves' passes over the same joints for a
-  // mean gap of 4.2 mm instead of 7.0 (the 10,000-sphere joint grid, docs/joints.md). A chain, a
-  // ragdoll, a bridge between two posts or a closed linkage has a loop or two and keeps its tree.
+  // substep, and the tree makes the step four times as long for no closer hold (the 10,000-sphere
+  // joint grid: a mean gap of 8.7 mm with it, 8.2 without; docs/joints.md). A chain, a ragdoll, a
+  // bridge between two posts or a closed linkage has a loop or two and keeps its tree.
   // The walk counts each component's tree and loop joints (at one of its bodies, added up by root
   // after); the meshes' entries then leave the forest, which leaves every other tree as it was.
   forestCounts_.assign(2 * bodyCount, 0);
