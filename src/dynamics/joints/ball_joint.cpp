@@ -174,15 +174,21 @@ COLLIDE_INLINE Mat skewLanes(const Vec& r) {
   return {zero, r.z, negateW(r.y), negateW(r.z), zero, r.x, r.y, negateW(r.x), zero};
 }
 
-// Three floats of each lane's joint at `field`, to lanes (read as rows of four: the float after
-// them belongs to the same joint).
-COLLIDE_INLINE Vec gatherJointVec(Joint* const (&joint)[kLanes], std::size_t field) {
+// Four floats of each lane's joint from byte `field` on, to four lanes of columns.
+COLLIDE_INLINE void gatherJointRows(Joint* const (&joint)[kLanes], std::size_t field, FloatW& x, FloatW& y,
+                                    FloatW& z, FloatW& w) {
   const float* rows[kLanes];
   for (int i = 0; i < kLanes; ++i)
     rows[i] = reinterpret_cast<const float*>(reinterpret_cast<const char*>(joint[i]) + field);
+  gatherRows(rows, 0, x, y, z, w);
+}
+
+// Three floats of each lane's joint at `field`, to lanes (read as rows of four: the float after
+// them belongs to the same joint).
+COLLIDE_INLINE Vec gatherJointVec(Joint* const (&joint)[kLanes], std::size_t field) {
   Vec out;
   FloatW pad;
-  gatherRows(rows, 0, out.x, out.y, out.z, pad);
+  gatherJointRows(joint, field, out.x, out.y, out.z, pad);
   return out;
 }
 
@@ -250,13 +256,8 @@ void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
   gatherLanes(view, joints, which, l);
   // applyAngularImpulse with the friction impulse, then applyImpulse with the point block's.
   Vec friction;
-  {
-    const float* rows[kLanes];
-    for (int i = 0; i < kLanes; ++i)
-      rows[i] = reinterpret_cast<const float*>(reinterpret_cast<const char*>(l.joint[i]) + kBeforeFriction);
-    FloatW before;
-    gatherRows(rows, 0, before, friction.x, friction.y, friction.z);
-  }
+  FloatW before;
+  gatherJointRows(l.joint, kBeforeFriction, before, friction.x, friction.y, friction.z);
   l.a.w = l.a.w - times(l.a.inverseInertia, friction);
   l.b.w = l.b.w + times(l.b.inverseInertia, friction);
   applyImpulseLanes(l.a, l.b, l.rA, l.rB, gatherJointVec(l.joint, kLinearImpulse));
