@@ -266,6 +266,7 @@ void World::Impl::addProxy(std::uint32_t index) {
   proxy.motion = r.type == BodyType::Static ? MotionType::Static : MotionType::Movable;
   proxy.userValue = index;
   proxy.layer = r.layer;  // a body made of parts: the union of its parts' layers
+  proxy.mask = detail::proxyMask(r);
   r.proxy = broadPhase->add(proxy);
 }
 
@@ -273,6 +274,7 @@ void World::Impl::updateProxy(std::uint32_t index) {
   const BodyRecord& r = bodies.records[index];
   if (!r.enabled) return;  // a disabled body has none; enabling it computes its box
   broadPhase->setLayer(r.proxy, r.layer);
+  broadPhase->setMask(r.proxy, detail::proxyMask(r));
   broadPhase->update(r.proxy, detail::proxyBounds(bodies, index, 0.0f, def.contact.speculativeDistance));
 }
 
@@ -519,7 +521,10 @@ void World::setCollisionFilter(BodyId id, std::uint32_t layer, std::uint32_t mas
     part.mask = mask;
     part.group = group;
   }
-  if (r.enabled) w.broadPhase->setLayer(r.proxy, layer);
+  if (r.enabled) {
+    w.broadPhase->setLayer(r.proxy, layer);
+    w.broadPhase->setMask(r.proxy, detail::proxyMask(r));
+  }
   detail::wakeIsland(w.bodies, index);
 }
 

@@ -141,7 +141,10 @@ void World::setPartFilter(BodyId id, std::uint32_t part, const CollisionFilter& 
   r.parts[part].mask = filter.mask;
   r.parts[part].group = filter.group;
   summariseParts(r);
-  if (r.enabled) w.broadPhase->setLayer(r.proxy, r.layer);
+  if (r.enabled) {
+    w.broadPhase->setLayer(r.proxy, r.layer);
+    w.broadPhase->setMask(r.proxy, detail::proxyMask(r));
+  }
   detail::wakeIsland(w.bodies, i);
 }
 

@@ -203,7 +203,7 @@ void fields(A& a, detail::Joint& v) {
 COLLIDE_SNAPSHOT_SIZE(BroadPhase::ProxyRecord, 48);
 template <typename A>
 void fields(A& a, BroadPhase::ProxyRecord& v) {
-  a(v.bounds, v.userValue, v.layer, v.generation, v.motion, v.alive);
+  a(v.bounds, v.userValue, v.layer, v.generation, v.mask, v.motion, v.alive);
 }
 template <typename A>
 void fields(A& a, ProxyPair& v) {

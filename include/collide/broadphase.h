@@ -61,6 +61,10 @@ struct ProxyDef {
   MotionType motion = MotionType::Movable;
   std::uint64_t userValue = 0;
   std::uint32_t layer = 1;  // the bits a query mask is tested against
+  // The layers it pairs with: findPairs reports a pair only when each proxy's mask is kAllLayers
+  // (no filter, the default) or shares a bit with the other's layer (the world's collision filter).
+  // The tree skips whole subtrees of layers the mask leaves out, as it does for a query's mask.
+  LayerMask mask = kAllLayers;
 };
 
 // Lecture vocabulary: a one-way pair is a movable proxy against a static one (only the movable one
@@ -154,10 +158,13 @@ class BroadPhase {
   std::uint64_t userValue(ProxyId id) const;
   std::uint32_t layer(ProxyId id) const;
   void setLayer(ProxyId id, std::uint32_t layer);  // the queries' masks see it at once
+  LayerMask mask(ProxyId id) const;
+  void setMask(ProxyId id, LayerMask mask);  // the next findPairs pairs by it
 
   // ---- Pairs. ----
-  // All pairs of proxies whose boxes overlap (touching counts), at least one of them movable, sorted
-  // by (a.index, b.index). Every algorithm gives exactly this list. Returns the counters of the call.
+  // All pairs of proxies whose boxes overlap (touching counts), at least one of them movable, whose
+  // masks accept each other (ProxyDef::mask), sorted by (a.index, b.index). Every algorithm gives exactly
+  // this list. Returns the counters of the call.
   const BroadPhaseStats& findPairs(Array<ProxyPair>& outPairs);
   // The same list, the algorithm's independent parts on the world's workers (the world's own call).
   const BroadPhaseStats& findPairs(Array<ProxyPair>& outPairs, detail::TaskRunner& tasks);
@@ -219,6 +226,7 @@ class BroadPhase {
     std::uint64_t userValue = 0;
     std::uint32_t layer = 0;
     std::uint32_t generation = 1;
+    LayerMask mask = kAllLayers;
     MotionType motion = MotionType::Movable;
     bool alive = false;
   };
@@ -236,6 +244,8 @@ class BroadPhase {
   virtual void onAdd(std::uint32_t index) = 0;
   virtual void onRemove(std::uint32_t index) = 0;
   virtual void onUpdate(std::uint32_t index, const Aabb& oldBounds) = 0;
+  // The proxy's layer or mask changed (the record holds the new ones).
+  virtual void onFilterChange(std::uint32_t index) { (void)index; }
   // Appends pair keys (a << 32 | b, a < b) of all overlapping pairs, each once, and returns whether
   // they are already sorted. Adds its box tests to outBoxTests.
   virtual bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) = 0;

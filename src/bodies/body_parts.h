@@ -62,6 +62,15 @@ inline bool filtersAllow(const PartFilter& a, const PartFilter& b) {
   return (a.layer & b.mask) != 0 && (b.layer & a.mask) != 0;
 }
 
+// The mask the body's broad-phase proxy pairs by (ProxyDef::mask): its parts' masks together, or
+// every layer when a part has a positive group, which collides whatever the masks say.
+inline std::uint32_t proxyMask(const BodyRecord& r) {
+  if (!hasParts(r)) return r.group > 0 ? kAllLayers : r.mask;
+  for (const PartRecord& p : r.parts)
+    if (p.group > 0) return kAllLayers;
+  return r.mask;
+}
+
 // The sweep of a part over its body's sweep: the part turns with the body about the body's centre of
 // mass. (Rotations multiplied on the right keep the angle between them, so the part's slerp is the
 // body's slerp times the part's rotation.)

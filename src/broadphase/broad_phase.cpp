@@ -104,6 +104,7 @@ ProxyId BroadPhase::add(const ProxyDef& def) {
   record.bounds = def.bounds;
   record.userValue = def.userValue;
   record.layer = def.layer;
+  record.mask = def.mask;
   record.motion = def.motion;
   record.alive = true;
   ++aliveCount_;
@@ -180,7 +181,19 @@ std::uint32_t BroadPhase::layer(ProxyId id) const {
 }
 void BroadPhase::setLayer(ProxyId id, std::uint32_t layer) {
   const std::uint32_t index = resolve(id, "setLayer");
-  if (index != kBadProxy) proxies_[index].layer = layer;
+  if (index == kBadProxy || proxies_[index].layer == layer) return;
+  proxies_[index].layer = layer;
+  onFilterChange(index);
+}
+LayerMask BroadPhase::mask(ProxyId id) const {
+  const std::uint32_t index = resolve(id, "mask");
+  return index == kBadProxy ? 0 : proxies_[index].mask;
+}
+void BroadPhase::setMask(ProxyId id, LayerMask mask) {
+  const std::uint32_t index = resolve(id, "setMask");
+  if (index == kBadProxy || proxies_[index].mask == mask) return;
+  proxies_[index].mask = mask;
+  onFilterChange(index);
 }
 
 const BroadPhaseStats& BroadPhase::findPairs(Array<ProxyPair>& outPairs, detail::TaskRunner& tasks) {
@@ -202,6 +215,7 @@ const BroadPhaseStats& BroadPhase::findPairs(Array<ProxyPair>& outPairs) {
   outPairs.reserve(keys_.size());
   for (const std::uint64_t key : keys_) {
     const std::uint32_t a = pairKeyFirst(key), b = pairKeySecond(key);
+    if (!masksAccept(proxies_[a], proxies_[b])) continue;
     const bool oneWay = proxies_[a].motion == MotionType::Static || proxies_[b].motion == MotionType::Static;
     outPairs.push_back({idOf(a), idOf(b), oneWay ? PairKind::OneWay : PairKind::TwoWay});
   }

@@ -32,6 +32,14 @@ inline bool sphereTouchesBox(const BoundingSphere& sphere, const Aabb& box) {
 inline bool passesMask(const BroadPhase::ProxyRecord& record, LayerMask mask) {
   return (record.layer & mask) != 0;
 }
+// Whether two proxies pair: each one's mask is kAllLayers (no filter: any layer, 0 too) or holds
+// the other's layer.
+inline bool maskTakes(const BroadPhase::ProxyRecord& self, const BroadPhase::ProxyRecord& other) {
+  return self.mask == kAllLayers || (other.layer & self.mask) != 0;
+}
+inline bool masksAccept(const BroadPhase::ProxyRecord& a, const BroadPhase::ProxyRecord& b) {
+  return maskTakes(a, b) && maskTakes(b, a);
+}
 
 // The state of one ray cast. The slab test uses a precomputed inverse direction (Williams et al.,
 // "An efficient and robust ray-box intersection algorithm", JGT 2005); axes along which the ray does

@@ -46,10 +46,11 @@ void DynamicTree::freeNode(std::int32_t index) {
   freeList_ = index;
 }
 
-std::int32_t DynamicTree::insert(const Aabb& box, std::uint32_t proxy) {
+std::int32_t DynamicTree::insert(const Aabb& box, std::uint32_t proxy, std::uint32_t layers) {
   const std::int32_t leaf = allocateNode();
   nodes_[leaf].box = box;
   nodes_[leaf].proxy = proxy;
+  nodes_[leaf].layers = layers;
   nodes_[leaf].height = 0;
   insertLeaf(leaf);
   ++leafCount_;
@@ -68,6 +69,15 @@ void DynamicTree::move(std::int32_t leaf, const Aabb& box) {
   removeLeaf(leaf);
   nodes_[leaf].box = box;
   insertLeaf(leaf);
+}
+
+void DynamicTree::setLayers(std::int32_t leaf, std::uint32_t layers) {
+  COLLIDE_ASSERT(leaf >= 0 && static_cast<std::size_t>(leaf) < nodes_.size() && nodes_[leaf].isLeaf());
+  nodes_[leaf].layers = layers;
+  for (std::int32_t index = nodes_[leaf].parent; index != kNull; index = nodes_[index].parent) {
+    Node& n = nodes_[index];
+    n.layers = nodes_[n.child1].layers | nodes_[n.child2].layers;
+  }
 }
 
 void DynamicTree::insertLeaf(std::int32_t leaf) {
@@ -104,6 +114,7 @@ void DynamicTree::insertLeaf(std::int32_t leaf) {
   Node& p = nodes_[newParent];
   p.parent = oldParent;
   p.box = merge(leafBox, nodes_[sibling].box);
+  p.layers = nodes_[leaf].layers | nodes_[sibling].layers;
   p.height = nodes_[sibling].height + 1;
   p.child1 = sibling;
   p.child2 = leaf;
@@ -151,6 +162,7 @@ void DynamicTree::refitUpwards(std::int32_t index) {
     const Node& c1 = nodes_[n.child1];
     const Node& c2 = nodes_[n.child2];
     n.box = merge(c1.box, c2.box);
+    n.layers = c1.layers | c2.layers;
     n.height = 1 + std::max(c1.height, c2.height);
     index = n.parent;
   }
@@ -200,8 +212,10 @@ std::int32_t DynamicTree::rebalance(std::int32_t a) {
   nodes_[stay].parent = a;
 
   nodeA.box = merge(nodes_[stay].box, nodes_[give].box);
+  nodeA.layers = nodes_[stay].layers | nodes_[give].layers;
   nodeA.height = 1 + std::max(nodes_[stay].height, nodes_[give].height);
   nodeUp.box = merge(nodeA.box, nodes_[keep].box);
+  nodeUp.layers = nodeA.layers | nodes_[keep].layers;
   nodeUp.height = 1 + std::max(nodeA.height, nodes_[keep].height);
   return up;
 }
@@ -234,6 +248,7 @@ void DynamicTree::validate() const {
     if (n.height != 1 + std::max(c1.height, c2.height)) return fail("wrong height", index);
     if (!n.box.contains(c1.box) || !n.box.contains(c2.box))
       return fail("box not containing a child's box", index);
+    if (n.layers != (c1.layers | c2.layers)) return fail("layers not the union of the children's", index);
     stack.push_back(n.child1);
     stack.push_back(n.child2);
   }

@@ -4,7 +4,9 @@
 // variant of Catto's b2DynamicTree, GDC 2019 "Dynamic BVH"), and every node on the way back up is
 // rebalanced by an AVL-style rotation when its subtrees' heights differ by more than a small slack,
 // so the height stays logarithmic under any insertion order (see kBalanceSlack for why not strict).
-// Nodes live in one array addressed by index (no pointers), with a free list.
+// Nodes live in one array addressed by index (no pointers), with a free list. Each node carries the
+// union of its leaves' layer bits (Box2D v3's category bits), so that a traversal with a mask skips
+// the subtrees of layers the mask leaves out without testing their boxes.
 #pragma once
 
 #include <collide/math.h>
@@ -23,17 +25,20 @@ class DynamicTree {
     std::int32_t parent = kNull;  // the next free node while on the free list
     std::int32_t child1 = kNull;
     std::int32_t child2 = kNull;
-    std::int32_t height = 0;  // 0 for a leaf, -1 for a free node
-    std::uint32_t proxy = 0;  // leaves only
+    std::int32_t height = 0;   // 0 for a leaf, -1 for a free node
+    std::uint32_t proxy = 0;   // leaves only
+    std::uint32_t layers = 0;  // a leaf's layer; an inner node's, the union of its children's
 
     bool isLeaf() const { return child1 == kNull; }
   };
 
   // Returns the leaf's node index, stable until the leaf is removed.
-  std::int32_t insert(const Aabb& box, std::uint32_t proxy);
+  std::int32_t insert(const Aabb& box, std::uint32_t proxy, std::uint32_t layers = ~0u);
   void remove(std::int32_t leaf);
   // Re-inserts the leaf with a new box (keeps its node index).
   void move(std::int32_t leaf, const Aabb& box);
+  // Gives the leaf new layer bits (and its ancestors their new unions).
+  void setLayers(std::int32_t leaf, std::uint32_t layers);
 
   const Aabb& box(std::int32_t leaf) const { return nodes_[leaf].box; }
   std::uint32_t proxy(std::int32_t leaf) const { return nodes_[leaf].proxy; }
@@ -43,13 +48,15 @@ class DynamicTree {
   std::size_t leafCount() const { return leafCount_; }
   std::size_t memoryBytes() const { return nodes_.capacity() * sizeof(Node); }
 
-  // Visits every leaf whose box passes `test`, pruning subtrees whose box fails it. `test` must be
-  // monotone (a box that contains a passing box passes), so no leaf is wrongly pruned.
-  // `visit(node)` returns false to stop. Returns false when stopped. Counts box tests.
+  // Visits every leaf of a layer in `mask` (every leaf for ~0u) whose box passes `test`, pruning
+  // subtrees with no such layer or whose box fails it. `test` must be monotone (a box that contains a passing
+  // box passes), so no leaf is wrongly pruned. `visit(node)` returns false to stop. Returns false when
+  // stopped. Counts box tests.
   template <typename Test, typename Visit>
-  bool traverse(Test&& test, Visit&& visit, std::uint64_t& ioTests) const;
+  bool traverse(Test&& test, Visit&& visit, std::uint64_t& ioTests, std::uint32_t mask = ~0u) const;
 
-  // Checks parent links, heights, containment of children and the leaf count; throws collide::Error.
+  // Checks parent links, heights, containment of children, layer unions and the leaf count; throws
+  // collide::Error.
   void validate() const;
   // Sum of inner-node surface areas divided by the root's: the SAH quality measure of the tree.
   float areaRatio() const;
@@ -97,12 +104,13 @@ class NodeStack {
 };
 
 template <typename Test, typename Visit>
-bool DynamicTree::traverse(Test&& test, Visit&& visit, std::uint64_t& ioTests) const {
+bool DynamicTree::traverse(Test&& test, Visit&& visit, std::uint64_t& ioTests, std::uint32_t mask) const {
   if (root_ == kNull) return true;
   NodeStack stack;
   stack.push(root_);
   while (!stack.empty()) {
     const Node& n = nodes_[stack.pop()];
+    if (mask != ~0u && (n.layers & mask) == 0) continue;  // all layers: layer 0 too (a pair's rule)
     ++ioTests;
     if (!test(n.box)) continue;
     if (n.isLeaf()) {

@@ -92,7 +92,14 @@ class TreeBroadPhase final : public BroadPhase {
       leaf_.resize(index + 1, DynamicTree::kNull);
       moved_.resize(index + 1, 0);
     }
-    leaf_[index] = treeOf(index).insert(fatten(index), index);
+    leaf_[index] = treeOf(index).insert(fatten(index), index, proxies_[index].layer);
+    markMoved(index);
+  }
+
+  // The nodes' layer unions take the new layer, and the proxy queries again: a pair its mask or a
+  // partner's left out may be wanted now.
+  void onFilterChange(std::uint32_t index) override {
+    treeOf(index).setLayers(leaf_[index], proxies_[index].layer);
     markMoved(index);
   }
 
@@ -287,23 +294,26 @@ class TreeBroadPhase final : public BroadPhase {
     const ProxyRecord& pb = proxies_[b];
     if (!pa.alive || !pb.alive) return PairVerdict::Gone;
     if (pa.motion == MotionType::Static && pb.motion == MotionType::Static) return PairVerdict::Gone;
+    if (!masksAccept(pa, pb)) return PairVerdict::Gone;  // a layer or mask changed since it was found
     if (!fatBox(a).overlaps(fatBox(b))) return PairVerdict::FatApart;
     return pa.bounds.overlaps(pb.bounds) ? PairVerdict::Reported : PairVerdict::Kept;
   }
 
   // The new fat-box overlaps of moved proxy i, against both trees (a static one only against the
-  // movable tree: static-static pairs are never wanted). Two moved proxies find each other from
-  // both sides; the lower index keeps the pair (Box2D's rule), so each is a candidate once.
+  // movable tree: static-static pairs are never wanted), among the proxies its mask and theirs
+  // accept: the subtrees of layers outside its mask are skipped whole. Two moved proxies find each
+  // other from both sides; the lower index keeps the pair (Box2D's rule), so each is a candidate once.
   void queryMoved(std::uint32_t i, Array<std::uint64_t>& keys, std::uint64_t& boxTests) const {
     const Aabb query = fatBox(i);
+    const ProxyRecord& self = proxies_[i];
     auto collect = [&](const DynamicTree::Node& leaf) {
       const std::uint32_t j = leaf.proxy;
-      if (j != i && (j > i || !moved_[j])) keys.push_back(pairKey(i, j));
+      if (j != i && (j > i || !moved_[j]) && masksAccept(self, proxies_[j])) keys.push_back(pairKey(i, j));
       return true;
     };
     auto overlapsQuery = [&](const Aabb& box) { return box.overlaps(query); };
-    movableTree_.traverse(overlapsQuery, collect, boxTests);
-    if (proxies_[i].motion == MotionType::Movable) staticTree_.traverse(overlapsQuery, collect, boxTests);
+    movableTree_.traverse(overlapsQuery, collect, boxTests, self.mask);
+    if (self.motion == MotionType::Movable) staticTree_.traverse(overlapsQuery, collect, boxTests, self.mask);
   }
 
   void rayCastImpl(RayQuery& query) const override {
@@ -325,10 +335,15 @@ class TreeBroadPhase final : public BroadPhase {
     }
   }
 
-  // Depth first, nearer child first, so that a closest-hit callback clips the ray early.
+  // Depth first, nearer child first, so that a closest-hit callback clips the ray early. Subtrees
+  // with no layer in the query's mask are not entered.
   static void rayCastTree(const DynamicTree& tree, RayQuery& query) {
     if (tree.root() == DynamicTree::kNull) return;
-    if (query.entry(tree.node(tree.root()).box) < 0.0f) return;
+    const auto entry = [&](std::int32_t index) {
+      const DynamicTree::Node& n = tree.node(index);
+      return (n.layers & query.mask) == 0 ? -1.0f : query.entry(n.box);
+    };
+    if (entry(tree.root()) < 0.0f) return;
     NodeStack stack;
     stack.push(tree.root());
     while (!stack.empty()) {
@@ -338,8 +353,8 @@ class TreeBroadPhase final : public BroadPhase {
         if (!query.report(n.proxy)) return;
         continue;
       }
-      const float t1 = query.entry(tree.node(n.child1).box);
-      const float t2 = query.entry(tree.node(n.child2).box);
+      const float t1 = entry(n.child1);
+      const float t2 = entry(n.child2);
       if (t1 >= 0.0f && t2 >= 0.0f) {
         if (t1 <= t2) {
           stack.push(n.child2);
@@ -364,7 +379,7 @@ class TreeBroadPhase final : public BroadPhase {
       if (!passesMask(p, mask) || !test(p.bounds)) return true;
       return callback(idOf(leaf.proxy));
     };
-    if (staticTree_.traverse(test, visit, tests)) movableTree_.traverse(test, visit, tests);
+    if (staticTree_.traverse(test, visit, tests, mask)) movableTree_.traverse(test, visit, tests, mask);
   }
 
   void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {

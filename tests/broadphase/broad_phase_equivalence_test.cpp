@@ -1,6 +1,7 @@
 // All four broad-phase algorithms against the brute-force reference on random scenes that change
-// over many steps: inserts, removals, small moves, teleports, static updates. The pair lists (ids and
-// labels) and every query must be exactly equal.
+// over many steps: inserts, removals, small moves, teleports, static updates, layers and masks
+// changed. The pair lists (ids and labels) and every query must be exactly equal, and the pairs those
+// of a direct test of every two proxies.
 #include <collide/broadphase.h>
 #include <collide/error.h>
 #include <gtest/gtest.h>
@@ -26,7 +27,8 @@ constexpr std::array<BroadPhaseType, 4> kTypes = {BroadPhaseType::BruteForce, Br
 // The same proxies in all four broad phases; ids are equal because all allocate slots the same way.
 class Scene {
  public:
-  explicit Scene(unsigned seed) : rng_(seed) {
+  // With `masks`, proxies get random pairing masks, and a few change their layer or mask each step.
+  explicit Scene(unsigned seed, bool masks = false) : rng_(seed), masks_(masks) {
     for (std::size_t i = 0; i < kTypes.size(); ++i) {
       BroadPhaseSettings settings;
       settings.type = kTypes[i];
@@ -44,8 +46,20 @@ class Scene {
     return Aabb::fromCenterHalfExtents(c, h);
   }
 
+  // No filter, none at all, or a few of the four layers the proxies are on (with a high bit none is).
+  LayerMask randomMask() {
+    const int roll = integer(0, 5);
+    return roll == 0 ? kAllLayers : roll == 1 ? 0u : static_cast<LayerMask>(integer(0, 15)) | 0x100u;
+  }
+  // One of the four layers, or none (a proxy of layer 0 pairs only through kAllLayers masks).
+  std::uint32_t randomLayer() { return integer(0, 9) == 0 ? 0u : 1u << integer(0, 3); }
+
   ProxyId add(const Aabb& box, MotionType motion) {
-    const ProxyDef def{box, motion, static_cast<std::uint64_t>(integer(0, 1000)), 1u << integer(0, 3)};
+    ProxyDef def{box, motion, static_cast<std::uint64_t>(integer(0, 1000)), 1u << integer(0, 3)};
+    if (masks_) {
+      def.layer = randomLayer();
+      def.mask = randomMask();
+    }
     ProxyId id;
     for (std::size_t i = 0; i < kTypes.size(); ++i) {
       const ProxyId got = phases_[i]->add(def);
@@ -88,6 +102,37 @@ class Scene {
       add(randomBox(10.0f, 2.0f), MotionType::Static);
     }
     if (integer(0, 3) == 0 && statics_.size() > 1) update(statics_[1], randomBox(10.0f, 2.0f));
+    for (int k = masks_ ? integer(0, 6) : 0; k > 0; --k) {
+      std::vector<ProxyId>& list = integer(0, 3) == 0 ? statics_ : movables_;
+      if (list.empty()) continue;
+      const ProxyId id = list[static_cast<std::size_t>(integer(0, static_cast<int>(list.size()) - 1))];
+      const bool layer = integer(0, 1) == 0;
+      const std::uint32_t value = layer ? randomLayer() : randomMask();
+      for (auto& phase : phases_) layer ? phase->setLayer(id, value) : phase->setMask(id, value);
+    }
+  }
+
+  // The pairs by a direct test of every two proxies alive: boxes overlapping, not both static, each
+  // one's mask kAllLayers or holding the other's layer. Sorted by index.
+  Array<ProxyPair> directPairs() const {
+    std::vector<ProxyId> ids(statics_);
+    ids.insert(ids.end(), movables_.begin(), movables_.end());
+    std::sort(ids.begin(), ids.end(), [](ProxyId a, ProxyId b) { return a.index < b.index; });
+    const BroadPhase& bp = *phases_[0];
+    const auto takes = [&](ProxyId self, ProxyId other) {
+      return bp.mask(self) == kAllLayers || (bp.layer(other) & bp.mask(self)) != 0;
+    };
+    Array<ProxyPair> pairs;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      for (std::size_t j = i + 1; j < ids.size(); ++j) {
+        const bool aStatic = bp.motion(ids[i]) == MotionType::Static;
+        const bool bStatic = bp.motion(ids[j]) == MotionType::Static;
+        if ((aStatic && bStatic) || !bp.bounds(ids[i]).overlaps(bp.bounds(ids[j]))) continue;
+        if (!takes(ids[i], ids[j]) || !takes(ids[j], ids[i])) continue;
+        pairs.push_back({ids[i], ids[j], aStatic || bStatic ? PairKind::OneWay : PairKind::TwoWay});
+      }
+    }
+    return pairs;
   }
 
   void populate(int movables, int statics) {
@@ -102,6 +147,7 @@ class Scene {
 
  private:
   std::mt19937 rng_;
+  bool masks_ = false;
   std::array<std::unique_ptr<BroadPhase>, 4> phases_;
   std::vector<ProxyId> movables_;
   std::vector<ProxyId> statics_;
@@ -124,6 +170,7 @@ void expectSamePairs(Scene& scene, int step) {
     ASSERT_FALSE(aStatic && bStatic) << "static-static pair produced";
     ASSERT_EQ(p.kind, aStatic || bStatic ? PairKind::OneWay : PairKind::TwoWay);
   }
+  ASSERT_TRUE(reference == scene.directPairs()) << "brute force at step " << step;
   for (std::size_t i = 1; i < kTypes.size(); ++i) {
     Array<ProxyPair> pairs;
     const BroadPhaseStats stats = scene.phase(i).findPairs(pairs);
@@ -139,6 +186,20 @@ void expectSamePairs(Scene& scene, int step) {
 TEST(BroadPhaseEquivalence, PairsEqualBruteForceThroughRandomEdits) {
   for (unsigned seed : {1u, 2u, 3u, 4u}) {
     Scene scene(seed);
+    scene.populate(250, 60);
+    for (int step = 0; step < 40; ++step) {
+      expectSamePairs(scene, step);
+      if (HasFatalFailure()) return;
+      scene.step();
+    }
+  }
+}
+
+// Masks that leave pairs out, layers and masks changed between steps: the tree skips subtrees by
+// its nodes' layer unions and finds again the pairs a change lets in.
+TEST(BroadPhaseEquivalence, PairsFollowLayersAndMasksThroughRandomEdits) {
+  for (unsigned seed : {5u, 6u, 7u}) {
+    Scene scene(seed, true);
     scene.populate(250, 60);
     for (int step = 0; step < 40; ++step) {
       expectSamePairs(scene, step);
