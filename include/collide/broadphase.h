@@ -67,6 +67,9 @@ struct ProxyDef {
   LayerMask mask = kAllLayers;
 };
 
+// Which proxies a query takes by their motion type (BroadPhase::queryAabb).
+enum class MotionFilter : std::uint8_t { All, StaticOnly, MovableOnly };
+
 // Lecture vocabulary: a one-way pair is a movable proxy against a static one (only the movable one
 // responds), a two-way pair is two movable proxies.
 enum class PairKind : std::uint8_t { OneWay, TwoWay };
@@ -188,6 +191,10 @@ class BroadPhase {
   std::vector<ProxyRayHit> rayCastAll(const Ray& ray, LayerMask mask = kAllLayers) const;
 
   void queryAabb(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const;
+  // The same among the static or the movable proxies alone: the tree searches only their tree (a
+  // continuous pass's search for static geometry does not walk every moving body).
+  void queryAabb(const Aabb& box, LayerMask mask, MotionFilter motions,
+                 const OverlapCallback& callback) const;
   // Proxies whose box touches the (solid) sphere.
   void querySphere(const BoundingSphere& sphere, LayerMask mask, const OverlapCallback& callback) const;
   // Proxies whose box is not entirely outside one of the six planes (Frustum::intersects): the usual
@@ -255,6 +262,9 @@ class BroadPhase {
   struct RayQuery;  // defined in src/broadphase/broad_phase_internal.h
   virtual void rayCastImpl(RayQuery& query) const = 0;
   virtual void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const = 0;
+  // By default the query over all proxies, the others skipped.
+  virtual void queryAabbByMotionImpl(const Aabb& box, LayerMask mask, MotionFilter motions,
+                                     const OverlapCallback& callback) const;
   virtual void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
                                const OverlapCallback& callback) const = 0;
   virtual void queryFrustumImpl(const Frustum& frustum, LayerMask mask,

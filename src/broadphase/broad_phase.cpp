@@ -302,6 +302,20 @@ void BroadPhase::queryAabb(const Aabb& box, LayerMask mask, const OverlapCallbac
   queryAabbImpl(box, mask, callback);
 }
 
+void BroadPhase::queryAabb(const Aabb& box, LayerMask mask, MotionFilter motions,
+                           const OverlapCallback& callback) const {
+  if (!validBox(box, "AABB query")) return;
+  if (!callback) COLLIDE_FAIL("broad phase: AABB query: empty callback");
+  if (motions == MotionFilter::All) return queryAabbImpl(box, mask, callback);
+  queryAabbByMotionImpl(box, mask, motions, callback);
+}
+
+void BroadPhase::queryAabbByMotionImpl(const Aabb& box, LayerMask mask, MotionFilter motions,
+                                       const OverlapCallback& callback) const {
+  const MotionType wanted = motions == MotionFilter::StaticOnly ? MotionType::Static : MotionType::Movable;
+  queryAabbImpl(box, mask, [&](ProxyId id) { return proxies_[id.index].motion != wanted || callback(id); });
+}
+
 void BroadPhase::querySphere(const BoundingSphere& sphere, LayerMask mask,
                              const OverlapCallback& callback) const {
   if (!isFinite(sphere.center) || !std::isfinite(sphere.radius) || sphere.radius < 0.0f) {

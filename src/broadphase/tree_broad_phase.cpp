@@ -372,18 +372,26 @@ class TreeBroadPhase final : public BroadPhase {
   }
 
   template <typename Test>
-  void query(LayerMask mask, const OverlapCallback& callback, Test&& test) const {
+  void query(LayerMask mask, const OverlapCallback& callback, Test&& test,
+             MotionFilter motions = MotionFilter::All) const {
     std::uint64_t tests = 0;
     auto visit = [&](const DynamicTree::Node& leaf) {
       const ProxyRecord& p = proxies_[leaf.proxy];
       if (!passesMask(p, mask) || !test(p.bounds)) return true;
       return callback(idOf(leaf.proxy));
     };
-    if (staticTree_.traverse(test, visit, tests, mask)) movableTree_.traverse(test, visit, tests, mask);
+    if (motions != MotionFilter::MovableOnly && !staticTree_.traverse(test, visit, tests, mask)) return;
+    if (motions != MotionFilter::StaticOnly) movableTree_.traverse(test, visit, tests, mask);
   }
 
   void queryAabbImpl(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const override {
     query(mask, callback, [&](const Aabb& b) { return b.overlaps(box); });
+  }
+  // One tree alone.
+  void queryAabbByMotionImpl(const Aabb& box, LayerMask mask, MotionFilter motions,
+                             const OverlapCallback& callback) const override {
+    query(
+        mask, callback, [&](const Aabb& b) { return b.overlaps(box); }, motions);
   }
   void querySphereImpl(const BoundingSphere& sphere, LayerMask mask,
                        const OverlapCallback& callback) const override {

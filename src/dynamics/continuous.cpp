@@ -89,14 +89,15 @@ ContinuousStats solveContinuous(BodyStorage& bodies, const BroadPhase& broadPhas
     // Between the ends, turning reaches at most this far; a large shape far out can overflow it.
     swept = withinFloatRange(swept.expanded(turn + linearSlop));
     float first = 1.0f;
-    // Every layer: a body of the same positive group collides whatever its layer.
-    broadPhase.queryAabb(swept, kAllLayers, [&](ProxyId id) {
+    // Every layer: a body of the same positive group collides whatever its layer. Every body
+    // against static geometry; a body flagged ccd (a bullet) against moving ones too: the others
+    // search the static proxies alone (in a pile, the moving bodies around are most of the tree).
+    const MotionFilter motions = record.ccd ? MotionFilter::All : MotionFilter::StaticOnly;
+    broadPhase.queryAabb(swept, kAllLayers, motions, [&](ProxyId id) {
       const auto j = static_cast<std::uint32_t>(broadPhase.userValue(id));
       if (j == i) return true;
       const BodyRecord& other = bodies.records[j];
       if (other.sensor || !pairAllowed(bodies, filters, i, j)) return true;
-      // Every body against static geometry; a body flagged ccd (a bullet) against moving ones too.
-      if (!record.ccd && other.type != BodyType::Static) return true;
       if (!hasValidPose(bodies.states[j])) return true;  // frozen by the fault guard, next
       ++stats.candidates;
       const Sweep otherSweep = bodySweep(other, bodies.states[j]);

@@ -253,6 +253,22 @@ TEST(BroadPhaseEquivalence, QueriesEqualBruteForce) {
         const auto closest = reference.rayCastClosest(ray, mask);
         const auto all = reference.rayCastAll(ray, mask);
         const auto inBox = reference.overlapAabb(box, mask);
+        // By motion type: the proxies of the full query of that type, in the same order.
+        const auto inBoxBy = [&](const BroadPhase& bp, MotionFilter motions) {
+          std::vector<ProxyId> found;
+          bp.queryAabb(box, mask, motions, [&](ProxyId id) {
+            found.push_back(id);
+            return true;
+          });
+          std::sort(found.begin(), found.end(), [](ProxyId x, ProxyId y) { return x.index < y.index; });
+          return found;
+        };
+        std::vector<ProxyId> inBoxStatic, inBoxMovable;
+        for (const ProxyId id : inBox)
+          (reference.motion(id) == MotionType::Static ? inBoxStatic : inBoxMovable).push_back(id);
+        EXPECT_EQ(inBoxBy(reference, MotionFilter::StaticOnly), inBoxStatic);
+        EXPECT_EQ(inBoxBy(reference, MotionFilter::MovableOnly), inBoxMovable);
+        EXPECT_EQ(inBoxBy(reference, MotionFilter::All), inBox);
         const auto inSphere = reference.overlapSphere(sphere, mask);
         const auto inFrustum = reference.cullFrustum(frustum, mask);
         const bool blocked = reference.isSegmentBlocked(origin, target, mask);
@@ -271,6 +287,8 @@ TEST(BroadPhaseEquivalence, QueriesEqualBruteForce) {
             EXPECT_EQ(a[k].distance, all[k].distance) << name(i);
           }
           EXPECT_EQ(bp.overlapAabb(box, mask), inBox) << name(i);
+          EXPECT_EQ(inBoxBy(bp, MotionFilter::StaticOnly), inBoxStatic) << name(i);
+          EXPECT_EQ(inBoxBy(bp, MotionFilter::MovableOnly), inBoxMovable) << name(i);
           EXPECT_EQ(bp.overlapSphere(sphere, mask), inSphere) << name(i);
           EXPECT_EQ(bp.cullFrustum(frustum, mask), inFrustum) << name(i);
           EXPECT_EQ(bp.isSegmentBlocked(origin, target, mask), blocked) << name(i);
