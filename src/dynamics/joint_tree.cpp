@@ -371,6 +371,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
     }
   }
   if (entries_.empty()) return;
+  if (entryRows_.size() < entries_.size()) entryRows_.resize(entries_.size());
 
   // Each body's tree joints (entries), in entry order.
   for (std::size_t s = 0; s < bodyCount; ++s) adjacencyStart_[s + 1] += adjacencyStart_[s];
@@ -522,18 +523,19 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
     if (ahead && k + kJointBodiesAhead < end)
       prefetchJointBodies(view, joints[entries_[treeEntries_[k + kJointBodiesAhead]].joint]);
     Entry& entry = entries_[treeEntries_[k]];
+    EntryRows& passRows = entryRows_[treeEntries_[k]];
     Joint& joint = joints[entry.joint];
     if (!framesNew) {
-      entry.rows.count = entry.equalityCount;
+      passRows.rows.count = passRows.equalityCount;
     } else {
-      entry.frame = jointFrame(view, joint);
-      equalityRows(entry.frame, joint, entry.rows);
-      entry.equalityCount = entry.rows.count;
+      passRows.frame = jointFrame(view, joint);
+      equalityRows(passRows.frame, joint, passRows.rows);
+      passRows.equalityCount = passRows.rows.count;
     }
     if (entry.limitSlot >= 0 && !limitsAtPose_[t]) {
       EqualityRows& rows = limitCandidates_[static_cast<std::size_t>(entry.limitSlot)];
       rows.count = 0;
-      limitRows(entry.frame, joint, rows);
+      limitRows(passRows.frame, joint, rows);
     }
     if (!joint.inTree || entry.limitSlot < 0) {
       joint.treeLimits = 0;
@@ -546,7 +548,7 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
       const bool take = pass == RowPass::WarmStart ? (joint.treeLimits & row.limitBit) != 0
                                                    : row.error <= 0.0f || *row.accumulated > 0.0f;
       if (!take) continue;
-      entry.rows.rows[static_cast<std::size_t>(entry.rows.count++)] = row;
+      passRows.rows.rows[static_cast<std::size_t>(passRows.rows.count++)] = row;
       taken |= row.limitBit;
     }
     built.sameLimits = built.sameLimits && taken == joint.treeLimits;
@@ -573,10 +575,11 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
     const Node& node = nodes_[n];
     if (node.joint < 0) continue;
     Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+    EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
     const double* lambda = solution_.data() + node.vector + (node.body >= 0 ? 6 : 0);
     int kept = 0;
-    for (int i = 0; i < entry.rows.count; ++i) {
-      EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+    for (int i = 0; i < passRows.rows.count; ++i) {
+      EqualityRow& row = passRows.rows.rows[static_cast<std::size_t>(i)];
       const float total =
           *row.accumulated + soft.massScale * float(lambda[i]) - soft.impulseScale * *row.accumulated;
       if (row.limitBit != 0 && total < 0.0f) {
@@ -584,9 +587,9 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
         dropped = true;
         continue;
       }
-      entry.rows.rows[static_cast<std::size_t>(kept++)] = row;
+      passRows.rows.rows[static_cast<std::size_t>(kept++)] = row;
     }
-    entry.rows.count = kept;
+    passRows.rows.count = kept;
   }
   return dropped;
 }
@@ -622,11 +625,12 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
   };
   for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
     const Entry& entry = entries_[treeEntries_[k]];
+    const EntryRows& passRows = entryRows_[treeEntries_[k]];
     const Joint& joint = joints[entry.joint];
     if (joint.type == JointType::Slider) continue;  // its linear rows hold no point
     const float impulse = glm::length(joint.linearImpulse);
-    add(entry.bodyA, entry.frame.rA, impulse);
-    add(entry.bodyB, entry.frame.rB, impulse);
+    add(entry.bodyA, passRows.frame.rA, impulse);
+    add(entry.bodyB, passRows.frame.rB, impulse);
   }
   for (std::size_t n = first; n < last; ++n) {
     if (nodes_[n].body < 0) continue;
@@ -638,10 +642,11 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
   }
   for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
     Entry& entry = entries_[treeEntries_[k]];
+    EntryRows& passRows = entryRows_[treeEntries_[k]];
     if (entry.bodyA >= 0)
-      entry.frame.a.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyA)];
+      passRows.frame.a.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyA)];
     if (entry.bodyB >= 0)
-      entry.frame.b.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyB)];
+      passRows.frame.b.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyB)];
   }
 }
 
@@ -651,10 +656,11 @@ void JointTree::warmStart(const JointSolverView& view, Array<Joint>& joints, flo
     buildRows(view, joints, h, RowPass::WarmStart, t);
     for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
       const Entry& entry = entries_[treeEntries_[k]];
+      const EntryRows& passRows = entryRows_[treeEntries_[k]];
       if (!joints[entry.joint].inTree) continue;
-      for (int i = 0; i < entry.rows.count; ++i) {
-        const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
-        applyRow(entry.frame.a, entry.frame.b, row.row, *row.accumulated);
+      for (int i = 0; i < passRows.rows.count; ++i) {
+        const EqualityRow& row = passRows.rows.rows[static_cast<std::size_t>(i)];
+        applyRow(passRows.frame.a, passRows.frame.b, row.row, *row.accumulated);
       }
     }
   });
@@ -704,12 +710,12 @@ void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints,
     }
   }
   if (!solved) return;
-  forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
+  forEachRow(first, last, [&](EntryRows& passRows, EqualityRow& row, double lambda) {
     float impulse = soft.massScale * float(lambda) - soft.impulseScale * *row.accumulated;
     // A limit still pulling after the last round: held at zero, as the Gauss-Seidel row would.
     if (row.limitBit != 0) impulse = std::max(impulse, -*row.accumulated);
     *row.accumulated += impulse;
-    applyRow(entry.frame.a, entry.frame.b, row.row, impulse);
+    applyRow(passRows.frame.a, passRows.frame.b, row.row, impulse);
   });
 }
 
@@ -725,15 +731,15 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
     buildTreeRows(view, joints, first, last);
     rowsAtPose_[t] = 1;
     bool off = false;
-    forEachRow(first, last, [&](Entry&, EqualityRow& row, double) {
+    forEachRow(first, last, [&](EntryRows&, EqualityRow& row, double) {
       off = off || !(std::abs(row.error) <= kBallJointGapSlop);
     });
     if (!off) break;
     factored_[t] = 0;  // the blocks take the projection's system
     if (!fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
     solveTree(first, last);
-    forEachRow(first, last, [&](Entry& entry, EqualityRow& row, double lambda) {
-      applyRowPosition(entry.frame.a, entry.frame.b, row.row, float(lambda));
+    forEachRow(first, last, [&](EntryRows& passRows, EqualityRow& row, double lambda) {
+      applyRowPosition(passRows.frame.a, passRows.frame.b, row.row, float(lambda));
     });
     rowsAtPose_[t] = 0;
     limitsAtPose_[t] = 0;
@@ -751,10 +757,11 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
       prefetchJointBodies(view, joints[entries_[static_cast<std::size_t>(nodes_[next].joint)].joint]);
     if (nodes_[n].joint < 0) continue;
     Entry& entry = entries_[static_cast<std::size_t>(nodes_[n].joint)];
+    EntryRows& passRows = entryRows_[static_cast<std::size_t>(nodes_[n].joint)];
     Joint& joint = joints[entry.joint];
-    entry.frame = jointFrame(view, joint);
-    equalityRows(entry.frame, joint, entry.rows);
-    entry.equalityCount = entry.rows.count;
+    passRows.frame = jointFrame(view, joint);
+    equalityRows(passRows.frame, joint, passRows.rows);
+    passRows.equalityCount = passRows.rows.count;
   }
 }
 
@@ -766,7 +773,7 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
                          bool positions) {
   for (std::size_t n = first; n < last; ++n) {
     Node& node = nodes_[n];
-    const int rows = node.joint >= 0 ? entries_[static_cast<std::size_t>(node.joint)].rows.count : 0;
+    const int rows = node.joint >= 0 ? entryRows_[static_cast<std::size_t>(node.joint)].rows.count : 0;
     node.size = (node.body >= 0 ? 6 : 0) + rows;
   }
   // The tree's blocks lie together in matrices_, in node order: zeroed in one go rather than block
@@ -798,8 +805,9 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
     }
     if (node.joint >= 0 && node.body >= 0) {
       const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
-      for (int i = 0; i < entry.rows.count; ++i) {
-        const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
+      const EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
+      for (int i = 0; i < passRows.rows.count; ++i) {
+        const EqualityRow& row = passRows.rows.rows[static_cast<std::size_t>(i)];
         // A ground joint's rows within its body's node: [[M, -G^T], [-G, 0]].
         jacobianRow(row.row, entry.bodyB == node.body, g);
         for (int k = 0; k < 6; ++k) {
@@ -814,15 +822,17 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
     if (node.body >= 0) {
       // A body under the joint that holds it: H(body, joint) = -G^T, rows 0..5.
       const Entry& entry = entries_[static_cast<std::size_t>(parent.joint)];
-      for (int i = 0; i < entry.rows.count; ++i) {
-        jacobianRow(entry.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == node.body, g);
+      const EntryRows& passRows = entryRows_[static_cast<std::size_t>(parent.joint)];
+      for (int i = 0; i < passRows.rows.count; ++i) {
+        jacobianRow(passRows.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == node.body, g);
         for (int k = 0; k < 6; ++k) coupling[k * parent.size + i] = -g[k];
       }
     } else {
       // A joint under one of its bodies: H(joint, body) = -G, columns 0..5.
       const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
-      for (int i = 0; i < entry.rows.count; ++i) {
-        jacobianRow(entry.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == parent.body, g);
+      const EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
+      for (int i = 0; i < passRows.rows.count; ++i) {
+        jacobianRow(passRows.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == parent.body, g);
         for (int k = 0; k < 6; ++k) coupling[i * parent.size + k] = -g[k];
       }
     }
@@ -843,10 +853,10 @@ void JointTree::fillRightHandSide(std::size_t first, std::size_t last, float bia
       rowsAt = 6;
     }
     if (node.joint < 0) continue;
-    const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
-    for (int i = 0; i < entry.rows.count; ++i) {
-      const EqualityRow& row = entry.rows.rows[static_cast<std::size_t>(i)];
-      const double speed = positions ? 0.0 : double(rowSpeed(entry.frame.a, entry.frame.b, row.row));
+    const EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
+    for (int i = 0; i < passRows.rows.count; ++i) {
+      const EqualityRow& row = passRows.rows.rows[static_cast<std::size_t>(i)];
+      const double speed = positions ? 0.0 : double(rowSpeed(passRows.frame.a, passRows.frame.b, row.row));
       // A limit not reached yet is speculative: only the approach that would cross it this
       // substep (limitImpulse's rule).
       const double bias = row.limitBit != 0 && row.error > 0.0f ? double(row.error) / double(h_)
@@ -893,12 +903,13 @@ void JointTree::solveTree(std::size_t first, std::size_t last) {
 }
 
 std::size_t JointTree::memoryBytes() const {
-  return heapBytes(entries_) + heapBytes(nodes_) + heapBytes(treeStart_) + heapBytes(treeEntries_) +
-         heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) + heapBytes(treeSolved_) + heapBytes(factored_) +
-         heapBytes(limitCandidates_) + heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) +
-         heapBytes(solution_) + heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) +
-         heapBytes(forestCounts_) + heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) +
-         heapBytes(bodyNode_) + heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
+  return heapBytes(entries_) + heapBytes(entryRows_) + heapBytes(nodes_) + heapBytes(treeStart_) +
+         heapBytes(treeEntries_) + heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) +
+         heapBytes(treeSolved_) + heapBytes(factored_) + heapBytes(limitCandidates_) +
+         heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) + heapBytes(solution_) +
+         heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) + heapBytes(forestCounts_) +
+         heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
+         heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
 }
 
 }  // namespace collide::detail

@@ -88,15 +88,21 @@ class JointTree {
     std::uint32_t coupling = 0;  // offset of H(node, parent), then D^-1 H (size x parent's size)
     std::uint32_t vector = 0;    // offset of the node's unknowns in rhs_ and solution_
   };
+  // A joint of the forest, made afresh each step.
   struct Entry {
     std::uint32_t joint = 0;  // index in the world's joints
     std::int32_t node = -1;   // its joint node, or the body node whose ground joint it is
     std::int32_t bodyA = -1;  // its bodies' solver bodies in the tree, -1 for the ground
     std::int32_t bodyB = -1;
-    EqualityRows rows;            // this pass's rows: the equality rows, then the limits taken
-    int equalityCount = 0;        // the equality rows among them
-    JointFrame frame;             // this pass's bodies and frame
     std::int32_t limitSlot = -1;  // its limit rows' place in limitCandidates_, -1 without limits
+  };
+  // An entry's rows and frame (entryRows_, by entry), about 700 bytes, which every pass writes
+  // before it reads them: kept from step to step rather than zeroed with each new entry (the joint
+  // grid's 10,000 forest joints made that most of prepare's time).
+  struct EntryRows {
+    EqualityRows rows;      // this pass's rows: the equality rows, then the limits taken
+    int equalityCount = 0;  // the equality rows among them
+    JointFrame frame;       // this pass's bodies and frame
   };
 
   // The blocks and the right-hand side: G v + biasRate C for a velocity pass, C alone for the
@@ -131,21 +137,22 @@ class JointTree {
   }
   bool factorTree(std::size_t first, std::size_t last);
   void solveTree(std::size_t first, std::size_t last);
-  // f(entry, row, lambda) for every row of the tree's joints, lambda from the last solveTree.
+  // f(entry's rows, row, lambda) for every row of the tree's joints, lambda from the last solveTree.
   template <typename F>
   void forEachRow(std::size_t first, std::size_t last, F&& f) {
     for (std::size_t n = first; n < last; ++n) {
       const Node& node = nodes_[n];
       if (node.joint < 0) continue;
-      Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+      EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
       const double* lambda = solution_.data() + node.vector + (node.body >= 0 ? 6 : 0);
-      for (int i = 0; i < entry.rows.count; ++i)
-        f(entry, entry.rows.rows[static_cast<std::size_t>(i)], lambda[i]);
+      for (int i = 0; i < passRows.rows.count; ++i)
+        f(passRows, passRows.rows.rows[static_cast<std::size_t>(i)], lambda[i]);
     }
   }
 
   float h_ = 0.0f;  // the substep of the last solve pass
   Array<Entry> entries_;
+  Array<EntryRows> entryRows_;      // at least as many as entries_
   Array<Node> nodes_;               // per tree, in elimination order (leaves first, root last)
   Array<std::uint32_t> treeStart_;  // tree t's nodes: [treeStart_[t], treeStart_[t + 1])
   // Tree t's entries in entry order (the order their loads sum in): treeEntries_[treeEntryStart_[t]
