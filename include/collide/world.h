@@ -113,8 +113,9 @@ struct StepStats {
   std::uint64_t potentialPairs = 0;
   std::uint64_t keptPairs = 0;
   std::uint64_t boxTests = 0;
-  // Of the kept pairs, those the filters ruled out before the narrow phase (groups, layers and
-  // masks, constraints' collideConnected, the pair filter).
+  // Of the kept pairs, those the filters ruled out before the narrow phase (groups, parts' filters,
+  // constraints' collideConnected, the pair filter). A pair the bodies' layers and masks refuse is
+  // not kept: their broad-phase proxies carry them.
   std::uint64_t filteredPairs = 0;
   std::uint64_t narrowPhaseTests = 0;
   // Of those, the pairs whose manifold was placed again from its last computation instead of
