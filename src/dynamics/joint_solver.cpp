@@ -115,61 +115,96 @@ void JointWaves::prepare(const JointSolverView& view, const Array<Joint>& joints
   }
 }
 
+void JointWaves::plan(const Array<Joint>& joints) {
+  groups_.clear();
+  alone_.clear();
+  groupStart_.assign(1, 0);
+  aloneStart_.assign(1, 0);
+  // A joint in no tree at the step's start stays out of them all step (only a tree's own joints
+  // leave and rejoin it), and its type and friction do not change within a step.
+  const auto inLanes = [&](std::uint32_t i) { return ballInLanes(joints[i], true); };
+  for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
+    std::uint32_t waiting[kBallLanes];
+    int count = 0;
+    for (std::uint32_t k = waveStart_[w]; k < waveStart_[w + 1]; ++k) {
+      const std::uint32_t i = order_[k];
+      if (!inLanes(i)) {
+        alone_.push_back(i);
+        continue;
+      }
+      waiting[count++] = i;
+      if (count == kBallLanes) {
+        loadBallGroup(joints, waiting, groups_.emplace_back());
+        count = 0;
+      }
+    }
+    // The last few of a wave go alone (a wave's joints share no moving body, so the order within
+    // a wave changes nothing).
+    for (int p = 0; p < count; ++p) alone_.push_back(waiting[p]);
+    groupStart_.push_back(static_cast<std::uint32_t>(groups_.size()));
+    aloneStart_.push_back(static_cast<std::uint32_t>(alone_.size()));
+  }
+}
+
+void JointWaves::finish(Array<Joint>& joints) {
+  for (const BallLaneGroup& group : groups_) storeBallGroup(group, joints);
+}
+
 template <typename One, typename Four>
-void JointWaves::forEachJoint(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks,
-                              bool solving, One&& one, Four&& four) {
-  // A wave's joints and their bodies lie anywhere in their arrays (a grid's or a pile's): each is
-  // asked for ahead in two stages, the joint's record eight places on, then, four places on and
-  // with its body indices at hand, what jointBody reads of its two bodies (when they outgrow the
-  // cache). The ball joints the lanes take wait for three more (a wave's joints share no moving
-  // body, so the order within a wave changes nothing); the others, and the last few, go alone.
+void JointWaves::forEachJoint(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks, One&& one,
+                              Four&& four) {
+  // A wave's groups lie in one run; its other joints and every body lie anywhere in their arrays (a
+  // grid's or a pile's). When the bodies outgrow the cache, what jointBody reads of the next
+  // group's bodies is asked for ahead, and for a joint alone, in two stages: its record eight
+  // places on, then, four places on and with its body indices at hand, its bodies.
   constexpr std::uint32_t kAhead = kJointBodiesAhead;
   const bool ahead = jointBodiesOutgrowCache(view);
-  for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
-    const std::uint32_t begin = waveStart_[w];
-    tasks.parallelFor(waveStart_[w + 1] - begin, kJointsPerRange,
-                      [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
-                        const std::uint32_t end = begin + last;
-                        std::uint32_t waiting[kBallLanes];
-                        int count = 0;
-                        for (std::uint32_t k = begin + first; k < end; ++k) {
-                          if (ahead && k + 2 * kAhead < end) prefetchRecord(joints[order_[k + 2 * kAhead]]);
-                          if (ahead && k + kAhead < end)
-                            prefetchJointBodies(view, joints[order_[k + kAhead]]);
-                          const std::uint32_t i = order_[k];
-                          if (!ballInLanes(joints[i], solving)) {
-                            one(i);
-                            continue;
-                          }
-                          waiting[count++] = i;
-                          if (count == kBallLanes) {
-                            four(waiting);
-                            count = 0;
-                          }
-                        }
-                        for (int p = 0; p < count; ++p) one(waiting[p]);
-                      });
+  for (std::size_t w = 0; w + 1 < groupStart_.size(); ++w) {
+    const std::uint32_t firstGroup = groupStart_[w];
+    const std::uint32_t groups = groupStart_[w + 1] - firstGroup;
+    const std::uint32_t firstAlone = aloneStart_[w];
+    const std::uint32_t alone = aloneStart_[w + 1] - firstAlone;
+    // Items: the groups, then the joints alone; a range holds about kJointsPerRange joints.
+    const std::uint32_t perRange = groups > alone ? kJointsPerRange / kBallLanes : kJointsPerRange;
+    tasks.parallelFor(groups + alone, perRange, [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
+      for (std::uint32_t item = first; item < std::min(last, groups); ++item) {
+        const std::uint32_t g = firstGroup + item;
+        if (ahead && item + 1 < std::min(last, groups)) {
+          const BallLaneGroup& next = groups_[g + 1];
+          for (int i = 0; i < kBallLanes; ++i) {
+            prefetchBody(view, next.bodyA[i]);
+            prefetchBody(view, next.bodyB[i]);
+          }
+        }
+        four(groups_[g]);
+      }
+      if (last <= groups) return;
+      const std::uint32_t end = firstAlone + (last - groups);
+      for (std::uint32_t k = firstAlone + (std::max(first, groups) - groups); k < end; ++k) {
+        if (ahead && k + 2 * kAhead < end) prefetchRecord(joints[alone_[k + 2 * kAhead]]);
+        if (ahead && k + kAhead < end) prefetchJointBodies(view, joints[alone_[k + kAhead]]);
+        one(alone_[k]);
+      }
+    });
   }
 }
 
 void JointWaves::warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks) {
   forEachJoint(
-      view, joints, tasks, false, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); },
-      [&](const std::uint32_t(&which)[kBallLanes]) { warmStartBalls(view, joints, which); });
+      view, joints, tasks, [&](std::uint32_t i) { warmStartJoint(view, joints[i]); },
+      [&](const BallLaneGroup& group) { warmStartBalls(view, group); });
 }
 
 void JointWaves::solve(const JointSolverView& view, Array<Joint>& joints, float h, float rigidHertz,
                        bool useBias, TaskRunner& tasks) {
   forEachJoint(
-      view, joints, tasks, true,
-      [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); },
-      [&](const std::uint32_t(&which)[kBallLanes]) {
-        solveBalls(view, joints, which, h, rigidHertz, useBias);
-      });
+      view, joints, tasks, [&](std::uint32_t i) { solveJoint(view, joints[i], h, rigidHertz, useBias); },
+      [&](BallLaneGroup& group) { solveBalls(view, group, h, rigidHertz, useBias); });
 }
 
 std::size_t JointWaves::memoryBytes() const {
-  return heapBytes(order_) + heapBytes(waveStart_) + heapBytes(waveOf_) + heapBytes(lastWave_);
+  return heapBytes(order_) + heapBytes(waveStart_) + heapBytes(waveOf_) + heapBytes(lastWave_) +
+         heapBytes(groups_) + heapBytes(groupStart_) + heapBytes(alone_) + heapBytes(aloneStart_);
 }
 
 bool projectJoints(const JointSolverView& view, Array<Joint>& joints) {

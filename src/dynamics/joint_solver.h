@@ -93,10 +93,34 @@ void prepareJoints(const JointSolverView& view, Array<Joint>& joints);
 // workers take a wave's joints in parallel ranges, and the pass gives exactly what one joint after
 // another in joint order gives, at every worker count: a chain built from its anchor keeps the
 // order that converges fastest, and many ragdolls or a net make wide waves.
+// Ball joints the Gauss-Seidel waves solve at once in SIMD lanes (joints/ball_joint.cpp).
+inline constexpr int kBallLanes = 4;
+// What the lanes read of their four joints, lane by lane. The waves gather it once a step
+// (JointWaves::plan), so that a pass reads one run of these instead of four joint records spread
+// over the array, and keep the point block's impulse here until the step's solve is over
+// (storeBallGroup writes it back). The friction impulse only warm starts: a joint with friction
+// is solved alone.
+struct BallLaneGroup {
+  std::uint32_t joint[kBallLanes];
+  std::uint32_t bodyA[kBallLanes];
+  std::uint32_t bodyB[kBallLanes];
+  float anchorA[3][kBallLanes];  // x, y and z of the four joints' localAnchorA
+  float anchorB[3][kBallLanes];
+  float impulse[3][kBallLanes];  // linearImpulse
+  float frictionImpulse[3][kBallLanes];
+  JointSoftness softness[kBallLanes];
+};
+
 class JointWaves {
  public:
   // Once per step, after prepareJoints.
   void prepare(const JointSolverView& view, const Array<Joint>& joints);
+  // Once per step, after JointTree::prepare (which says which joints are in trees): each wave's
+  // ball joints that the lanes take all step (none in a tree, none with friction) gathered into
+  // groups of four, the others left to one at a time.
+  void plan(const Array<Joint>& joints);
+  // After the step's last pass: the groups' impulses back to their joints.
+  void finish(Array<Joint>& joints);
   // Per substep: apply the accumulated impulses at the current pose.
   void warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks);
   // Per substep: one pass; useBias = false is the relax pass (rigid rows without position bias).
@@ -110,15 +134,22 @@ class JointWaves {
   // hundred. A smaller wave runs on the calling thread. The joint grid's waves hold 50 to 67 joints
   // each (a grid's waves are its diagonals), so that two workers share each one.
   static constexpr std::uint32_t kJointsPerRange = 32;
-  // one(joint) for each active joint, wave by wave; four(joints) for ball joints in SIMD lanes.
+  // Wave by wave: four(group) for each group of ball joints in lanes, one(joint) for each other
+  // active joint.
   template <typename One, typename Four>
-  void forEachJoint(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks, bool solving,
-                    One&& one, Four&& four);
+  void forEachJoint(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks, One&& one,
+                    Four&& four);
 
   Array<std::uint32_t> order_;      // the active joints by wave, in joint order within a wave
   Array<std::uint32_t> waveStart_;  // wave w's joints: order_[waveStart_[w] .. waveStart_[w + 1])
   Array<std::uint32_t> waveOf_;     // per active joint, in joint order
   Array<std::uint32_t> lastWave_;   // per solver body: 1 + the wave of its last joint so far
+  // plan's: wave w's groups, groups_[groupStart_[w] .. groupStart_[w + 1]), and its other joints,
+  // alone_[aloneStart_[w] .. aloneStart_[w + 1]).
+  Array<BallLaneGroup> groups_;
+  Array<std::uint32_t> groupStart_;
+  Array<std::uint32_t> alone_;
+  Array<std::uint32_t> aloneStart_;
 };
 
 // Per substep, after the position update: the length a rigid distance joint lost or gained beyond

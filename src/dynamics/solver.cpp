@@ -139,6 +139,7 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   jointWaves_.prepare(view, joints);
   jointTree_.prepare(view, joints);
+  jointWaves_.plan(joints);
   const Substeps loop{storage, view, joints, settings, h};
   if (inBlocks) {
     // The joints' block and the large islands one after another, each on every worker; the blocks
@@ -159,6 +160,7 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
     for (std::uint32_t j = 0; j < allBodies_.size(); ++j) allBodies_[j] = j;
     substeps(loop, 0, allBodies_, !joints.empty(), tasks);
   }
+  jointWaves_.finish(joints);
   contacts_.store(contacts, tasks);
   writeBack(storage, faults, tasks);
 }

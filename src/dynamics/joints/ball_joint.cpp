@@ -174,28 +174,6 @@ COLLIDE_INLINE Mat skewLanes(const Vec& r) {
   return {zero, r.z, negateW(r.y), negateW(r.z), zero, r.x, r.y, negateW(r.x), zero};
 }
 
-// Four floats of each lane's joint from byte `field` on, to four lanes of columns.
-COLLIDE_INLINE void gatherJointRows(Joint* const (&joint)[kLanes], std::size_t field, FloatW& x, FloatW& y,
-                                    FloatW& z, FloatW& w) {
-  const float* rows[kLanes];
-  for (int i = 0; i < kLanes; ++i)
-    rows[i] = reinterpret_cast<const float*>(reinterpret_cast<const char*>(joint[i]) + field);
-  gatherRows(rows, 0, x, y, z, w);
-}
-
-// Three floats of each lane's joint at `field`, to lanes (read as rows of four: the float after
-// them belongs to the same joint).
-COLLIDE_INLINE Vec gatherJointVec(Joint* const (&joint)[kLanes], std::size_t field) {
-  Vec out;
-  FloatW pad;
-  gatherJointRows(joint, field, out.x, out.y, out.z, pad);
-  return out;
-}
-
-COLLIDE_INLINE void storeJointVec(Joint* const (&joint)[kLanes], Vec3 Joint::*field, const Vec& v) {
-  for (int i = 0; i < kLanes; ++i) (joint[i]->*field) = laneOf(v, i);
-}
-
 // The velocities back to the dynamic bodies.
 COLLIDE_INLINE void scatterEnd(const EndLanes& e) {
   FloatW vRows[kLanes];
@@ -220,57 +198,84 @@ COLLIDE_INLINE void applyImpulseLanes(EndLanes& a, EndLanes& b, const Vec& rA, c
   b.w = b.w + times(b.inverseInertia, cross(rB, p));
 }
 
-constexpr std::size_t kAnchorA = offsetof(Joint, localAnchorA);         // then localAnchorB.x
-constexpr std::size_t kAnchorB = offsetof(Joint, localAnchorB);         // then localFrameA.x
-constexpr std::size_t kLinearImpulse = offsetof(Joint, linearImpulse);  // then angularImpulse.x
-// frictionImpulse ends the record: its three floats are read with the one before them.
-constexpr std::size_t kBeforeFriction = offsetof(Joint, swingImpulse);
-static_assert(offsetof(Joint, frictionImpulse) == kBeforeFriction + sizeof(float));
+COLLIDE_INLINE Vec loadVec(const float (&v)[3][kLanes]) { return {loadW(v[0]), loadW(v[1]), loadW(v[2])}; }
+COLLIDE_INLINE void storeVec(float (&v)[3][kLanes], const Vec& x) {
+  storeW(v[0], x.x);
+  storeW(v[1], x.y);
+  storeW(v[2], x.z);
+}
 
 struct Lanes {
-  Joint* joint[kLanes];
   EndRecords recordsA, recordsB;
   EndLanes a, b;
   Vec rA, rB;
 };
 
-COLLIDE_INLINE void gatherLanes(const JointSolverView& view, Array<Joint>& joints,
-                                const std::uint32_t (&which)[kBallLanes], Lanes& l) {
-  std::uint32_t bodyA[kLanes], bodyB[kLanes];
-  for (int i = 0; i < kLanes; ++i) {
-    l.joint[i] = &joints[which[i]];
-    bodyA[i] = l.joint[i]->bodyA;
-    bodyB[i] = l.joint[i]->bodyB;
-  }
-  gatherEnd(view, bodyA, l.recordsA, l.a);
-  gatherEnd(view, bodyB, l.recordsB, l.b);
-  l.rA = rotate(l.a, gatherJointVec(l.joint, kAnchorA));
-  l.rB = rotate(l.b, gatherJointVec(l.joint, kAnchorB));
+COLLIDE_INLINE void gatherLanes(const JointSolverView& view, const BallLaneGroup& group, Lanes& l) {
+  gatherEnd(view, group.bodyA, l.recordsA, l.a);
+  gatherEnd(view, group.bodyB, l.recordsB, l.b);
+  l.rA = rotate(l.a, loadVec(group.anchorA));
+  l.rB = rotate(l.b, loadVec(group.anchorB));
 }
 
 }  // namespace
 
-void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
-                    const std::uint32_t (&which)[kBallLanes]) {
+void loadBallGroup(const Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
+                   BallLaneGroup& group) {
+  for (int i = 0; i < kLanes; ++i) {
+    const Joint& joint = joints[which[i]];
+    group.joint[i] = which[i];
+    group.bodyA[i] = joint.bodyA;
+    group.bodyB[i] = joint.bodyB;
+    for (int c = 0; c < 3; ++c) {
+      group.anchorA[c][i] = joint.localAnchorA[c];
+      group.anchorB[c][i] = joint.localAnchorB[c];
+      group.impulse[c][i] = joint.linearImpulse[c];
+      group.frictionImpulse[c][i] = joint.frictionImpulse[c];
+    }
+    group.softness[i] = joint.softness;
+  }
+}
+
+void storeBallGroup(const BallLaneGroup& group, Array<Joint>& joints) {
+  for (int i = 0; i < kLanes; ++i) {
+    Joint& joint = joints[group.joint[i]];
+    for (int c = 0; c < 3; ++c) joint.linearImpulse[c] = group.impulse[c][i];
+  }
+}
+
+void warmStartBalls(const JointSolverView& view, const BallLaneGroup& group) {
   Lanes l;
-  gatherLanes(view, joints, which, l);
+  gatherLanes(view, group, l);
   // applyAngularImpulse with the friction impulse, then applyImpulse with the point block's.
-  Vec friction;
-  FloatW before;
-  gatherJointRows(l.joint, kBeforeFriction, before, friction.x, friction.y, friction.z);
+  const Vec friction = loadVec(group.frictionImpulse);
   l.a.w = l.a.w - times(l.a.inverseInertia, friction);
   l.b.w = l.b.w + times(l.b.inverseInertia, friction);
-  applyImpulseLanes(l.a, l.b, l.rA, l.rB, gatherJointVec(l.joint, kLinearImpulse));
+  applyImpulseLanes(l.a, l.b, l.rA, l.rB, loadVec(group.impulse));
   scatterEnd(l.a);
   scatterEnd(l.b);
 }
 
+void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
+                    const std::uint32_t (&which)[kBallLanes]) {
+  BallLaneGroup group;
+  loadBallGroup(joints, which, group);
+  warmStartBalls(view, group);
+}
+
 void solveBalls(const JointSolverView& view, Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
                 float h, float rigidHertz, bool useBias) {
+  BallLaneGroup group;
+  loadBallGroup(joints, which, group);
+  solveBalls(view, group, h, rigidHertz, useBias);
+  storeBallGroup(group, joints);
+}
+
+void solveBalls(const JointSolverView& view, BallLaneGroup& group, float h, float rigidHertz, bool useBias) {
   Lanes l;
-  gatherLanes(view, joints, which, l);
+  gatherLanes(view, group, l);
   Softness soft[kLanes];
-  for (int i = 0; i < kLanes; ++i) soft[i] = rowSoftness(l.joint[i]->softness, rigidHertz, h, useBias);
+  for (int i = 0; i < kLanes; ++i) soft[i] = rowSoftness(group.softness[i], rigidHertz, h, useBias);
   const FloatW biasRate = setW(soft[0].biasRate, soft[1].biasRate, soft[2].biasRate, soft[3].biasRate);
   const FloatW massScale = setW(soft[0].massScale, soft[1].massScale, soft[2].massScale, soft[3].massScale);
   const FloatW impulseScale =
@@ -305,13 +310,13 @@ void solveBalls(const JointSolverView& view, Array<Joint>& joints, const std::ui
   inv[8] = (k[0] * k[4] - k[3] * k[1]) * ood;
 
   const Vec cdot = (l.b.v + cross(l.b.w, l.rB)) - (l.a.v + cross(l.a.w, l.rA));
-  const Vec accumulated = gatherJointVec(l.joint, kLinearImpulse);
+  const Vec accumulated = loadVec(group.impulse);
   const Vec impulse = negateW(massScale) * times(inv, cdot + biasRate * d) - impulseScale * accumulated;
   // A lane whose block is singular changes nothing (solvePoint returns).
   const Vec sum = accumulated + impulse;
-  storeJointVec(l.joint, &Joint::linearImpulse,
-                Vec{selectW(solvable, sum.x, accumulated.x), selectW(solvable, sum.y, accumulated.y),
-                    selectW(solvable, sum.z, accumulated.z)});
+  storeVec(group.impulse,
+           Vec{selectW(solvable, sum.x, accumulated.x), selectW(solvable, sum.y, accumulated.y),
+               selectW(solvable, sum.z, accumulated.z)});
   const Vec vA = l.a.v, wA = l.a.w, vB = l.b.v, wB = l.b.w;
   applyImpulseLanes(l.a, l.b, l.rA, l.rB, impulse);
   // Where the block is singular the velocities stay as they were.

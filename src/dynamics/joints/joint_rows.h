@@ -43,19 +43,22 @@ inline bool jointBodiesOutgrowCache(const JointSolverView& view) {
 // the joint's own record twice as far.
 inline constexpr std::uint32_t kJointBodiesAhead = 4;
 
-// Asks for what jointBody reads of the joint's two bodies, ahead of the pass that reads them.
-inline void prefetchJointBodies(const JointSolverView& view, const Joint& joint) {
-  for (const std::uint32_t body : {joint.bodyA, joint.bodyB}) {
-    const std::int32_t j = view.solverOf[body];
-    if (j == kNoSolverBody) {
-      prefetchRecord(view.storage.states[body]);
-      continue;
-    }
-    const auto index = static_cast<std::size_t>(j);
-    prefetchRecord(view.bodies[index]);
-    prefetchRecord(view.infos[index]);
-    prefetchRecord(view.starts[index]);
+// Asks for what jointBody reads of a body, ahead of the pass that reads it.
+inline void prefetchBody(const JointSolverView& view, std::uint32_t body) {
+  const std::int32_t j = view.solverOf[body];
+  if (j == kNoSolverBody) {
+    prefetchRecord(view.storage.states[body]);
+    return;
   }
+  const auto index = static_cast<std::size_t>(j);
+  prefetchRecord(view.bodies[index]);
+  prefetchRecord(view.infos[index]);
+  prefetchRecord(view.starts[index]);
+}
+// The same for both of a joint's bodies.
+inline void prefetchJointBodies(const JointSolverView& view, const Joint& joint) {
+  prefetchBody(view, joint.bodyA);
+  prefetchBody(view, joint.bodyB);
 }
 
 // A joint's two bodies and its frame at their current pose.
@@ -185,8 +188,14 @@ void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHe
 // Four ball joints at once in SIMD lanes, bit for bit what warmStartBall and solveBall give each:
 // the joints `which` of one wave (no moving body shared), each one ballInLanes takes (a ball joint
 // solved by Gauss-Seidel, without friction while solving).
-inline constexpr int kBallLanes = 4;
 bool ballInLanes(const Joint& joint, bool solving);
+// BallLaneGroup (joint_solver.h): the four joints' records in lanes.
+void loadBallGroup(const Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
+                   BallLaneGroup& group);
+void storeBallGroup(const BallLaneGroup& group, Array<Joint>& joints);
+void warmStartBalls(const JointSolverView& view, const BallLaneGroup& group);
+void solveBalls(const JointSolverView& view, BallLaneGroup& group, float h, float rigidHertz, bool useBias);
+// The same on the joints themselves (loaded, solved, stored).
 void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
                     const std::uint32_t (&which)[kBallLanes]);
 void solveBalls(const JointSolverView& view, Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
