@@ -111,14 +111,26 @@ class TreeBroadPhase final : public BroadPhase {
     moved_[index] = 0;
   }
 
-  void onUpdate(std::uint32_t index, const Aabb&) override {
+  void onUpdate(std::uint32_t index, const Aabb& oldBounds) override {
     const ProxyRecord& p = proxies_[index];
     DynamicTree& tree = treeOf(index);
     // The whole point of the margin: a small motion leaves the tree and the pair set untouched.
     if (p.motion == MotionType::Movable && tree.box(leaf_[index]).contains(p.bounds)) return;
-    tree.move(leaf_[index], fatten(index));
+    Aabb fat = fatten(index);
+    if (p.motion == MotionType::Movable) {
+      // Stretched ahead along the motion, so that a body moving steadily stays inside for a few
+      // steps (Box2D v2's b2_aabbMultiplier). The pairs are exact whatever the fat boxes.
+      const Vec3 moved =
+          (kStretchAhead * 0.5f) * ((p.bounds.min + p.bounds.max) - (oldBounds.min + oldBounds.max));
+      fat.min = glm::min(fat.min, fat.min + moved);
+      fat.max = glm::max(fat.max, fat.max + moved);
+    }
+    tree.move(leaf_[index], fat);
     markMoved(index);
   }
+  // Displacements of the last update a re-inserted fat box reaches ahead: four made the joint grid
+  // and rain-jittered 6 % faster than none, eight rain-jittered 4 % slower than four.
+  static constexpr float kStretchAhead = 4.0f;
 
   bool findPairKeys(Array<std::uint64_t>& outKeys, std::uint64_t& outBoxTests) override {
     // 1. New fat-box overlaps of the moved proxies, against both trees (a static one only against

@@ -113,6 +113,36 @@ TEST(TreeBroadPhase, FatBoxesAbsorbSmallMotionAndTreesStayBalanced) {
   bp->validate();
 }
 
+// A proxy that leaves its fat box is put back with the box stretched along its motion, four times
+// the last update's displacement ahead of it (and the margin around): one moving steadily at twice
+// the margin a step is re-inserted every few steps, not every step, and a box that stopped is not.
+TEST(TreeBroadPhase, AMovingBoxIsPutBackStretchedAlongItsMotion) {
+  BroadPhaseSettings settings;
+  settings.treeMargin = 0.1f;
+  auto bp = createBroadPhase(settings);
+  const ProxyId id = bp->add({Aabb::fromCenterHalfExtents(Vec3(0.0f), Vec3(0.5f)), MotionType::Movable});
+  const DynamicTree* tree = treeOfBroadPhase(*bp, MotionType::Movable);
+  ASSERT_NE(tree, nullptr);
+  const auto fatBox = [&] { return tree->box(tree->root()); };
+  EXPECT_FLOAT_EQ(fatBox().max.x, 0.6f);  // the margin alone at first
+  int reinserted = 0;
+  Aabb last = fatBox();
+  for (int step = 1; step <= 20; ++step) {
+    bp->update(id, Aabb::fromCenterHalfExtents(Vec3(0.2f * float(step), 0.0f, 0.0f), Vec3(0.5f)));
+    const Aabb now = fatBox();
+    if (!(now.min == last.min && now.max == last.max)) {
+      ++reinserted;
+      // Four displacements of 0.2 ahead, the margin behind and across.
+      EXPECT_NEAR(now.max.x, 0.2f * float(step) + 0.5f + 0.1f + 0.8f, 1e-5f) << "step " << step;
+      EXPECT_NEAR(now.min.x, 0.2f * float(step) - 0.5f - 0.1f, 1e-5f) << "step " << step;
+      EXPECT_NEAR(now.max.y, 0.6f, 1e-6f);
+    }
+    last = now;
+  }
+  // The first leave at step 1, then every fifth step (0.9 of room ahead at 0.2 a step).
+  EXPECT_EQ(reinserted, 4);
+}
+
 // A persistent set of tens of thousands of pairs is merged in chunks (of the longer list, the
 // candidates split where they fall), in parallel with workers: the pairs and the box tests are those
 // of the brute force, one worker and two alike, as boxes move, leave and come back.
