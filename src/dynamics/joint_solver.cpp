@@ -116,6 +116,10 @@ void JointWaves::prepare(const JointSolverView& view, const Array<Joint>& joints
 }
 
 void JointWaves::plan(const Array<Joint>& joints) {
+  distance_.clear();
+  for (std::uint32_t i = 0; i < joints.size(); ++i) {
+    if (joints[i].active && joints[i].type == JointType::Distance) distance_.push_back(i);
+  }
   groups_.clear();
   alone_.clear();
   groupStart_.assign(1, 0);
@@ -198,17 +202,16 @@ void JointWaves::solve(const JointSolverView& view, Array<Joint>& joints, float 
 
 std::size_t JointWaves::memoryBytes() const {
   return heapBytes(order_) + heapBytes(waveStart_) + heapBytes(waveOf_) + heapBytes(lastWave_) +
-         heapBytes(groups_) + heapBytes(groupStart_) + heapBytes(alone_) + heapBytes(aloneStart_);
+         heapBytes(groups_) + heapBytes(groupStart_) + heapBytes(alone_) + heapBytes(aloneStart_) +
+         heapBytes(distance_);
 }
 
-bool projectJoints(const JointSolverView& view, Array<Joint>& joints) {
+bool projectJoints(const JointSolverView& view, Array<Joint>& joints,
+                   std::span<const std::uint32_t> distance) {
   bool moved = false;
   for (int pass = 0; pass < kJointProjectionPasses; ++pass) {
     bool projected = false;
-    for (Joint& joint : joints) {
-      if (!joint.active) continue;
-      if (joint.type == JointType::Distance) projected |= projectDistance(view, joint);
-    }
+    for (const std::uint32_t i : distance) projected |= projectDistance(view, joints[i]);
     if (!projected) break;
     moved = true;
   }

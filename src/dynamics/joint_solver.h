@@ -20,6 +20,7 @@
 #include <collide/joints.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace collide::detail {
@@ -121,6 +122,8 @@ class JointWaves {
   void plan(const Array<Joint>& joints);
   // After the step's last pass: the groups' impulses back to their joints.
   void finish(Array<Joint>& joints);
+  // The active distance joints, in joint order (plan's; projectJoints takes them).
+  std::span<const std::uint32_t> distanceJoints() const { return distance_; }
   // Per substep: apply the accumulated impulses at the current pose.
   void warmStart(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks);
   // Per substep: one pass; useBias = false is the relax pass (rigid rows without position bias).
@@ -150,6 +153,7 @@ class JointWaves {
   Array<std::uint32_t> groupStart_;
   Array<std::uint32_t> alone_;
   Array<std::uint32_t> aloneStart_;
+  Array<std::uint32_t> distance_;
 };
 
 // Per substep, after the position update: the length a rigid distance joint lost or gained beyond
@@ -163,8 +167,10 @@ class JointWaves {
 inline constexpr float kJointLengthSlop = 0.005f;   // of the joint's length
 inline constexpr float kBallJointGapSlop = 0.001f;  // m (or rad): the tree's projection slop
 inline constexpr int kJointProjectionPasses = 128;
-// True if it moved a body.
-bool projectJoints(const JointSolverView& view, Array<Joint>& joints);
+// `distance`: the active distance joints, in joint order (JointWaves::distanceJoints). True if
+// it moved a body.
+bool projectJoints(const JointSolverView& view, Array<Joint>& joints,
+                   std::span<const std::uint32_t> distance);
 
 // The groups of dynamic bodies the step's active joints connect: groupOf[body] is the lowest body
 // index of its group, kNoJointGroup (continuous.h) for a body without such a joint. The continuous

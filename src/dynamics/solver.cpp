@@ -207,7 +207,7 @@ void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<c
     if (withJoints) {
       jointTree_.posesMoved();
       jointTree_.project(view, joints, tasks);
-      if (projectJoints(view, joints)) jointTree_.posesMoved();
+      if (projectJoints(view, joints, jointWaves_.distanceJoints())) jointTree_.posesMoved();
       jointWaves_.solve(view, joints, h, rigidHertz, false, tasks);
       jointTree_.solve(view, joints, h, rigidHertz, false, tasks);
     }
