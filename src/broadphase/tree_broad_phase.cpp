@@ -119,9 +119,14 @@ class TreeBroadPhase final : public BroadPhase {
     Aabb fat = fatten(index);
     if (p.motion == MotionType::Movable) {
       // Stretched ahead along the motion, so that a body moving steadily stays inside for a few
-      // steps (Box2D v2's b2_aabbMultiplier). The pairs are exact whatever the fat boxes.
-      const Vec3 moved =
-          (kStretchAhead * 0.5f) * ((p.bounds.min + p.bounds.max) - (oldBounds.min + oldBounds.max));
+      // steps (Box2D v2's b2_aabbMultiplier). The pairs are exact whatever the fat boxes. At most
+      // by the box's own size: a body teleported far, or a bullet, would otherwise drag a box
+      // across half the world that every pass over the pairs then tests.
+      const Vec3 size = p.bounds.max - p.bounds.min;
+      const float most = std::max(size.x, std::max(size.y, size.z));
+      const Vec3 moved = glm::clamp(
+          (kStretchAhead * 0.5f) * ((p.bounds.min + p.bounds.max) - (oldBounds.min + oldBounds.max)),
+          Vec3(-most), Vec3(most));
       fat.min = glm::min(fat.min, fat.min + moved);
       fat.max = glm::max(fat.max, fat.max + moved);
     }

@@ -141,6 +141,10 @@ TEST(TreeBroadPhase, AMovingBoxIsPutBackStretchedAlongItsMotion) {
   }
   // The first leave at step 1, then every fifth step (0.9 of room ahead at 0.2 a step).
   EXPECT_EQ(reinserted, 4);
+  // A teleport 100 away stretches the box by its own size (1) at most, not by 400.
+  bp->update(id, Aabb::fromCenterHalfExtents(Vec3(104.0f, 0.0f, 0.0f), Vec3(0.5f)));
+  EXPECT_NEAR(fatBox().max.x, 104.0f + 0.5f + 0.1f + 1.0f, 1e-4f);
+  EXPECT_NEAR(fatBox().min.x, 104.0f - 0.5f - 0.1f, 1e-4f);
 }
 
 // A persistent set of tens of thousands of pairs is merged in chunks (of the longer list, the
