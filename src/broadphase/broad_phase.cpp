@@ -297,9 +297,7 @@ std::vector<ProxyRayHit> BroadPhase::rayCastAll(const Ray& ray, LayerMask mask) 
 }
 
 void BroadPhase::queryAabb(const Aabb& box, LayerMask mask, const OverlapCallback& callback) const {
-  if (!validBox(box, "AABB query")) return;
-  if (!callback) COLLIDE_FAIL("broad phase: AABB query: empty callback");
-  queryAabbImpl(box, mask, callback);
+  queryAabb(box, mask, MotionFilter::All, callback);
 }
 
 void BroadPhase::queryAabb(const Aabb& box, LayerMask mask, MotionFilter motions,

@@ -126,13 +126,12 @@ void JointWaves::plan(const Array<Joint>& joints) {
   aloneStart_.assign(1, 0);
   // A joint in no tree at the step's start stays out of them all step (only a tree's own joints
   // leave and rejoin it), and its type and friction do not change within a step.
-  const auto inLanes = [&](std::uint32_t i) { return ballInLanes(joints[i], true); };
   for (std::size_t w = 0; w + 1 < waveStart_.size(); ++w) {
     std::uint32_t waiting[kBallLanes];
     int count = 0;
     for (std::uint32_t k = waveStart_[w]; k < waveStart_[w + 1]; ++k) {
       const std::uint32_t i = order_[k];
-      if (!inLanes(i)) {
+      if (!ballInLanes(joints[i])) {
         alone_.push_back(i);
         continue;
       }

@@ -35,8 +35,8 @@ void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHe
 
 void equalityRowsBall(const JointFrame& f, Joint& joint, EqualityRows& rows) { addPointRows(f, joint, rows); }
 
-bool ballInLanes(const Joint& joint, bool solving) {
-  return joint.type == JointType::Ball && !joint.inTree && !(solving && joint.friction > 0.0f);
+bool ballInLanes(const Joint& joint) {
+  return joint.type == JointType::Ball && !joint.inTree && !(joint.friction > 0.0f);
 }
 
 namespace {
@@ -254,21 +254,6 @@ void warmStartBalls(const JointSolverView& view, const BallLaneGroup& group) {
   applyImpulseLanes(l.a, l.b, l.rA, l.rB, loadVec(group.impulse));
   scatterEnd(l.a);
   scatterEnd(l.b);
-}
-
-void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
-                    const std::uint32_t (&which)[kBallLanes]) {
-  BallLaneGroup group;
-  loadBallGroup(joints, which, group);
-  warmStartBalls(view, group);
-}
-
-void solveBalls(const JointSolverView& view, Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
-                float h, float rigidHertz, bool useBias) {
-  BallLaneGroup group;
-  loadBallGroup(joints, which, group);
-  solveBalls(view, group, h, rigidHertz, useBias);
-  storeBallGroup(group, joints);
 }
 
 void solveBalls(const JointSolverView& view, BallLaneGroup& group, float h, float rigidHertz, bool useBias) {

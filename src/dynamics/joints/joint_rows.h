@@ -186,20 +186,15 @@ bool projectDistance(const JointSolverView& view, Joint& joint);
 void warmStartBall(const JointSolverView& view, Joint& joint);
 void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
 // Four ball joints at once in SIMD lanes, bit for bit what warmStartBall and solveBall give each:
-// the joints `which` of one wave (no moving body shared), each one ballInLanes takes (a ball joint
-// solved by Gauss-Seidel, without friction while solving).
-bool ballInLanes(const Joint& joint, bool solving);
-// BallLaneGroup (joint_solver.h): the four joints' records in lanes.
+// four joints of one wave (no moving body shared), each one ballInLanes takes (a ball joint in no
+// tree and without friction), gathered into a BallLaneGroup (joint_solver.h) and its impulses
+// stored back after the step's passes.
+bool ballInLanes(const Joint& joint);
 void loadBallGroup(const Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
                    BallLaneGroup& group);
 void storeBallGroup(const BallLaneGroup& group, Array<Joint>& joints);
 void warmStartBalls(const JointSolverView& view, const BallLaneGroup& group);
 void solveBalls(const JointSolverView& view, BallLaneGroup& group, float h, float rigidHertz, bool useBias);
-// The same on the joints themselves (loaded, solved, stored).
-void warmStartBalls(const JointSolverView& view, Array<Joint>& joints,
-                    const std::uint32_t (&which)[kBallLanes]);
-void solveBalls(const JointSolverView& view, Array<Joint>& joints, const std::uint32_t (&which)[kBallLanes],
-                float h, float rigidHertz, bool useBias);
 void equalityRowsBall(const JointFrame& f, Joint& joint, EqualityRows& rows);
 
 void warmStartHinge(const JointSolverView& view, Joint& joint);
