@@ -150,7 +150,11 @@ TEST_P(BroadPhaseKnownAnswers, StaleAndUnknownIdsAreErrors) {
   EXPECT_FALSE(bp->contains(a));
   const ProxyId b = bp->add({cube(Vec3(0.0f), 1.0f)});  // reuses a's slot
   EXPECT_EQ(b.index, a.index);
-  EXPECT_COLLIDE_ERROR(bp->remove(a));  // the old id must not remove the new proxy
+  EXPECT_COLLIDE_ERROR(bp->remove(a));       // the old id must not remove the new proxy
+  EXPECT_COLLIDE_ERROR(bp->setMask(a, 2u));  // nor change its filter
+  EXPECT_COLLIDE_ERROR(bp->setLayer(a, 2u));
+  EXPECT_COLLIDE_ERROR(bp->mask(a));
+  EXPECT_EQ(bp->mask(b), kAllLayers);
   EXPECT_TRUE(bp->contains(b));
   EXPECT_COLLIDE_ERROR(bp->update(ProxyId{57, 1}, cube(Vec3(0.0f), 1.0f)));
   EXPECT_COLLIDE_ERROR(bp->update(ProxyId{}, cube(Vec3(0.0f), 1.0f)));
