@@ -26,37 +26,71 @@ bool finite(const Quat& q) {
 void setSolveInBlocks(bool enabled) { solveInBlocks.store(enabled, std::memory_order_relaxed); }
 std::uint32_t lastSolveBlockCount() { return lastBlockCount.load(std::memory_order_relaxed); }
 
-void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts) {
-  const std::size_t n = storage.states.size();
-  solverOf_.assign(n, kNoSolverBody);
-  bodies_.clear();
-  infos_.clear();
-  starts_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    BodyState& s = storage.states[i];
-    s.centerOfMass0 = s.centerOfMass;
-    s.rotation0 = s.rotation;
+// In two parallel walks over fixed chunks of bodies: the first counts each chunk's moving bodies
+// (and keeps every body's pose at the step start), the second writes them from their chunk's
+// offset. The solver bodies come out in body order, whatever the split.
+void StepSolver::gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts, TaskRunner& tasks) {
+  const std::uint32_t n = static_cast<std::uint32_t>(storage.states.size());
+  const std::uint32_t chunks = (n + kBodiesPerRange - 1) / kBodiesPerRange;
+  const auto moves = [&](std::uint32_t i) {
     const BodyRecord& r = storage.records[i];
-    if (!r.alive || r.type == BodyType::Static || !r.awake) continue;
-    solverOf_[i] = static_cast<std::int32_t>(bodies_.size());
-    if (withStarts) starts_.push_back({s.centerOfMass0, s.rotation0});
-    SolverBody& body = bodies_.emplace_back();
-    body.linearVelocity = s.linearVelocity;
-    body.angularVelocity = s.angularVelocity;
-    SolverBodyInfo& info = infos_.emplace_back();
-    info.body = static_cast<std::uint32_t>(i);
-    info.dynamic = r.type == BodyType::Dynamic;
-    info.particle = r.particle;
-    if (info.dynamic) {
-      info.inverseMass = s.inverseMass;
-      info.inverseInertiaWorld = s.inverseInertiaWorld;
-      info.linearAcceleration = r.gravityScale * gravity + info.inverseMass * r.force;
-      info.linearDamping = r.linearDamping;
-      info.angularDamping = r.particle ? 0.0f : r.angularDamping;
-      info.angularAcceleration = info.inverseInertiaWorld * r.torque;
-      info.gyroscopic = !r.particle && !r.isotropicInertia;
+    return r.alive && r.type != BodyType::Static && r.awake;
+  };
+  solverOf_.resize(n);
+  chunkStart_.resize(chunks + 1);
+  chunkStart_[0] = 0;
+  tasks.parallelFor(chunks, 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+    for (std::uint32_t c = begin; c < end; ++c) {
+      std::uint32_t count = 0;
+      for (std::uint32_t i = c * kBodiesPerRange; i < std::min(n, (c + 1) * kBodiesPerRange); ++i) {
+        BodyState& s = storage.states[i];
+        s.centerOfMass0 = s.centerOfMass;
+        s.rotation0 = s.rotation;
+        count += moves(i) ? 1 : 0;
+      }
+      chunkStart_[c + 1] = count;
     }
-  }
+  });
+  for (std::uint32_t c = 0; c < chunks; ++c) chunkStart_[c + 1] += chunkStart_[c];
+  const std::uint32_t total = chunkStart_[chunks];
+  // Resized, not cleared: the elements of the last step are written over, not constructed first.
+  bodies_.resize(total);
+  infos_.resize(total);
+  starts_.resize(withStarts ? total : 0);
+  tasks.parallelFor(chunks, 1, [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+    for (std::uint32_t c = begin; c < end; ++c) {
+      std::uint32_t j = chunkStart_[c];
+      for (std::uint32_t i = c * kBodiesPerRange; i < std::min(n, (c + 1) * kBodiesPerRange); ++i) {
+        if (!moves(i)) {
+          solverOf_[i] = kNoSolverBody;
+          continue;
+        }
+        const BodyState& s = storage.states[i];
+        const BodyRecord& r = storage.records[i];
+        solverOf_[i] = static_cast<std::int32_t>(j);
+        if (withStarts) starts_[j] = {s.centerOfMass0, s.rotation0};
+        SolverBody& body = bodies_[j];
+        body = SolverBody{};
+        body.linearVelocity = s.linearVelocity;
+        body.angularVelocity = s.angularVelocity;
+        SolverBodyInfo& info = infos_[j];
+        info = SolverBodyInfo{};
+        info.body = i;
+        info.dynamic = r.type == BodyType::Dynamic;
+        info.particle = r.particle;
+        if (info.dynamic) {
+          info.inverseMass = s.inverseMass;
+          info.inverseInertiaWorld = s.inverseInertiaWorld;
+          info.linearAcceleration = r.gravityScale * gravity + info.inverseMass * r.force;
+          info.linearDamping = r.linearDamping;
+          info.angularDamping = r.particle ? 0.0f : r.angularDamping;
+          info.angularAcceleration = info.inverseInertiaWorld * r.torque;
+          info.gyroscopic = !r.particle && !r.isotropicInertia;
+        }
+        ++j;
+      }
+    }
+  });
 }
 
 // The guard inside the step: a solver body with a non-finite part is stopped where the step began
@@ -116,7 +150,7 @@ void StepSolver::writeBack(BodyStorage& storage, Array<FaultEvent>& faults, Task
 void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joint>& joints,
                        const StepSettings& settings, float dt, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const float h = dt / static_cast<float>(settings.substeps);
-  gatherBodies(storage, settings.gravity, !joints.empty());
+  gatherBodies(storage, settings.gravity, !joints.empty(), tasks);
   faultFields_.assign(bodies_.size(), 0);
   stoppedABody_.store(false, std::memory_order_relaxed);
   JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
@@ -221,8 +255,8 @@ void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<c
 
 std::size_t StepSolver::memoryBytes() const {
   return heapBytes(bodies_) + heapBytes(infos_) + heapBytes(starts_) + heapBytes(solverOf_) +
-         heapBytes(faultFields_) + heapBytes(allBodies_) + blocks_.memoryBytes() + contacts_.memoryBytes() +
-         projection_.memoryBytes();
+         heapBytes(faultFields_) + heapBytes(allBodies_) + heapBytes(chunkStart_) + blocks_.memoryBytes() +
+         contacts_.memoryBytes() + projection_.memoryBytes();
 }
 
 }  // namespace collide::detail

@@ -71,7 +71,7 @@ class StepSolver {
 
  private:
   // withStarts: the bodies' start poses too (starts_), which the joints read.
-  void gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts);
+  void gatherBodies(BodyStorage& storage, const Vec3& gravity, bool withStarts, TaskRunner& tasks);
   // What the substep loop of every block reads.
   struct Substeps {
     BodyStorage& storage;
@@ -90,8 +90,9 @@ class StepSolver {
 
   Array<SolverBody> bodies_;
   Array<SolverBodyInfo> infos_;
-  Array<SolverBodyStart> starts_;  // with joints only
-  Array<std::int32_t> solverOf_;   // body index -> solver body, kNoSolverBody if none
+  Array<SolverBodyStart> starts_;    // with joints only
+  Array<std::int32_t> solverOf_;     // body index -> solver body, kNoSolverBody if none
+  Array<std::uint32_t> chunkStart_;  // gatherBodies: chunk c's first solver body
   Array<std::uint8_t> faultFields_;
   // The guard stopped a body this step (its pose went back to the step's start).
   std::atomic<bool> stoppedABody_{false};
