@@ -147,6 +147,12 @@ class BroadPhase {
   ProxyId add(const ProxyDef& def);
   void remove(ProxyId id);
   void update(ProxyId id, const Aabb& bounds);
+  // update() where the algorithm keeps the proxy where it is (the Tree: a movable proxy's box still
+  // inside its fat box): the box is stored and true returned. Otherwise, and for an id or a box
+  // update() would refuse, nothing changes and false is returned (call update()). Calls for
+  // distinct proxies may run on several threads at once, while no other call runs: the world's
+  // workers store most of a step's boxes this way, and update() takes the rest in order.
+  bool updateInPlace(ProxyId id, const Aabb& bounds);
   // Makes this broad phase, which must hold no proxy yet, hold the same proxies as `source`: the
   // same ids (index and generation, so handles to them stay valid), boxes, layers and free slots.
   // Switches a running world to another broad-phase type or setting. Throws Error when not empty.
@@ -251,6 +257,13 @@ class BroadPhase {
   virtual void onAdd(std::uint32_t index) = 0;
   virtual void onRemove(std::uint32_t index) = 0;
   virtual void onUpdate(std::uint32_t index, const Aabb& oldBounds) = 0;
+  // Whether onUpdate would leave the algorithm's structure as it is for this new box (read-only,
+  // called concurrently for distinct proxies); updateInPlace then stores the box alone.
+  virtual bool keepsInPlace(std::uint32_t index, const Aabb& bounds) const {
+    (void)index;
+    (void)bounds;
+    return false;
+  }
   // The proxy's layer or mask changed (the record holds the new ones).
   virtual void onFilterChange(std::uint32_t index) { (void)index; }
   // Appends pair keys (a << 32 | b, a < b) of all overlapping pairs, each once, and returns whether

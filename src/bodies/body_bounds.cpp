@@ -158,6 +158,9 @@ void ProxyUpdate::run(BodyStorage& bodies, BroadPhase& broadPhase, float dt, flo
       if (!v.updated) continue;
       const Aabb box = v.reusable ? bodies.records[i].bounds.expanded(v.moved) : recomputeBounds(bodies, i);
       boxes_[i] = grownForStep(bodies, i, dt, speculativeDistance, box);
+      // Most boxes stay inside the broad phase's margin: stored here, on the workers; the serial
+      // walk after the ranges updates the rest, in body order.
+      if (broadPhase.updateInPlace(bodies.records[i].proxy, boxes_[i])) updated_[i] = 0;
     }
   });
 }

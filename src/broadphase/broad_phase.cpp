@@ -158,6 +158,16 @@ void BroadPhase::update(ProxyId id, const Aabb& bounds) {
   onUpdate(index, old);
 }
 
+bool BroadPhase::updateInPlace(ProxyId id, const Aabb& bounds) {
+  // update()'s checks, without its errors: a refused id or box is left to update(), which names it.
+  if (!contains(id) || !isFinite(bounds.min) || !isFinite(bounds.max) || bounds.min.x > bounds.max.x ||
+      bounds.min.y > bounds.max.y || bounds.min.z > bounds.max.z)
+    return false;
+  if (!keepsInPlace(id.index, bounds)) return false;
+  proxies_[id.index].bounds = bounds;
+  return true;
+}
+
 bool BroadPhase::contains(ProxyId id) const {
   return !id.isNull() && id.index < proxies_.size() && proxies_[id.index].alive &&
          proxies_[id.index].generation == id.generation;

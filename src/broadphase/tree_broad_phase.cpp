@@ -111,11 +111,14 @@ class TreeBroadPhase final : public BroadPhase {
     moved_[index] = 0;
   }
 
+  // The whole point of the margin: a small motion leaves the tree and the pair set untouched.
+  bool keepsInPlace(std::uint32_t index, const Aabb& bounds) const override {
+    return proxies_[index].motion == MotionType::Movable && fatBox(index).contains(bounds);
+  }
   void onUpdate(std::uint32_t index, const Aabb& oldBounds) override {
     const ProxyRecord& p = proxies_[index];
     DynamicTree& tree = treeOf(index);
-    // The whole point of the margin: a small motion leaves the tree and the pair set untouched.
-    if (p.motion == MotionType::Movable && tree.box(leaf_[index]).contains(p.bounds)) return;
+    if (keepsInPlace(index, p.bounds)) return;
     Aabb fat = fatten(index);
     if (p.motion == MotionType::Movable) {
       // Stretched ahead along the motion, so that a body moving steadily stays inside for a few

@@ -147,6 +147,94 @@ TEST(TreeBroadPhase, AMovingBoxIsPutBackStretchedAlongItsMotion) {
   EXPECT_NEAR(fatBox().min.x, 104.0f - 0.5f - 0.1f, 1e-4f);
 }
 
+// updateInPlace stores a movable box that stays inside its fat box and leaves everything else to
+// update(): a box past its fat box, a static proxy, a stale id, a bad box, and every algorithm but
+// the tree. Boxes moved through it, the rest through update(), give the pairs update() alone gives.
+TEST(TreeBroadPhase, UpdateInPlaceStoresOnlyWhatTheTreeKeepsWhereItIs) {
+  BroadPhaseSettings settings;
+  settings.treeMargin = 0.1f;
+  auto bp = createBroadPhase(settings);
+  const Aabb start = Aabb::fromCenterHalfExtents(Vec3(0.0f), Vec3(0.5f));
+  const ProxyId id = bp->add({start, MotionType::Movable});
+  const ProxyId wall =
+      bp->add({Aabb::fromCenterHalfExtents(Vec3(3.0f, 0.0f, 0.0f), Vec3(0.5f)), MotionType::Static});
+  const DynamicTree* tree = treeOfBroadPhase(*bp, MotionType::Movable);
+  ASSERT_NE(tree, nullptr);
+  const Aabb fat = tree->box(tree->root());
+
+  const Aabb nudged = Aabb::fromCenterHalfExtents(Vec3(0.05f, 0.0f, 0.0f), Vec3(0.5f));
+  EXPECT_TRUE(bp->updateInPlace(id, nudged));
+  EXPECT_EQ(bp->bounds(id).min, nudged.min);
+  EXPECT_EQ(tree->box(tree->root()).max, fat.max);  // the tree as it was
+
+  const Aabb past = Aabb::fromCenterHalfExtents(Vec3(0.3f, 0.0f, 0.0f), Vec3(0.5f));
+  EXPECT_FALSE(bp->updateInPlace(id, past));
+  EXPECT_EQ(bp->bounds(id).min, nudged.min);  // unchanged: update() takes it
+  bp->update(id, past);
+  EXPECT_GT(tree->box(tree->root()).max.x, fat.max.x);
+
+  const Aabb wallNudged = Aabb::fromCenterHalfExtents(Vec3(3.01f, 0.0f, 0.0f), Vec3(0.5f));
+  EXPECT_FALSE(bp->updateInPlace(wall, wallNudged));
+  Aabb bad = past;
+  bad.max.x = std::nanf("");
+  EXPECT_FALSE(bp->updateInPlace(id, bad));
+  Aabb inverted = past;
+  std::swap(inverted.min.y, inverted.max.y);
+  EXPECT_FALSE(bp->updateInPlace(id, inverted));
+  bp->remove(wall);
+  EXPECT_FALSE(bp->updateInPlace(wall, wallNudged));  // stale: no throw, nothing stored
+  EXPECT_FALSE(bp->updateInPlace(ProxyId{}, wallNudged));
+
+  for (const BroadPhaseType type :
+       {BroadPhaseType::SweepAndPrune, BroadPhaseType::Grid, BroadPhaseType::BruteForce}) {
+    BroadPhaseSettings other;
+    other.type = type;
+    auto algorithm = createBroadPhase(other);
+    const ProxyId p = algorithm->add({start, MotionType::Movable});
+    EXPECT_FALSE(algorithm->updateInPlace(p, nudged));
+    EXPECT_EQ(algorithm->bounds(p).min, start.min);
+  }
+
+  // Random walks: one tree through update() alone, one through updateInPlace first.
+  auto direct = createBroadPhase(settings);
+  auto inPlace = createBroadPhase(settings);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> position(-5.0f, 5.0f), nudge(-0.08f, 0.08f);
+  std::vector<ProxyId> ids;
+  std::vector<Vec3> centers;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 c(position(rng), position(rng), position(rng));
+    const MotionType motion = i % 10 == 0 ? MotionType::Static : MotionType::Movable;
+    const ProxyId a = direct->add({Aabb::fromCenterHalfExtents(c, Vec3(0.4f)), motion});
+    const ProxyId b = inPlace->add({Aabb::fromCenterHalfExtents(c, Vec3(0.4f)), motion});
+    ASSERT_EQ(a.index, b.index);
+    ids.push_back(a);
+    centers.push_back(c);
+  }
+  int stored = 0, updated = 0;
+  for (int round = 0; round < 40; ++round) {
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (i % 10 == 0) continue;
+      centers[i] += Vec3(nudge(rng), nudge(rng), nudge(rng));
+      const Aabb box = Aabb::fromCenterHalfExtents(centers[i], Vec3(0.4f));
+      direct->update(ids[i], box);
+      if (inPlace->updateInPlace(ids[i], box)) {
+        ++stored;
+      } else {
+        inPlace->update(ids[i], box);
+        ++updated;
+      }
+    }
+    Array<ProxyPair> expected, got;
+    direct->findPairs(expected);
+    inPlace->findPairs(got);
+    ASSERT_EQ(expected, got) << "round " << round;
+  }
+  // Both ways were taken, most boxes in place.
+  EXPECT_GT(stored, updated);
+  EXPECT_GT(updated, 0);
+}
+
 // A persistent set of tens of thousands of pairs is merged in chunks (of the longer list, the
 // candidates split where they fall), in parallel with workers: the pairs and the box tests are those
 // of the brute force, one worker and two alike, as boxes move, leave and come back.
