@@ -103,6 +103,9 @@ class ContactLanes {
   virtual void warmStart(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) = 0;
   virtual void solve(Array<SolverBody>& bodies, float h, bool useBias, std::uint32_t block,
                      TaskRunner& tasks) = 0;
+  // warmStart then solve with useBias, bit for bit, with nothing between them.
+  virtual void warmStartAndSolve(Array<SolverBody>& bodies, float h, std::uint32_t block,
+                                 TaskRunner& tasks) = 0;
   virtual void applyRestitution(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) = 0;
   virtual void store(Array<Contact>& contacts, TaskRunner& tasks) const = 0;
   virtual std::size_t memoryBytes() const = 0;
@@ -138,6 +141,11 @@ class ContactSolver {
   // Per substep, the contacts of one block: apply the accumulated impulses.
   void warmStart(Array<SolverBody>& bodies, std::uint32_t block, TaskRunner& tasks) {
     lanes_->warmStart(bodies, block, tasks);
+  }
+  // Per substep, where no joint's pass comes between them: warmStart and then the biased pass,
+  // bit for bit, the warm start's last colour and the pass's first taken together.
+  void warmStartAndSolve(Array<SolverBody>& bodies, float h, std::uint32_t block, TaskRunner& tasks) {
+    lanes_->warmStartAndSolve(bodies, h, block, tasks);
   }
   // Per substep: one pass; useBias = false is the relax pass.
   void solve(Array<SolverBody>& bodies, float h, bool useBias, std::uint32_t block, TaskRunner& tasks) {

@@ -230,12 +230,14 @@ void StepSolver::substeps(const Substeps& loop, std::uint32_t block, std::span<c
       jointWaves_.warmStart(view, joints, tasks);
       jointTree_.warmStart(view, joints, h, tasks);
     }
-    contacts_.warmStart(bodies_, block, tasks);
     if (withJoints) {
+      contacts_.warmStart(bodies_, block, tasks);
       jointWaves_.solve(view, joints, h, rigidHertz, true, tasks);
       jointTree_.solve(view, joints, h, rigidHertz, true, tasks);
+      contacts_.solve(bodies_, h, true, block, tasks);
+    } else {
+      contacts_.warmStartAndSolve(bodies_, h, block, tasks);
     }
-    contacts_.solve(bodies_, h, true, block, tasks);
     overBodies([&](std::span<const std::uint32_t> which) { integratePositions(bodies_, infos_, h, which); });
     if (settings.projection) projection_.project(bodies_, settings.tuning.linearSlop);
     if (withJoints) {
