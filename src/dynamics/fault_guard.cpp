@@ -34,13 +34,15 @@ std::uint8_t nonFiniteFields(const BodyState& s) {
 void guardFiniteStates(BodyStorage& bodies, Array<FaultEvent>& faults, TaskRunner& tasks) {
   const std::size_t n = bodies.states.size();
   // Faults are rare: the look at every body runs in parallel and only says whether one was found
-  // (a flag any range may set, whichever sets it); the walk below then freezes and reports.
+  // (a flag any range may set, whichever sets it); the walk below then freezes and reports. It
+  // reads the dense states first and a body's record (a few hundred bytes on) only for a state
+  // that failed: a large world's records are not streamed for nothing.
   constexpr std::uint32_t kBodiesPerRange = 2048;
   std::atomic<bool> found{false};
   tasks.parallelFor(static_cast<std::uint32_t>(n), kBodiesPerRange,
                     [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
                       for (std::uint32_t i = begin; i < end; ++i) {
-                        if (bodies.records[i].alive && nonFiniteFields(bodies.states[i]) != 0) {
+                        if (nonFiniteFields(bodies.states[i]) != 0 && bodies.records[i].alive) {
                           found.store(true, std::memory_order_relaxed);
                           return;
                         }
