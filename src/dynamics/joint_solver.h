@@ -77,12 +77,15 @@ struct Joint {
 
 // The step's bodies as the joints see them: the solver bodies of moving bodies and their poses at
 // the step start, the body storage for static bodies.
+class JointTree;
 struct JointSolverView {
   Array<SolverBody>& bodies;
   const Array<SolverBodyInfo>& infos;
   const Array<SolverBodyStart>& starts;
   const Array<std::int32_t>& solverOf;
   const BodyStorage& storage;
+  // The joint trees, whose frames at the bodies' current pose jointFrame takes where they have them.
+  const JointTree* trees = nullptr;
 };
 
 // Once per step: which joints take part (at least one awake dynamic body).

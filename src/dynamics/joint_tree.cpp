@@ -259,6 +259,8 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   entries_.clear();
   nodes_.clear();
   treeStart_.clear();
+  joints_ = nullptr;
+  entryOfJoint_.clear();
   if (joints.empty()) return;  // and the per-body scratch below is not grown
   const std::size_t bodyCount = view.bodies.size();
   parentOf_.resize(bodyCount);
@@ -503,6 +505,15 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   }
   limitCandidates_.resize(limitSlots);
   treeSolved_.assign(treeCount, 1);  // every tree joint starts the step inTree
+  joints_ = joints.data();
+  entryOfJoint_.assign(joints.size(), -1);
+  entryTree_.resize(entries_.size());
+  for (std::size_t t = 0; t < treeCount; ++t) {
+    for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+      entryTree_[treeEntries_[k]] = static_cast<std::uint32_t>(t);
+      entryOfJoint_[entries_[treeEntries_[k]].joint] = static_cast<std::int32_t>(treeEntries_[k]);
+    }
+  }
 }
 
 // The rows of every tree joint at the current pose: its equality rows and the limits the tree
@@ -528,7 +539,7 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
     if (!framesNew) {
       passRows.rows.count = passRows.equalityCount;
     } else {
-      passRows.frame = jointFrame(view, joint);
+      passRows.frame = buildJointFrame(view, joint);
       equalityRows(passRows.frame, joint, passRows.rows);
       passRows.equalityCount = passRows.rows.count;
     }
@@ -759,7 +770,7 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
     Entry& entry = entries_[static_cast<std::size_t>(nodes_[n].joint)];
     EntryRows& passRows = entryRows_[static_cast<std::size_t>(nodes_[n].joint)];
     Joint& joint = joints[entry.joint];
-    passRows.frame = jointFrame(view, joint);
+    passRows.frame = buildJointFrame(view, joint);
     equalityRows(passRows.frame, joint, passRows.rows);
     passRows.equalityCount = passRows.rows.count;
   }
@@ -909,7 +920,8 @@ std::size_t JointTree::memoryBytes() const {
          heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) + heapBytes(solution_) +
          heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) + heapBytes(forestCounts_) +
          heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
-         heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_);
+         heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_) + heapBytes(entryOfJoint_) +
+         heapBytes(entryTree_);
 }
 
 }  // namespace collide::detail

@@ -72,6 +72,17 @@ class JointTree {
     std::fill(factored_.begin(), factored_.end(), std::uint8_t{0});
   }
 
+  // The frame tree entry built for this joint at the bodies' current pose (its tree's rows are at
+  // the pose: built since the bodies last moved), or null. Read by the Gauss-Seidel passes, which
+  // rebuild the frames of tree joints for their limits, motors and friction at the same poses.
+  const JointFrame* frameAtPose(const Joint& joint) const {
+    const std::size_t index = static_cast<std::size_t>(&joint - joints_);
+    if (joints_ == nullptr || index >= entryOfJoint_.size()) return nullptr;
+    const std::int32_t entry = entryOfJoint_[index];
+    if (entry < 0 || rowsAtPose_[entryTree_[static_cast<std::size_t>(entry)]] == 0) return nullptr;
+    return &entryRows_[static_cast<std::size_t>(entry)].frame;
+  }
+
   // Joints solved in trees this step (for tests and statistics).
   std::size_t jointCount() const { return entries_.size(); }
 
@@ -151,6 +162,10 @@ class JointTree {
   }
 
   float h_ = 0.0f;  // the substep of the last solve pass
+  // frameAtPose's map: the step's joints, each joint's entry (-1 for none) and each entry's tree.
+  const Joint* joints_ = nullptr;
+  Array<std::int32_t> entryOfJoint_;
+  Array<std::uint32_t> entryTree_;
   Array<Entry> entries_;
   Array<EntryRows> entryRows_;      // at least as many as entries_
   Array<Node> nodes_;               // per tree, in elimination order (leaves first, root last)

@@ -153,7 +153,7 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
   gatherBodies(storage, settings.gravity, !joints.empty(), tasks);
   faultFields_.assign(bodies_.size(), 0);
   stoppedABody_.store(false, std::memory_order_relaxed);
-  JointSolverView view{bodies_, infos_, starts_, solverOf_, storage};
+  JointSolverView view{bodies_, infos_, starts_, solverOf_, storage, &jointTree_};
   prepareJoints(view, joints);
   // The projection response has a pass over the whole world of its own: one block then.
   const bool inBlocks = !settings.projection && solveInBlocks.load(std::memory_order_relaxed);

@@ -1,6 +1,8 @@
 // The rows every joint type is made of (joint_rows.h).
 #include "dynamics/joints/joint_rows.h"
 
+#include "dynamics/joint_tree.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -30,9 +32,43 @@ JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
   return out;
 }
 
+namespace {
+
+// What jointBody gives of a body besides its pose: its solver records and masses.
+void jointBodyMasses(const JointSolverView& view, std::uint32_t body, JointBody& out) {
+  out.moving = nullptr;
+  out.solver = nullptr;
+  out.inverseMass = 0.0f;
+  out.inverseInertia = Mat3(0.0f);
+  const std::int32_t j = view.solverOf[body];
+  if (j == kNoSolverBody) return;
+  SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
+  const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
+  if (info.faulted) return;
+  out.moving = &b;
+  if (info.dynamic) {
+    out.solver = &b;
+    out.inverseMass = info.inverseMass;
+    out.inverseInertia = info.inverseInertiaWorld;
+  }
+}
+
+}  // namespace
+
+JointFrame jointFrame(const JointSolverView& view, const Joint& joint) {
+  const JointFrame* atPose = view.trees != nullptr ? view.trees->frameAtPose(joint) : nullptr;
+  if (atPose == nullptr) return buildJointFrame(view, joint);
+  // The tree's pose part; the masses the body's own (the tree's frames carry the inertia its
+  // loads add).
+  JointFrame f = *atPose;
+  jointBodyMasses(view, joint.bodyA, f.a);
+  jointBodyMasses(view, joint.bodyB, f.b);
+  return f;
+}
+
 // The anchors are rotated with each body's current rotation, so a turning body carries its anchor
 // exactly (Box2D v3 uses the step-start frames and the delta rotation instead; same result).
-JointFrame jointFrame(const JointSolverView& view, const Joint& joint) {
+JointFrame buildJointFrame(const JointSolverView& view, const Joint& joint) {
   JointFrame f;
   f.a = jointBody(view, joint.bodyA);
   f.b = jointBody(view, joint.bodyB);

@@ -71,7 +71,10 @@ struct JointFrame {
   Quat frameA{1.0f, 0.0f, 0.0f, 0.0f};  // the joint frame in the world, as each body carries it
   Quat frameB{1.0f, 0.0f, 0.0f, 0.0f};
 };
+// The frame at the bodies' current pose: the joint tree's, where its tree built its rows at this
+// pose (the same values), else computed (buildJointFrame).
 JointFrame jointFrame(const JointSolverView& view, const Joint& joint);
+JointFrame buildJointFrame(const JointSolverView& view, const Joint& joint);
 
 // The softness of a joint's rows in one pass: the joint's own spring (hertz > 0) in both passes;
 // a rigid row's stiff soft constraint in the biased pass; in the relax pass, no bias.
