@@ -313,12 +313,14 @@ TEST(TreeBroadPhase, ABurstOfCandidatesIsNotKeptOnceItIsOver) {
   const std::size_t afterBurst = bp->memoryBytes();
   const std::size_t pairCount = pairs.size();
   ASSERT_GT(pairCount, 500000u);
-  // A step where one box moves: the lists of the burst (8 bytes a key, each key once in a worker's
-  // list and once in the joined one) go back; the persistent set and the output stay.
+  // A step where one box moves: the lists of the burst go back; the persistent set and the output
+  // stay. The joined list held every key (8 bytes each) at least once, whichever worker found it;
+  // how much the workers' own lists held depends on how the queries were split between them (a
+  // worker slow to start leaves most to the other), so only the joined list's share is counted on.
   Aabb box = bp->bounds(ids[0]);
   box = {box.min - Vec3(1.0f), box.max - Vec3(1.0f)};
   bp->update(ids[0], box);
   bp->findPairs(pairs, two);
   const std::size_t afterQuiet = bp->memoryBytes();
-  EXPECT_LT(afterQuiet + 2 * 8 * pairCount * 3 / 4, afterBurst);
+  EXPECT_LT(afterQuiet + 8 * pairCount * 3 / 4, afterBurst);
 }
