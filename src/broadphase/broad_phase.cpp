@@ -20,13 +20,17 @@ std::string describe(const Vec3& v) {
   return out.str();
 }
 
+bool inverted(const Aabb& box) {
+  return box.min.x > box.max.x || box.min.y > box.max.y || box.min.z > box.max.z;
+}
+
 bool validBox(const Aabb& box, const char* what) {
   if (!isFinite(box.min) || !isFinite(box.max)) {
     COLLIDE_FAIL(std::string("broad phase: ") + what + ": box must be finite, got min " + describe(box.min) +
                      " max " + describe(box.max),
                  false);
   }
-  if (box.min.x > box.max.x || box.min.y > box.max.y || box.min.z > box.max.z) {
+  if (inverted(box)) {
     COLLIDE_FAIL(std::string("broad phase: ") + what + ": box is inverted (min > max), got min " +
                      describe(box.min) + " max " + describe(box.max),
                  false);
@@ -160,9 +164,7 @@ void BroadPhase::update(ProxyId id, const Aabb& bounds) {
 
 bool BroadPhase::updateInPlace(ProxyId id, const Aabb& bounds) {
   // update()'s checks, without its errors: a refused id or box is left to update(), which names it.
-  if (!contains(id) || !isFinite(bounds.min) || !isFinite(bounds.max) || bounds.min.x > bounds.max.x ||
-      bounds.min.y > bounds.max.y || bounds.min.z > bounds.max.z)
-    return false;
+  if (!contains(id) || !isFinite(bounds.min) || !isFinite(bounds.max) || inverted(bounds)) return false;
   if (!keepsInPlace(id.index, bounds)) return false;
   proxies_[id.index].bounds = bounds;
   return true;

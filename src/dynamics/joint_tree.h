@@ -76,8 +76,9 @@ class JointTree {
   // the pose: built since the bodies last moved), or null. Read by the Gauss-Seidel passes, which
   // rebuild the frames of tree joints for their limits, motors and friction at the same poses.
   const JointFrame* frameAtPose(const Joint& joint) const {
+    if (joints_ == nullptr) return nullptr;
     const std::size_t index = static_cast<std::size_t>(&joint - joints_);
-    if (joints_ == nullptr || index >= entryOfJoint_.size()) return nullptr;
+    if (index >= entryOfJoint_.size()) return nullptr;
     const std::int32_t entry = entryOfJoint_[index];
     if (entry < 0 || rowsAtPose_[entryTree_[static_cast<std::size_t>(entry)]] == 0) return nullptr;
     return &entryRows_[static_cast<std::size_t>(entry)].frame;

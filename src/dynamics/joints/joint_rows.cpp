@@ -8,33 +8,10 @@
 
 namespace collide::detail {
 
-JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
-  JointBody out;
-  const std::int32_t j = view.solverOf[body];
-  if (j == kNoSolverBody) {
-    const BodyState& s = view.storage.states[body];
-    out.centerOfMass = s.centerOfMass;
-    out.rotation = s.rotation;
-    return out;
-  }
-  SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
-  const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
-  const SolverBodyStart& start = view.starts[static_cast<std::size_t>(j)];
-  out.centerOfMass = start.centerOfMass + b.deltaPosition;
-  out.rotation = b.deltaRotation * start.rotation;
-  if (info.faulted) return out;
-  out.moving = &b;
-  if (info.dynamic) {
-    out.solver = &b;
-    out.inverseMass = info.inverseMass;
-    out.inverseInertia = info.inverseInertiaWorld;
-  }
-  return out;
-}
-
 namespace {
 
-// What jointBody gives of a body besides its pose: its solver records and masses.
+// What jointBody gives of a body besides its pose: its solver records and masses (none for a body
+// the solver does not move or the guard stopped).
 void jointBodyMasses(const JointSolverView& view, std::uint32_t body, JointBody& out) {
   out.moving = nullptr;
   out.solver = nullptr;
@@ -54,6 +31,23 @@ void jointBodyMasses(const JointSolverView& view, std::uint32_t body, JointBody&
 }
 
 }  // namespace
+
+JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
+  JointBody out;
+  const std::int32_t j = view.solverOf[body];
+  if (j == kNoSolverBody) {
+    const BodyState& s = view.storage.states[body];
+    out.centerOfMass = s.centerOfMass;
+    out.rotation = s.rotation;
+  } else {
+    const SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
+    const SolverBodyStart& start = view.starts[static_cast<std::size_t>(j)];
+    out.centerOfMass = start.centerOfMass + b.deltaPosition;
+    out.rotation = b.deltaRotation * start.rotation;
+  }
+  jointBodyMasses(view, body, out);
+  return out;
+}
 
 JointFrame jointFrame(const JointSolverView& view, const Joint& joint) {
   const JointFrame* atPose = view.trees != nullptr ? view.trees->frameAtPose(joint) : nullptr;
