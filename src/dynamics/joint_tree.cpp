@@ -1,5 +1,7 @@
 // The direct solve of joint trees (joint_tree.h).
 #include "dynamics/joint_tree.h"
+
+#include <atomic>
 #include "base/assert.h"
 #include "memory/heap_bytes.h"
 
@@ -10,6 +12,14 @@
 #include <numeric>
 
 namespace collide::detail {
+
+namespace {
+std::atomic<bool> treeLanes{true};
+std::atomic<std::uint32_t> lastGroupCount{0};
+}  // namespace
+
+void setTreeLanes(bool enabled) { treeLanes.store(enabled, std::memory_order_relaxed); }
+std::uint32_t lastTreeLaneGroups() { return lastGroupCount.load(std::memory_order_relaxed); }
 
 namespace {
 
@@ -67,16 +77,16 @@ int limitRowCapacity(const Joint& joint) {
   }
 }
 
-void limitRows(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+void limitRows(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles& angles) {
   switch (joint.type) {
     case JointType::Hinge:
-      limitRowsHinge(f, joint, rows);
+      limitRowsHinge(f, joint, rows, angles);
       break;
     case JointType::Slider:
-      limitRowsSlider(f, joint, rows);
+      limitRowsSlider(f, joint, rows, angles);
       break;
     case JointType::Cone:
-      limitRowsCone(f, joint, rows);
+      limitRowsCone(f, joint, rows, angles);
       break;
     default:
       break;
@@ -259,6 +269,8 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   entries_.clear();
   nodes_.clear();
   treeStart_.clear();
+  units_.clear();
+  lastGroupCount.store(0, std::memory_order_relaxed);
   joints_ = nullptr;
   entryOfJoint_.clear();
   if (joints.empty()) return;  // and the per-body scratch below is not grown
@@ -504,6 +516,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
     if (limitRowCapacity(joints[entry.joint]) > 0) entry.limitSlot = static_cast<std::int32_t>(limitSlots++);
   }
   limitCandidates_.resize(limitSlots);
+  limitAngles_.resize(limitSlots);
   treeSolved_.assign(treeCount, 1);  // every tree joint starts the step inTree
   joints_ = joints.data();
   entryOfJoint_.assign(joints.size(), -1);
@@ -514,6 +527,76 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
       entryOfJoint_[entries_[treeEntries_[k]].joint] = static_cast<std::int32_t>(treeEntries_[k]);
     }
   }
+  groupTrees();
+}
+
+// Trees t and u have the same nodes in the same order: bodies and joints, parents and capacities
+// (so their blocks lie at the same offsets from each tree's first).
+bool JointTree::sameShape(std::size_t t, std::size_t u) const {
+  const std::size_t firstT = treeStart_[t];
+  const std::size_t firstU = treeStart_[u];
+  const std::size_t count = treeStart_[t + 1] - firstT;
+  if (treeStart_[u + 1] - firstU != count) return false;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Node& a = nodes_[firstT + i];
+    const Node& b = nodes_[firstU + i];
+    const auto parentAt = [](const Node& node, std::size_t first) {
+      return node.parent < 0 ? std::int64_t{-1} : std::int64_t{node.parent} - std::int64_t(first);
+    };
+    if ((a.body >= 0) != (b.body >= 0) || (a.joint >= 0) != (b.joint >= 0) || a.capacity != b.capacity ||
+        parentAt(a, firstT) != parentAt(b, firstU))
+      return false;
+  }
+  return true;
+}
+
+// The solve passes' units: runs of kTreeLanes trees of one shape become a group in lanes, the
+// others stay alone. In tree order, so the grouping is the same at every worker count.
+void JointTree::groupTrees() {
+  units_.clear();
+  laneNodes_.clear();
+  std::size_t laneMatrices = 0;
+  std::size_t laneVectors = 0;
+  const std::size_t treeCount = treeStart_.size() - 1;
+  std::size_t grouped = 0;  // trees in groups
+  for (std::size_t t = 0; t < treeCount;) {
+    TreeUnit unit;
+    unit.firstTree = static_cast<std::uint32_t>(t);
+    bool group = treeLanes.load(std::memory_order_relaxed) && t + kTreeLanes <= treeCount;
+    for (std::size_t u = t + 1; group && u < t + kTreeLanes; ++u) group = sameShape(t, u);
+    if (!group) {
+      units_.push_back(unit);
+      ++t;
+      continue;
+    }
+    unit.treeCount = kTreeLanes;
+    unit.laneNodes = static_cast<std::uint32_t>(laneNodes_.size());
+    unit.laneMatrices = static_cast<std::uint32_t>(laneMatrices);
+    unit.laneVectors = static_cast<std::uint32_t>(laneVectors);
+    const std::size_t first = treeStart_[t];
+    const std::size_t last = treeStart_[t + 1];
+    const Node& firstNode = nodes_[first];
+    for (std::size_t n = first; n < last; ++n) {
+      const Node& node = nodes_[n];
+      LaneNode lane;
+      lane.parent = node.parent < 0 ? -1 : static_cast<std::int32_t>(std::size_t(node.parent) - first);
+      lane.matrix = node.matrix - firstNode.matrix;
+      lane.coupling = node.coupling - firstNode.matrix;
+      lane.vector = node.vector - firstNode.vector;
+      laneNodes_.push_back(lane);
+    }
+    const Node& lastNode = nodes_[last - 1];
+    const std::size_t parentCapacity =
+        lastNode.parent >= 0 ? std::size_t(nodes_[std::size_t(lastNode.parent)].capacity) : 0;
+    laneMatrices += lastNode.coupling + std::size_t(lastNode.capacity) * parentCapacity - firstNode.matrix;
+    laneVectors += lastNode.vector + std::size_t(lastNode.capacity) - firstNode.vector;
+    units_.push_back(unit);
+    t += kTreeLanes;
+    grouped += kTreeLanes;
+  }
+  laneMatrices_.resize(laneMatrices * kTreeLanes);
+  laneVectors_.resize(laneVectors * kTreeLanes);
+  lastGroupCount.store(static_cast<std::uint32_t>(grouped / kTreeLanes), std::memory_order_relaxed);
 }
 
 // The rows of every tree joint at the current pose: its equality rows and the limits the tree
@@ -543,11 +626,7 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
       equalityRows(passRows.frame, joint, passRows.rows);
       passRows.equalityCount = passRows.rows.count;
     }
-    if (entry.limitSlot >= 0 && !limitsAtPose_[t]) {
-      EqualityRows& rows = limitCandidates_[static_cast<std::size_t>(entry.limitSlot)];
-      rows.count = 0;
-      limitRows(passRows.frame, joint, rows);
-    }
+    if (entry.limitSlot >= 0 && !limitsAtPose_[t]) buildLimitCandidates(entry, passRows.frame, joint);
     if (!joint.inTree || entry.limitSlot < 0) {
       joint.treeLimits = 0;
       continue;
@@ -682,20 +761,35 @@ void JointTree::solve(const JointSolverView& view, Array<Joint>& joints, float h
   if (entries_.empty()) return;
   h_ = h;
   const Softness soft = rowSoftness(JointSoftness{}, rigidHertz, h, useBias);
-  forEachTree(tasks, [&](std::size_t t) { solveTreePass(view, joints, h, soft, useBias, t); });
+  tasks.parallelFor(static_cast<std::uint32_t>(units_.size()), 1,
+                    [&](std::uint32_t begin, std::uint32_t end, std::uint32_t) {
+                      for (std::uint32_t u = begin; u < end; ++u) {
+                        TreeUnit& unit = units_[u];
+                        if (unit.treeCount == 1) {
+                          solveTreePass(view, joints, h, soft, useBias, unit.firstTree);
+                        } else {
+                          solveGroupPass(view, joints, h, soft, useBias, unit);
+                        }
+                      }
+                    });
 }
 
 void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints, float h,
                               const Softness& soft, bool useBias, std::size_t t) {
   const BuiltRows built =
       buildRows(view, joints, h, useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve, t);
-  const std::size_t first = treeStart_[t];
-  const std::size_t last = treeStart_[t + 1];
   // The biased pass at the relax pass's pose, with its stiffness and its limits, solves the same
   // system: the relax pass's factor is still in the blocks.
-  bool factored = factored_[t] != 0 && built.sameLimits;
+  const bool solved = solveRounds(view, joints, soft, t, built, factored_[t] != 0 && built.sameLimits, 0);
+  finishTreePass(joints, soft, t, solved);
+}
+
+bool JointTree::solveRounds(const JointSolverView& view, Array<Joint>& joints, const Softness& soft,
+                            std::size_t t, const BuiltRows& built, bool factored, int round) {
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
   bool solved = false;
-  for (int round = 0; round < kLimitRounds; ++round) {
+  for (; round < kLimitRounds; ++round) {
     if (factored) {
       fillRightHandSide(first, last, soft.biasRate, false);  // the blocks hold this system's factor
       solved = true;
@@ -708,6 +802,12 @@ void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints,
     // Without a limit row there is nothing to drop: one round.
     if (!built.tookLimit || round + 1 == kLimitRounds || !dropPullingLimits(joints, first, last, soft)) break;
   }
+  return solved;
+}
+
+void JointTree::finishTreePass(Array<Joint>& joints, const Softness& soft, std::size_t t, bool solved) {
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
   factored_[t] = solved ? 1 : 0;
   // The joints learn only of a change: a tree solves pass after pass (joint_grid's 10,000 records
   // are not touched again).
@@ -730,6 +830,94 @@ void JointTree::solveTreePass(const JointSolverView& view, Array<Joint>& joints,
   });
 }
 
+// The group's trees are laid out in its lane records at the largest of their sizes, the rest
+// padding; each tree's blocks are filled as a tree alone fills its own (fillBlocks), every
+// kTreeLanes-th double. The rounds are the ones of solveRounds, for the lanes still in them: where
+// every tree takes the limits of the last pass, whose factor the lanes hold, only the right-hand
+// side is new; a tree whose limits came out pulling is filled, factored and solved again without
+// them, beside the others of its group that are (the other lanes' results are not read).
+void JointTree::solveGroupPass(const JointSolverView& view, Array<Joint>& joints, float h,
+                               const Softness& soft, bool useBias, TreeUnit& unit) {
+  constexpr std::uint32_t kLanes = kTreeLanes;
+  const RowPass pass = useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve;
+  BuiltRows built[kLanes];
+  bool reuse = unit.laneFactored;
+  for (std::uint32_t l = 0; l < kLanes; ++l) {
+    const std::size_t t = unit.firstTree + l;
+    built[l] = buildRows(view, joints, h, pass, t);
+    reuse = reuse && factored_[t] != 0 && built[l].sameLimits;
+  }
+  LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
+  double* matrices = laneMatrices_.data() + std::size_t{unit.laneMatrices} * kLanes;
+  double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kLanes;
+  const std::size_t count = treeStart_[unit.firstTree + 1] - treeStart_[unit.firstTree];
+  const auto firstOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l]; };
+  const auto lastOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l + 1]; };
+  unsigned active = (1u << kLanes) - 1;  // the lanes still in the rounds
+  unsigned solved = 0;
+  for (int round = 0; active != 0 && round < kLimitRounds; ++round) {
+    const bool factored = round == 0 && reuse;
+    for (std::uint32_t l = 0; l < kLanes; ++l) {
+      if (active >> l & 1u) setNodeSizes(firstOf(l), lastOf(l));
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      LaneNode& lane = laneNodes[i];
+      int size = 0;
+      for (std::uint32_t l = 0; l < kLanes; ++l) {
+        const int own = nodes_[firstOf(l) + i].size;
+        lane.laneSize[l] = double(own);
+        size = std::max(size, own);
+      }
+      lane.size = size;
+    }
+    unsigned filled = active;
+    if (!factored) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const LaneNode& lane = laneNodes[i];
+        const int parentSize = lane.parent >= 0 ? laneNodes[lane.parent].size : 0;
+        double* d = matrices + std::size_t{lane.matrix} * kLanes;
+        std::fill(d, d + std::size_t(lane.size * lane.size) * kLanes, 0.0);
+        double* coupling = matrices + std::size_t{lane.coupling} * kLanes;
+        std::fill(coupling, coupling + std::size_t(lane.size * parentSize) * kLanes, 0.0);
+      }
+    }
+    for (std::uint32_t l = 0; l < kLanes; ++l) {
+      if (!(active >> l & 1u)) continue;
+      const BlockLayout layout{matrices + l, vectors + l, laneNodes};
+      if (!factored && !fillBlocks(view, firstOf(l), lastOf(l), false, layout)) filled &= ~(1u << l);
+      fillRightHandSide(firstOf(l), lastOf(l), soft.biasRate, false, layout);
+    }
+    if (!factored) {
+      unit.laneOk = treeLaneKernels().factor(laneNodes, count, matrices);
+      // A later round's lanes hold only the factors of the trees still in it.
+      unit.laneFactored = round == 0;
+    }
+    treeLaneKernels().solve(laneNodes, count, matrices, vectors);
+    unsigned next = 0;
+    for (std::uint32_t l = 0; l < kLanes; ++l) {
+      if (!(active >> l & 1u)) continue;
+      if (!((filled & unit.laneOk) >> l & 1u)) {
+        solved &= ~(1u << l);
+        continue;
+      }
+      solved |= 1u << l;
+      for (std::size_t i = 0; i < count; ++i) {
+        const Node& node = nodes_[firstOf(l) + i];
+        for (int r = 0; r < node.size; ++r)
+          solution_[node.vector + std::size_t(r)] =
+              vectors[(laneNodes[i].vector + std::size_t(r)) * kLanes + l];
+      }
+      // Without a limit row there is nothing to drop: one round.
+      if (built[l].tookLimit && round + 1 < kLimitRounds &&
+          dropPullingLimits(joints, firstOf(l), lastOf(l), soft))
+        next |= 1u << l;
+    }
+    active = next;
+  }
+  for (std::uint32_t l = 0; l < kLanes; ++l)
+    finishTreePass(joints, soft, unit.firstTree + l, (solved >> l & 1u) != 0);
+}
+
 void JointTree::project(const JointSolverView& view, Array<Joint>& joints, TaskRunner& tasks) {
   if (entries_.empty()) return;
   forEachTree(tasks, [&](std::size_t t) { projectTree(view, joints, t); });
@@ -745,7 +933,19 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
     forEachRow(first, last, [&](EntryRows&, EqualityRow& row, double) {
       off = off || !(std::abs(row.error) <= kBallJointGapSlop);
     });
-    if (!off) break;
+    if (!off) {
+      // The pose the relax pass comes at: its limits, and the Gauss-Seidel pass's angles before
+      // it (anglesAtPose), measured once.
+      if (!limitsAtPose_[t]) {
+        for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+          const Entry& entry = entries_[treeEntries_[k]];
+          if (entry.limitSlot >= 0)
+            buildLimitCandidates(entry, entryRows_[treeEntries_[k]].frame, joints[entry.joint]);
+        }
+        limitsAtPose_[t] = 1;
+      }
+      break;
+    }
     factored_[t] = 0;  // the blocks take the projection's system
     if (!fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
     solveTree(first, last);
@@ -755,6 +955,13 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
     rowsAtPose_[t] = 0;
     limitsAtPose_[t] = 0;
   }
+}
+
+// The limit rows an entry's joint could add at the frame's pose, and its angles there.
+void JointTree::buildLimitCandidates(const Entry& entry, const JointFrame& frame, Joint& joint) {
+  const auto slot = static_cast<std::size_t>(entry.limitSlot);
+  limitCandidates_[slot].count = 0;
+  limitRows(frame, joint, limitCandidates_[slot], limitAngles_[slot]);
 }
 
 // The rows of one tree at the current pose (the projection's: bodies with their own inertia).
@@ -782,22 +989,49 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
 // (stopped by the fault guard, or an inertia without an inverse).
 bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
                          bool positions) {
+  setNodeSizes(first, last);
+  return fillBlocks(view, first, last, positions, BlockLayout{matrices_.data(), rhs_.data()}) &&
+         (fillRightHandSide(first, last, biasRate, positions), true);
+}
+
+void JointTree::setNodeSizes(std::size_t first, std::size_t last) {
   for (std::size_t n = first; n < last; ++n) {
     Node& node = nodes_[n];
     const int rows = node.joint >= 0 ? entryRows_[static_cast<std::size_t>(node.joint)].rows.count : 0;
     node.size = (node.body >= 0 ? 6 : 0) + rows;
   }
-  // The tree's blocks lie together in matrices_, in node order: zeroed in one go rather than block
-  // by block (a call each for 21 nodes of a ragdoll, twice).
-  const std::size_t blocksEnd = last < nodes_.size() ? nodes_[last].matrix : matrices_.size();
-  std::fill(matrices_.begin() + nodes_[first].matrix,
-            matrices_.begin() + static_cast<std::ptrdiff_t>(blocksEnd), 0.0);
+}
+
+JointTree::NodeBlocks JointTree::blocksOf(const BlockLayout& layout, std::size_t first, std::size_t n) const {
+  const Node& node = nodes_[n];
+  if (layout.lanes == nullptr) {
+    const Node* parent = parentOf(node);
+    return {layout.matrices + node.matrix, layout.matrices + node.coupling,
+            layout.vectors + node.vector,  node.size,
+            parent ? parent->size : 0,     1};
+  }
+  const LaneNode& lane = layout.lanes[n - first];
+  const std::size_t stride = kTreeLanes;
+  return {layout.matrices + lane.matrix * stride,
+          layout.matrices + lane.coupling * stride,
+          layout.vectors + lane.vector * stride,
+          lane.size,
+          lane.parent >= 0 ? layout.lanes[static_cast<std::size_t>(lane.parent)].size : 0,
+          stride};
+}
+
+// Laid out in a group's lanes, the blocks are at the group's sizes, zeroed for all lanes at once
+// before (the rows and columns past a tree's own are padding).
+bool JointTree::fillBlocks(const JointSolverView& view, std::size_t first, std::size_t last, bool positions,
+                           const BlockLayout& layout) {
   double g[6];
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
-    double* d = matrices_.data() + node.matrix;
-    const int size = node.size;
-    // This pass's blocks, laid out at this pass's sizes within the capacity's.
+    const NodeBlocks blocks = blocksOf(layout, first, n);
+    const int size = blocks.size;
+    const std::size_t stride = blocks.stride;
+    const auto d = [&](int r, int c) -> double& { return blocks.d[std::size_t(r * size + c) * stride]; };
+    if (stride == 1) std::fill(blocks.d, blocks.d + size * size, 0.0);
     int rowsAt = 0;  // where the node's joint rows start among its unknowns
     if (node.body >= 0) {
       const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(node.body)];
@@ -809,8 +1043,8 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
       const glm::dmat3 inertia = glm::inverse(inverseInertia);
       const double mass = 1.0 / double(info.inverseMass);
       for (int k = 0; k < 3; ++k) {
-        d[k * size + k] = mass;
-        for (int c = 0; c < 3; ++c) d[(3 + k) * size + 3 + c] = inertia[c][k];
+        d(k, k) = mass;
+        for (int c = 0; c < 3; ++c) d(3 + k, 3 + c) = inertia[c][k];
       }
       rowsAt = 6;
     }
@@ -822,47 +1056,54 @@ bool JointTree::fillTree(const JointSolverView& view, std::size_t first, std::si
         // A ground joint's rows within its body's node: [[M, -G^T], [-G, 0]].
         jacobianRow(row.row, entry.bodyB == node.body, g);
         for (int k = 0; k < 6; ++k) {
-          d[(rowsAt + i) * size + k] = -g[k];
-          d[k * size + rowsAt + i] = -g[k];
+          d(rowsAt + i, k) = -g[k];
+          d(k, rowsAt + i) = -g[k];
         }
       }
     }
     if (node.parent < 0) continue;
     const Node& parent = nodes_[static_cast<std::size_t>(node.parent)];
-    double* coupling = matrices_.data() + node.coupling;
+    const int parentSize = blocks.parentSize;
+    const auto coupling = [&](int r, int c) -> double& {
+      return blocks.coupling[std::size_t(r * parentSize + c) * stride];
+    };
     if (node.body >= 0) {
       // A body under the joint that holds it: H(body, joint) = -G^T, rows 0..5.
       const Entry& entry = entries_[static_cast<std::size_t>(parent.joint)];
       const EntryRows& passRows = entryRows_[static_cast<std::size_t>(parent.joint)];
       for (int i = 0; i < passRows.rows.count; ++i) {
         jacobianRow(passRows.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == node.body, g);
-        for (int k = 0; k < 6; ++k) coupling[k * parent.size + i] = -g[k];
+        for (int k = 0; k < 6; ++k) coupling(k, i) = -g[k];
       }
     } else {
-      // A joint under one of its bodies: H(joint, body) = -G, columns 0..5.
+      // A joint under one of its bodies: H(joint, body) = -G, columns 0..5 (the rest of a row is
+      // the ground joint's of a body that has one).
       const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
       const EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
       for (int i = 0; i < passRows.rows.count; ++i) {
         jacobianRow(passRows.rows.rows[static_cast<std::size_t>(i)].row, entry.bodyB == parent.body, g);
-        for (int k = 0; k < 6; ++k) coupling[i * parent.size + k] = -g[k];
+        for (int k = 0; k < 6; ++k) coupling(i, k) = -g[k];
+        for (int k = 6; k < parent.size; ++k) coupling(i, k) = 0.0;
       }
     }
   }
-  fillRightHandSide(first, last, biasRate, positions);
   return true;
 }
 
-// The right-hand side alone: G v + biasRate C per row (C alone for the projection), 0 for a body's
-// own unknowns.
 void JointTree::fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions) {
+  fillRightHandSide(first, last, biasRate, positions, BlockLayout{matrices_.data(), rhs_.data()});
+}
+
+// The right-hand side alone: G v + biasRate C per row (C alone for the projection), 0 for a body's
+// own unknowns (and a group's padding).
+void JointTree::fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions,
+                                  const BlockLayout& layout) {
   for (std::size_t n = first; n < last; ++n) {
     const Node& node = nodes_[n];
-    double* rhs = rhs_.data() + node.vector;
-    int rowsAt = 0;
-    if (node.body >= 0) {
-      for (int k = 0; k < 6; ++k) rhs[k] = 0.0;
-      rowsAt = 6;
-    }
+    const NodeBlocks blocks = blocksOf(layout, first, n);
+    const auto rhs = [&](int r) -> double& { return blocks.vector[std::size_t(r) * blocks.stride]; };
+    for (int r = 0; r < blocks.size; ++r) rhs(r) = 0.0;
+    const int rowsAt = node.body >= 0 ? 6 : 0;
     if (node.joint < 0) continue;
     const EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
     for (int i = 0; i < passRows.rows.count; ++i) {
@@ -872,7 +1113,7 @@ void JointTree::fillRightHandSide(std::size_t first, std::size_t last, float bia
       // substep (limitImpulse's rule).
       const double bias = row.limitBit != 0 && row.error > 0.0f ? double(row.error) / double(h_)
                                                                 : double(biasRate) * double(row.error);
-      rhs[rowsAt + i] = speed + bias;
+      rhs(rowsAt + i) = speed + bias;
     }
   }
 }
@@ -917,11 +1158,12 @@ std::size_t JointTree::memoryBytes() const {
   return heapBytes(entries_) + heapBytes(entryRows_) + heapBytes(nodes_) + heapBytes(treeStart_) +
          heapBytes(treeEntries_) + heapBytes(treeEntryStart_) + heapBytes(rowsAtPose_) +
          heapBytes(treeSolved_) + heapBytes(factored_) + heapBytes(limitCandidates_) +
-         heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) + heapBytes(solution_) +
-         heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) + heapBytes(forestCounts_) +
-         heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) + heapBytes(bodyNode_) +
-         heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_) + heapBytes(entryOfJoint_) +
-         heapBytes(entryTree_);
+         heapBytes(limitAngles_) + heapBytes(limitsAtPose_) + heapBytes(matrices_) + heapBytes(rhs_) +
+         heapBytes(solution_) + heapBytes(units_) + heapBytes(laneNodes_) + heapBytes(laneMatrices_) +
+         heapBytes(laneVectors_) + heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) +
+         heapBytes(forestCounts_) + heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) +
+         heapBytes(bodyNode_) + heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_) +
+         heapBytes(entryOfJoint_) + heapBytes(entryTree_);
 }
 
 }  // namespace collide::detail

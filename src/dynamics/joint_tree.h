@@ -23,6 +23,7 @@
 
 #include "base/task_runner.h"
 #include "dynamics/joint_solver.h"
+#include "dynamics/joint_tree_lanes.h"
 #include "dynamics/joints/joint_rows.h"
 
 #include <cstdint>
@@ -76,12 +77,20 @@ class JointTree {
   // the pose: built since the bodies last moved), or null. Read by the Gauss-Seidel passes, which
   // rebuild the frames of tree joints for their limits, motors and friction at the same poses.
   const JointFrame* frameAtPose(const Joint& joint) const {
-    if (joints_ == nullptr) return nullptr;
-    const std::size_t index = static_cast<std::size_t>(&joint - joints_);
-    if (index >= entryOfJoint_.size()) return nullptr;
-    const std::int32_t entry = entryOfJoint_[index];
+    const std::int32_t entry = entryAt(joint);
     if (entry < 0 || rowsAtPose_[entryTree_[static_cast<std::size_t>(entry)]] == 0) return nullptr;
     return &entryRows_[static_cast<std::size_t>(entry)].frame;
+  }
+
+  // The angles tree entry measured for this joint's limits at the bodies' current pose (its
+  // tree's limits are at the pose), or null. Read by the Gauss-Seidel passes, whose limits, springs
+  // and motors take the same angles at the same poses.
+  const JointAngles* anglesAtPose(const Joint& joint) const {
+    const std::int32_t entry = entryAt(joint);
+    if (entry < 0) return nullptr;
+    const Entry& e = entries_[static_cast<std::size_t>(entry)];
+    if (e.limitSlot < 0 || limitsAtPose_[entryTree_[static_cast<std::size_t>(entry)]] == 0) return nullptr;
+    return &limitAngles_[static_cast<std::size_t>(e.limitSlot)];
   }
 
   // Joints solved in trees this step (for tests and statistics).
@@ -117,11 +126,40 @@ class JointTree {
     JointFrame frame;       // this pass's bodies and frame
   };
 
+  // The joint's entry this step, or -1.
+  std::int32_t entryAt(const Joint& joint) const {
+    if (joints_ == nullptr) return -1;
+    const std::size_t index = static_cast<std::size_t>(&joint - joints_);
+    return index < entryOfJoint_.size() ? entryOfJoint_[index] : -1;
+  }
+  void buildLimitCandidates(const Entry& entry, const JointFrame& frame, Joint& joint);
   // The blocks and the right-hand side: G v + biasRate C for a velocity pass, C alone for the
   // projection. fillRightHandSide: the latter alone, where the blocks hold these rows' factor.
   bool fillTree(const JointSolverView& view, std::size_t first, std::size_t last, float biasRate,
                 bool positions);
   void fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions);
+  // Where a pass's blocks and right-hand side go: the tree's own (matrices_ and rhs_ at its nodes'
+  // offsets and sizes), or one lane of its group's records (the group's offsets and sizes, every
+  // kTreeLanes-th double from the lane's first).
+  struct BlockLayout {
+    double* matrices = nullptr;
+    double* vectors = nullptr;
+    const LaneNode* lanes = nullptr;  // the group's nodes, or null for the tree's own layout
+  };
+  struct NodeBlocks {
+    double* d;
+    double* coupling;
+    double* vector;
+    int size;        // as laid out
+    int parentSize;  // the parent's, as laid out (the coupling's columns)
+    std::size_t stride;
+  };
+  NodeBlocks blocksOf(const BlockLayout& layout, std::size_t first, std::size_t n) const;
+  void setNodeSizes(std::size_t first, std::size_t last);  // this pass's, from the rows
+  bool fillBlocks(const JointSolverView& view, std::size_t first, std::size_t last, bool positions,
+                  const BlockLayout& layout);
+  void fillRightHandSide(std::size_t first, std::size_t last, float biasRate, bool positions,
+                         const BlockLayout& layout);
   enum class RowPass { WarmStart, SolveAtWarmStartPose, Solve };
   struct BuiltRows {
     bool tookLimit = false;  // a limit row is among them
@@ -134,6 +172,19 @@ class JointTree {
   void addGeometricStiffness(const JointSolverView& view, Array<Joint>& joints, float h, std::size_t t);
   void solveTreePass(const JointSolverView& view, Array<Joint>& joints, float h, const Softness& soft,
                      bool useBias, std::size_t t);
+  // Tree t's solves from `round` on (fill, factor unless the blocks hold it, solve, drop the pulling
+  // limits, again): whether it solved.
+  bool solveRounds(const JointSolverView& view, Array<Joint>& joints, const Softness& soft, std::size_t t,
+                   const BuiltRows& built, bool factored, int round);
+  // The pass's impulses of a solved tree applied, and its joints told whether it solved.
+  void finishTreePass(Array<Joint>& joints, const Softness& soft, std::size_t t, bool solved);
+  // The same pass for a group of trees of one shape: their first round in lanes, any further
+  // rounds tree by tree.
+  struct TreeUnit;
+  void solveGroupPass(const JointSolverView& view, Array<Joint>& joints, float h, const Softness& soft,
+                      bool useBias, TreeUnit& unit);
+  bool sameShape(std::size_t t, std::size_t u) const;
+  void groupTrees();
   void projectTree(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
   // f(t) for every tree, in parallel ranges of trees.
   template <typename F>
@@ -162,6 +213,23 @@ class JointTree {
     }
   }
 
+  // The trees as the solve passes take them: groups of kTreeLanes consecutive trees of one shape
+  // (the same nodes, parents and capacities: a pile of ragdolls), factored and solved side by side
+  // in lanes (joint_tree_lanes.h), and single trees.
+  struct TreeUnit {
+    std::uint32_t firstTree = 0;
+    std::uint32_t treeCount = 1;     // 1, or kTreeLanes in lanes
+    std::uint32_t laneNodes = 0;     // its nodes' start in laneNodes_
+    std::uint32_t laneMatrices = 0;  // its lane records' start in laneMatrices_ (records of 4 doubles)
+    std::uint32_t laneVectors = 0;   // and in laneVectors_
+    bool laneFactored = false;       // its lane blocks hold its trees' factor (as factored_ per tree)
+    unsigned laneOk = 0;             // the lanes that factor left solvable
+  };
+  Array<TreeUnit> units_;
+  Array<LaneNode> laneNodes_;
+  Array<double> laneMatrices_;
+  Array<double> laneVectors_;
+
   float h_ = 0.0f;  // the substep of the last solve pass
   // frameAtPose's map: the step's joints, each joint's entry (-1 for none) and each entry's tree.
   const Joint* joints_ = nullptr;
@@ -185,6 +253,7 @@ class JointTree {
   // The limit rows each joint with limits could add, at the pose they were built at, and per tree
   // whether that is the bodies' pose still (a cone's twist is an atan2 each time it is built).
   Array<EqualityRows> limitCandidates_;
+  Array<JointAngles> limitAngles_;  // by limit slot, the angles the candidates were built from
   Array<std::uint8_t> limitsAtPose_;
   Array<double> matrices_;
   Array<double> rhs_;

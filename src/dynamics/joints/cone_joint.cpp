@@ -14,17 +14,11 @@ namespace collide::detail {
 
 namespace {
 
-struct ConeRows {
-  Vec3 swingAxis{0.0f};  // zero: no swing row (the axes coincide, or the cone is the whole sphere)
-  float swing = 0.0f;
-  Vec3 twistAxis{0.0f};  // zero: no twist row (the axes are opposite)
-  float twist = 0.0f;
-};
-
-// withAngles false: the axes alone, for the warm start, which applies impulses along them and
-// needs no angle (two arc tangents a joint and substep fewer).
-ConeRows coneRows(const JointFrame& f, const Joint& joint, bool withAngles = true) {
-  ConeRows rows;
+// The swing axis is zero where the axes coincide or the cone is the whole sphere, the twist axis
+// where they are opposite. withAngles false: the axes alone, for the warm start, which applies
+// impulses along them and needs no angle (two arc tangents a joint and substep fewer).
+JointAngles coneRows(const JointFrame& f, const Joint& joint, bool withAngles = true) {
+  JointAngles rows;
   const Vec3 a = f.frameA * Vec3(1.0f, 0.0f, 0.0f);
   const Vec3 b = f.frameB * Vec3(1.0f, 0.0f, 0.0f);
   const Vec3 s = glm::cross(a, b);
@@ -44,7 +38,8 @@ ConeRows coneRows(const JointFrame& f, const Joint& joint, bool withAngles = tru
 
 void warmStartCone(const JointSolverView& view, Joint& joint) {
   const JointFrame f = jointFrame(view, joint);
-  const ConeRows rows = coneRows(f, joint, false);
+  const JointAngles* measured = anglesAtPose(view, joint);
+  const JointAngles rows = measured != nullptr ? *measured : coneRows(f, joint, false);
   // The swing limit is an upper limit on phi: its impulse turns b back, about -n.
   const bool treeSwing = joint.treeLimits & kSwingLimitBit;
   const float lower = joint.treeLimits & kLowerLimitBit ? 0.0f : joint.lowerImpulse;
@@ -57,7 +52,8 @@ void warmStartCone(const JointSolverView& view, Joint& joint) {
 
 void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
   const JointFrame f = jointFrame(view, joint);
-  const ConeRows rows = coneRows(f, joint);
+  const JointAngles* measured = anglesAtPose(view, joint);
+  const JointAngles rows = measured != nullptr ? *measured : coneRows(f, joint);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
   solveAngularFriction(f, joint.friction, h, joint.frictionImpulse);
   if (rows.swingAxis != Vec3(0.0f)) {
@@ -81,8 +77,9 @@ void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHe
 
 void equalityRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows) { addPointRows(f, joint, rows); }
 
-void limitRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows) {
-  const ConeRows cone = coneRows(f, joint);
+void limitRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles& angles) {
+  angles = coneRows(f, joint);
+  const JointAngles& cone = angles;
   if (cone.swingAxis != Vec3(0.0f)) {
     const JointRow row = angularRow(f.a, f.b, cone.swingAxis);
     rows.add(negatedRow(row), joint.swingLimit - cone.swing, &joint.swingImpulse, kSwingLimitBit);

@@ -63,7 +63,8 @@ void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidH
   const HingeAxes axes = hingeAxes(f);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
   const JointRow turn = angularRow(f.a, f.b, axes.axis);
-  const float angle = twistAngle(glm::conjugate(f.frameA) * f.frameB);
+  const JointAngles* measured = anglesAtPose(view, joint);
+  const float angle = measured != nullptr ? measured->twist : twistAngle(glm::conjugate(f.frameA) * f.frameB);
   solveSpring(f, turn, angle, joint.spring, h, joint.springImpulse);
   solveMotor(f, turn, joint.motor, h, joint.motorImpulse);
   solveRowFriction(f, turn, joint.friction, h, joint.frictionImpulse.x);
@@ -86,10 +87,12 @@ void equalityRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows) {
   addPointRows(f, joint, rows);
 }
 
-void limitRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+void limitRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles& angles) {
+  // Measured with or without limits: the Gauss-Seidel pass's spring and motor read it too.
+  angles.twist = twistAngle(glm::conjugate(f.frameA) * f.frameB);
   if (!joint.limits.enabled) return;
   const JointRow turn = angularRow(f.a, f.b, hingeAxes(f).axis);
-  const float angle = twistAngle(glm::conjugate(f.frameA) * f.frameB);
+  const float angle = angles.twist;
   rows.add(turn, angle - joint.limits.lower, &joint.lowerImpulse, kLowerLimitBit);
   rows.add(negatedRow(turn), joint.limits.upper - angle, &joint.upperImpulse, kUpperLimitBit);
 }

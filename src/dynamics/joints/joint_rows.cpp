@@ -60,6 +60,10 @@ JointFrame jointFrame(const JointSolverView& view, const Joint& joint) {
   return f;
 }
 
+const JointAngles* anglesAtPose(const JointSolverView& view, const Joint& joint) {
+  return view.trees != nullptr ? view.trees->anglesAtPose(joint) : nullptr;
+}
+
 // The anchors are rotated with each body's current rotation, so a turning body carries its anchor
 // exactly (Box2D v3 uses the step-start frames and the delta rotation instead; same result).
 JointFrame buildJointFrame(const JointSolverView& view, const Joint& joint) {

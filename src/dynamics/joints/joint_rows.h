@@ -169,6 +169,20 @@ struct EqualityRows {
     rows[static_cast<std::size_t>(count++)] = {row, error, accumulated, limitBit};
   }
 };
+// A joint's angles at a pose, which its tree's limit rows and its Gauss-Seidel rows both read: a
+// cone's swing about swingAxis and twist about twistAxis (zero axes: no such row), a hinge's angle
+// as its twist. Two arc tangents each time they are measured: the tree keeps those it measured at
+// the bodies' current pose for the Gauss-Seidel pass at the same pose (anglesAtPose).
+struct JointAngles {
+  Vec3 swingAxis{0.0f};
+  float swing = 0.0f;
+  Vec3 twistAxis{0.0f};
+  float twist = 0.0f;
+};
+// The angles the joint's tree measured at the bodies' current pose, or null (not in a tree, no
+// limits, or the bodies moved since).
+const JointAngles* anglesAtPose(const JointSolverView& view, const Joint& joint);
+
 // Joint::treeLimits bits.
 inline constexpr std::uint8_t kLowerLimitBit = 1, kUpperLimitBit = 2, kSwingLimitBit = 4;
 // The row of a one-sided limit in the direction its impulse pushes (the upper limit's is the
@@ -203,12 +217,12 @@ void equalityRowsBall(const JointFrame& f, Joint& joint, EqualityRows& rows);
 void warmStartHinge(const JointSolverView& view, Joint& joint);
 void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
 void equalityRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows);
-void limitRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void limitRowsHinge(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles& angles);
 
 void warmStartSlider(const JointSolverView& view, Joint& joint);
 void solveSlider(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
 void equalityRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows);
-void limitRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void limitRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles& angles);
 
 void warmStartFixed(const JointSolverView& view, Joint& joint);
 void solveFixed(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
@@ -217,6 +231,6 @@ void equalityRowsFixed(const JointFrame& f, Joint& joint, EqualityRows& rows);
 void warmStartCone(const JointSolverView& view, Joint& joint);
 void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias);
 void equalityRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows);
-void limitRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows);
+void limitRowsCone(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles& angles);
 
 }  // namespace collide::detail

@@ -87,7 +87,7 @@ void equalityRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows) {
   rows.add(slider.across2, glm::dot(slider.across2.linear, f.d), &joint.linearImpulse.z);
 }
 
-void limitRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows) {
+void limitRowsSlider(const JointFrame& f, Joint& joint, EqualityRows& rows, JointAngles&) {
   if (!joint.limits.enabled) return;
   const SliderRows slider = sliderRows(f);
   const float offset = glm::dot(slider.axis, f.d);
