@@ -570,6 +570,7 @@ void JointTree::groupTrees() {
       continue;
     }
     unit.treeCount = kTreeLanes;
+    unit.nodeCount = static_cast<std::uint32_t>(treeStart_[t + 1] - treeStart_[t]);
     unit.laneNodes = static_cast<std::uint32_t>(laneNodes_.size());
     unit.laneMatrices = static_cast<std::uint32_t>(laneMatrices);
     unit.laneVectors = static_cast<std::uint32_t>(laneVectors);
@@ -667,17 +668,19 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
     Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
     EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
     const double* lambda = solution_.data() + node.vector + (node.body >= 0 ? 6 : 0);
-    int kept = 0;
-    for (int i = 0; i < passRows.rows.count; ++i) {
+    // The limits follow the equality rows, which stay.
+    int kept = passRows.equalityCount;
+    for (int i = kept; i < passRows.rows.count; ++i) {
       EqualityRow& row = passRows.rows.rows[static_cast<std::size_t>(i)];
       const float total =
           *row.accumulated + soft.massScale * float(lambda[i]) - soft.impulseScale * *row.accumulated;
-      if (row.limitBit != 0 && total < 0.0f) {
+      if (total < 0.0f) {
         joints[entry.joint].treeLimits &= static_cast<std::uint8_t>(~row.limitBit);
         dropped = true;
         continue;
       }
-      passRows.rows.rows[static_cast<std::size_t>(kept++)] = row;
+      if (kept != i) passRows.rows.rows[static_cast<std::size_t>(kept)] = row;
+      ++kept;
     }
     passRows.rows.count = kept;
   }
@@ -830,6 +833,73 @@ void JointTree::finishTreePass(Array<Joint>& joints, const Softness& soft, std::
   });
 }
 
+// The lanes' blocks (unless the lanes hold their factor) and right-hand sides for the trees of
+// `lanes` (a bit per lane), at this pass's sizes: each tree's own, the group's the largest, the
+// blocks zeroed first for the padding. Returns the lanes whose blocks could be filled.
+unsigned JointTree::fillGroup(const JointSolverView& view, TreeUnit& unit, unsigned lanes, float biasRate,
+                              bool factored) {
+  LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
+  double* matrices = laneMatrices_.data() + std::size_t{unit.laneMatrices} * kTreeLanes;
+  double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  const auto firstOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l]; };
+  const auto lastOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l + 1]; };
+  for (std::uint32_t l = 0; l < kTreeLanes; ++l) {
+    if (lanes >> l & 1u) setNodeSizes(firstOf(l), lastOf(l));
+  }
+  for (std::size_t i = 0; i < unit.nodeCount; ++i) {
+    LaneNode& lane = laneNodes[i];
+    int size = 0;
+    for (std::uint32_t l = 0; l < kTreeLanes; ++l) {
+      const int own = nodes_[firstOf(l) + i].size;
+      lane.laneSize[l] = double(own);
+      size = std::max(size, own);
+    }
+    lane.size = size;
+  }
+  if (!factored) {
+    // D's lower triangle (the kernels read no other); the coupling only where a lane's tree has
+    // fewer unknowns here or in the parent than the group (elsewhere every tree writes all of it).
+    const auto padded = [](const LaneNode& lane) {
+      for (std::uint32_t l = 0; l < kTreeLanes; ++l)
+        if (lane.laneSize[l] != double(lane.size)) return true;
+      return false;
+    };
+    for (std::size_t i = 0; i < unit.nodeCount; ++i) {
+      const LaneNode& lane = laneNodes[i];
+      double* d = matrices + std::size_t{lane.matrix} * kTreeLanes;
+      for (int r = 0; r < lane.size; ++r)
+        std::fill(d + std::size_t(r * lane.size) * kTreeLanes,
+                  d + std::size_t(r * lane.size + r + 1) * kTreeLanes, 0.0);
+      if (lane.parent < 0) continue;
+      const LaneNode& parent = laneNodes[lane.parent];
+      if (!padded(lane) && !padded(parent)) continue;
+      double* coupling = matrices + std::size_t{lane.coupling} * kTreeLanes;
+      std::fill(coupling, coupling + std::size_t(lane.size * parent.size) * kTreeLanes, 0.0);
+    }
+  }
+  unsigned filled = lanes;
+  for (std::uint32_t l = 0; l < kTreeLanes; ++l) {
+    if (!(lanes >> l & 1u)) continue;
+    const BlockLayout layout{matrices + l, vectors + l, laneNodes};
+    if (!factored && !fillBlocks(view, firstOf(l), lastOf(l), false, layout)) filled &= ~(1u << l);
+    fillRightHandSide(firstOf(l), lastOf(l), biasRate, false, layout);
+  }
+  return filled;
+}
+
+// Lane l's solution into its tree's own (solution_), where forEachRow reads it.
+void JointTree::copySolution(const TreeUnit& unit, std::uint32_t l) {
+  const LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
+  const double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  const std::size_t first = treeStart_[unit.firstTree + l];
+  for (std::size_t i = 0; i < unit.nodeCount; ++i) {
+    const Node& node = nodes_[first + i];
+    for (int r = 0; r < node.size; ++r)
+      solution_[node.vector + std::size_t(r)] =
+          vectors[(laneNodes[i].vector + std::size_t(r)) * kTreeLanes + l];
+  }
+}
+
 // The group's trees are laid out in its lane records at the largest of their sizes, the rest
 // padding; each tree's blocks are filled as a tree alone fills its own (fillBlocks), every
 // kTreeLanes-th double. The rounds are the ones of solveRounds, for the lanes still in them: where
@@ -838,83 +908,46 @@ void JointTree::finishTreePass(Array<Joint>& joints, const Softness& soft, std::
 // them, beside the others of its group that are (the other lanes' results are not read).
 void JointTree::solveGroupPass(const JointSolverView& view, Array<Joint>& joints, float h,
                                const Softness& soft, bool useBias, TreeUnit& unit) {
-  constexpr std::uint32_t kLanes = kTreeLanes;
   const RowPass pass = useBias ? RowPass::SolveAtWarmStartPose : RowPass::Solve;
-  BuiltRows built[kLanes];
+  BuiltRows built[kTreeLanes];
   bool reuse = unit.laneFactored;
-  for (std::uint32_t l = 0; l < kLanes; ++l) {
+  for (std::uint32_t l = 0; l < kTreeLanes; ++l) {
     const std::size_t t = unit.firstTree + l;
     built[l] = buildRows(view, joints, h, pass, t);
     reuse = reuse && factored_[t] != 0 && built[l].sameLimits;
   }
   LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
-  double* matrices = laneMatrices_.data() + std::size_t{unit.laneMatrices} * kLanes;
-  double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kLanes;
-  const std::size_t count = treeStart_[unit.firstTree + 1] - treeStart_[unit.firstTree];
-  const auto firstOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l]; };
-  const auto lastOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l + 1]; };
-  unsigned active = (1u << kLanes) - 1;  // the lanes still in the rounds
+  double* matrices = laneMatrices_.data() + std::size_t{unit.laneMatrices} * kTreeLanes;
+  double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  unsigned active = (1u << kTreeLanes) - 1;  // the lanes still in the rounds
   unsigned solved = 0;
   for (int round = 0; active != 0 && round < kLimitRounds; ++round) {
     const bool factored = round == 0 && reuse;
-    for (std::uint32_t l = 0; l < kLanes; ++l) {
-      if (active >> l & 1u) setNodeSizes(firstOf(l), lastOf(l));
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      LaneNode& lane = laneNodes[i];
-      int size = 0;
-      for (std::uint32_t l = 0; l < kLanes; ++l) {
-        const int own = nodes_[firstOf(l) + i].size;
-        lane.laneSize[l] = double(own);
-        size = std::max(size, own);
-      }
-      lane.size = size;
-    }
-    unsigned filled = active;
+    const unsigned filled = fillGroup(view, unit, active, soft.biasRate, factored);
     if (!factored) {
-      for (std::size_t i = 0; i < count; ++i) {
-        const LaneNode& lane = laneNodes[i];
-        const int parentSize = lane.parent >= 0 ? laneNodes[lane.parent].size : 0;
-        double* d = matrices + std::size_t{lane.matrix} * kLanes;
-        std::fill(d, d + std::size_t(lane.size * lane.size) * kLanes, 0.0);
-        double* coupling = matrices + std::size_t{lane.coupling} * kLanes;
-        std::fill(coupling, coupling + std::size_t(lane.size * parentSize) * kLanes, 0.0);
-      }
-    }
-    for (std::uint32_t l = 0; l < kLanes; ++l) {
-      if (!(active >> l & 1u)) continue;
-      const BlockLayout layout{matrices + l, vectors + l, laneNodes};
-      if (!factored && !fillBlocks(view, firstOf(l), lastOf(l), false, layout)) filled &= ~(1u << l);
-      fillRightHandSide(firstOf(l), lastOf(l), soft.biasRate, false, layout);
-    }
-    if (!factored) {
-      unit.laneOk = treeLaneKernels().factor(laneNodes, count, matrices);
+      unit.laneOk = treeLaneKernels().factor(laneNodes, unit.nodeCount, matrices);
       // A later round's lanes hold only the factors of the trees still in it.
       unit.laneFactored = round == 0;
     }
-    treeLaneKernels().solve(laneNodes, count, matrices, vectors);
+    treeLaneKernels().solve(laneNodes, unit.nodeCount, matrices, vectors);
     unsigned next = 0;
-    for (std::uint32_t l = 0; l < kLanes; ++l) {
+    for (std::uint32_t l = 0; l < kTreeLanes; ++l) {
       if (!(active >> l & 1u)) continue;
       if (!((filled & unit.laneOk) >> l & 1u)) {
         solved &= ~(1u << l);
         continue;
       }
       solved |= 1u << l;
-      for (std::size_t i = 0; i < count; ++i) {
-        const Node& node = nodes_[firstOf(l) + i];
-        for (int r = 0; r < node.size; ++r)
-          solution_[node.vector + std::size_t(r)] =
-              vectors[(laneNodes[i].vector + std::size_t(r)) * kLanes + l];
-      }
+      copySolution(unit, l);
       // Without a limit row there is nothing to drop: one round.
+      const std::size_t t = unit.firstTree + l;
       if (built[l].tookLimit && round + 1 < kLimitRounds &&
-          dropPullingLimits(joints, firstOf(l), lastOf(l), soft))
+          dropPullingLimits(joints, treeStart_[t], treeStart_[t + 1], soft))
         next |= 1u << l;
     }
     active = next;
   }
-  for (std::uint32_t l = 0; l < kLanes; ++l)
+  for (std::uint32_t l = 0; l < kTreeLanes; ++l)
     finishTreePass(joints, soft, unit.firstTree + l, (solved >> l & 1u) != 0);
 }
 
@@ -927,34 +960,45 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
   const std::size_t first = treeStart_[t];
   const std::size_t last = treeStart_[t + 1];
   for (int iteration = 0; iteration < kTreeProjectionIterations; ++iteration) {
-    buildTreeRows(view, joints, first, last);
-    rowsAtPose_[t] = 1;
-    bool off = false;
-    forEachRow(first, last, [&](EntryRows&, EqualityRow& row, double) {
-      off = off || !(std::abs(row.error) <= kBallJointGapSlop);
-    });
-    if (!off) {
-      // The pose the relax pass comes at: its limits, and the Gauss-Seidel pass's angles before
-      // it (anglesAtPose), measured once.
-      if (!limitsAtPose_[t]) {
-        for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
-          const Entry& entry = entries_[treeEntries_[k]];
-          if (entry.limitSlot >= 0)
-            buildLimitCandidates(entry, entryRows_[treeEntries_[k]].frame, joints[entry.joint]);
-        }
-        limitsAtPose_[t] = 1;
-      }
-      break;
-    }
+    if (!rowsOff(view, joints, t)) break;
     factored_[t] = 0;  // the blocks take the projection's system
     if (!fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
     solveTree(first, last);
-    forEachRow(first, last, [&](EntryRows& passRows, EqualityRow& row, double lambda) {
-      applyRowPosition(passRows.frame.a, passRows.frame.b, row.row, float(lambda));
-    });
-    rowsAtPose_[t] = 0;
-    limitsAtPose_[t] = 0;
+    moveOntoRows(t);
   }
+}
+
+// Tree t's rows at the current pose, and whether one is off by more than the slop. If none is, its
+// limits too: this is the pose the relax pass comes at, and the Gauss-Seidel pass before it takes
+// their angles (anglesAtPose), measured once.
+bool JointTree::rowsOff(const JointSolverView& view, Array<Joint>& joints, std::size_t t) {
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
+  buildTreeRows(view, joints, first, last);
+  rowsAtPose_[t] = 1;
+  bool off = false;
+  forEachRow(first, last, [&](EntryRows&, EqualityRow& row, double) {
+    off = off || !(std::abs(row.error) <= kBallJointGapSlop);
+  });
+  if (off) return true;
+  if (!limitsAtPose_[t]) {
+    for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
+      const Entry& entry = entries_[treeEntries_[k]];
+      if (entry.limitSlot >= 0)
+        buildLimitCandidates(entry, entryRows_[treeEntries_[k]].frame, joints[entry.joint]);
+    }
+    limitsAtPose_[t] = 1;
+  }
+  return false;
+}
+
+// The projection's Newton step on tree t's bodies, by the last solve's lambda (K lambda = -C).
+void JointTree::moveOntoRows(std::size_t t) {
+  forEachRow(treeStart_[t], treeStart_[t + 1], [&](EntryRows& passRows, EqualityRow& row, double lambda) {
+    applyRowPosition(passRows.frame.a, passRows.frame.b, row.row, float(lambda));
+  });
+  rowsAtPose_[t] = 0;
+  limitsAtPose_[t] = 0;
 }
 
 // The limit rows an entry's joint could add at the frame's pose, and its angles there.

@@ -183,6 +183,13 @@ class JointTree {
   struct TreeUnit;
   void solveGroupPass(const JointSolverView& view, Array<Joint>& joints, float h, const Softness& soft,
                       bool useBias, TreeUnit& unit);
+  // A velocity pass's blocks (unless the lanes hold their factor) and right-hand sides of the
+  // group's trees in `lanes` (a bit per lane); the lanes whose blocks could be filled.
+  unsigned fillGroup(const JointSolverView& view, TreeUnit& unit, unsigned lanes, float biasRate,
+                     bool factored);
+  void copySolution(const TreeUnit& unit, std::uint32_t lane);
+  bool rowsOff(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
+  void moveOntoRows(std::size_t t);
   bool sameShape(std::size_t t, std::size_t u) const;
   void groupTrees();
   void projectTree(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
@@ -219,6 +226,7 @@ class JointTree {
   struct TreeUnit {
     std::uint32_t firstTree = 0;
     std::uint32_t treeCount = 1;     // 1, or kTreeLanes in lanes
+    std::uint32_t nodeCount = 0;     // each tree's nodes (lanes only)
     std::uint32_t laneNodes = 0;     // its nodes' start in laneNodes_
     std::uint32_t laneMatrices = 0;  // its lane records' start in laneMatrices_ (records of 4 doubles)
     std::uint32_t laneVectors = 0;   // and in laneVectors_
