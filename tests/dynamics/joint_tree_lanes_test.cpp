@@ -73,8 +73,12 @@ std::vector<unsigned char> stateBytes(const World& world, const std::vector<Body
   return bytes;
 }
 
-// Nine figures (two groups of four and one alone), the state after each of `steps` steps.
-std::vector<std::vector<unsigned char>> run(int steps, int workers, std::uint32_t* groups = nullptr) {
+// Nine figures (two groups of four and one alone), the state after each of `steps` steps. With
+// `faultAt` >= 0, a force past the float range on one limb of the second figure (in the first group)
+// before that step: the fault guard stops the limb, its tree cannot be filled, and its joints go to
+// the Gauss-Seidel passes for the step while the other three trees of its group solve in their lanes.
+std::vector<std::vector<unsigned char>> run(int steps, int workers, std::uint32_t* groups = nullptr,
+                                            int faultAt = -1, std::size_t* faults = nullptr) {
   WorldDef def;
   def.workerCount = workers;
   World world(def);
@@ -85,7 +89,12 @@ std::vector<std::vector<unsigned char>> run(int steps, int workers, std::uint32_
               1.0f + 0.7f * float(i), bodies);
   std::vector<std::vector<unsigned char>> states;
   for (int step = 0; step < steps; ++step) {
+    if (step == faultAt) {
+      const BodyId limb = bodies[9 + 3];  // the second figure's third limb box
+      for (int i = 0; i < 2; ++i) world.applyForce(limb, Vec3(3.0e38f, 0.0f, 0.0f), world.centerOfMass(limb));
+    }
     world.step(kDt);
+    if (faults != nullptr) *faults += world.faultEvents().size();
     states.push_back(stateBytes(world, bodies));
   }
   if (groups != nullptr) *groups = detail::lastTreeLaneGroups();
@@ -115,6 +124,21 @@ TEST(JointTreeLanes, GroupsOfTreesEndWhereTheTreesAloneEnd) {
   EXPECT_NE(alone.front(), alone.back());
   // On two workers the groups are shared out; the same state.
   EXPECT_EQ(firstDifference(run(kSteps, 2), alone), -1);
+}
+
+TEST(JointTreeLanes, ATreeOfAGroupThatCannotBeFilledLeavesTheOthersAsAlone) {
+  constexpr int kFaultAt = 40;
+  std::size_t faults = 0;
+  detail::setTreeLanes(false);
+  const auto alone = run(kSteps, 1, nullptr, kFaultAt, &faults);
+  detail::setTreeLanes(true);
+  EXPECT_EQ(faults, 1u);
+  faults = 0;
+  const auto grouped = run(kSteps, 1, nullptr, kFaultAt, &faults);
+  EXPECT_EQ(faults, 1u);
+  EXPECT_EQ(firstDifference(grouped, alone), -1);
+  // The fault changed the run (it is not the one without it).
+  EXPECT_NE(firstDifference(run(kSteps, 1), alone), -1);
 }
 
 TEST(JointTreeLanes, TheBaselineKernelsGiveWhatTheAvxOnesGive) {
