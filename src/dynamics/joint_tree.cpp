@@ -624,6 +624,7 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
       passRows.rows.count = passRows.equalityCount;
     } else {
       passRows.frame = buildJointFrame(view, joint);
+      passRows.ownFrame = passRows.frame;
       equalityRows(passRows.frame, joint, passRows.rows);
       passRows.equalityCount = passRows.rows.count;
     }
@@ -1022,6 +1023,7 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
     EntryRows& passRows = entryRows_[static_cast<std::size_t>(nodes_[n].joint)];
     Joint& joint = joints[entry.joint];
     passRows.frame = buildJointFrame(view, joint);
+    passRows.ownFrame = passRows.frame;
     equalityRows(passRows.frame, joint, passRows.rows);
     passRows.equalityCount = passRows.rows.count;
   }

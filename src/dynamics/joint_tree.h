@@ -73,13 +73,14 @@ class JointTree {
     std::fill(factored_.begin(), factored_.end(), std::uint8_t{0});
   }
 
-  // The frame tree entry built for this joint at the bodies' current pose (its tree's rows are at
-  // the pose: built since the bodies last moved), or null. Read by the Gauss-Seidel passes, which
-  // rebuild the frames of tree joints for their limits, motors and friction at the same poses.
+  // The frame the tree built for this joint at the bodies' current pose (its tree's rows are at
+  // the pose: built since the bodies last moved), with the bodies' own masses, or null. Read by the
+  // Gauss-Seidel passes, which need the frames of tree joints for their limits, motors and friction
+  // at the same poses.
   const JointFrame* frameAtPose(const Joint& joint) const {
     const std::int32_t entry = entryAt(joint);
     if (entry < 0 || rowsAtPose_[entryTree_[static_cast<std::size_t>(entry)]] == 0) return nullptr;
-    return &entryRows_[static_cast<std::size_t>(entry)].frame;
+    return &entryRows_[static_cast<std::size_t>(entry)].ownFrame;
   }
 
   // The angles tree entry measured for this joint's limits at the bodies' current pose (its
@@ -123,7 +124,8 @@ class JointTree {
   struct EntryRows {
     EqualityRows rows;      // this pass's rows: the equality rows, then the limits taken
     int equalityCount = 0;  // the equality rows among them
-    JointFrame frame;       // this pass's bodies and frame
+    JointFrame frame;       // this pass's bodies and frame (with the inertia the tree solves with)
+    JointFrame ownFrame;    // the same with the bodies' own masses, for the Gauss-Seidel passes
   };
 
   // The joint's entry this step, or -1.

@@ -37,7 +37,8 @@ JointAngles coneRows(const JointFrame& f, const Joint& joint, bool withAngles = 
 }  // namespace
 
 void warmStartCone(const JointSolverView& view, Joint& joint) {
-  const JointFrame f = jointFrame(view, joint);
+  JointFrame scratch;
+  const JointFrame& f = jointFrame(view, joint, scratch);
   const JointAngles* measured = anglesAtPose(view, joint);
   const JointAngles rows = measured != nullptr ? *measured : coneRows(f, joint, false);
   // The swing limit is an upper limit on phi: its impulse turns b back, about -n.
@@ -51,7 +52,8 @@ void warmStartCone(const JointSolverView& view, Joint& joint) {
 }
 
 void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  const JointFrame f = jointFrame(view, joint);
+  JointFrame scratch;
+  const JointFrame& f = jointFrame(view, joint, scratch);
   const JointAngles* measured = anglesAtPose(view, joint);
   const JointAngles rows = measured != nullptr ? *measured : coneRows(f, joint);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);

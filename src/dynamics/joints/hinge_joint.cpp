@@ -46,7 +46,8 @@ void solveAxisRows(const JointFrame& f, const HingeAxes& axes, const Softness& s
 }  // namespace
 
 void warmStartHinge(const JointSolverView& view, Joint& joint) {
-  const JointFrame f = jointFrame(view, joint);
+  JointFrame scratch;
+  const JointFrame& f = jointFrame(view, joint, scratch);
   const HingeAxes axes = hingeAxes(f);
   if (joint.inTree) {
     applyAngularImpulse(f.a, f.b, ownAxialImpulse(joint) * axes.axis);
@@ -59,7 +60,8 @@ void warmStartHinge(const JointSolverView& view, Joint& joint) {
 }
 
 void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  const JointFrame f = jointFrame(view, joint);
+  JointFrame scratch;
+  const JointFrame& f = jointFrame(view, joint, scratch);
   const HingeAxes axes = hingeAxes(f);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
   const JointRow turn = angularRow(f.a, f.b, axes.axis);

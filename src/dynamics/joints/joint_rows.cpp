@@ -49,15 +49,11 @@ JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
   return out;
 }
 
-JointFrame jointFrame(const JointSolverView& view, const Joint& joint) {
+const JointFrame& jointFrame(const JointSolverView& view, const Joint& joint, JointFrame& scratch) {
   const JointFrame* atPose = view.trees != nullptr ? view.trees->frameAtPose(joint) : nullptr;
-  if (atPose == nullptr) return buildJointFrame(view, joint);
-  // The tree's pose part; the masses the body's own (the tree's frames carry the inertia its
-  // loads add).
-  JointFrame f = *atPose;
-  jointBodyMasses(view, joint.bodyA, f.a);
-  jointBodyMasses(view, joint.bodyB, f.b);
-  return f;
+  if (atPose != nullptr) return *atPose;
+  scratch = buildJointFrame(view, joint);
+  return scratch;
 }
 
 const JointAngles* anglesAtPose(const JointSolverView& view, const Joint& joint) {

@@ -72,8 +72,8 @@ struct JointFrame {
   Quat frameB{1.0f, 0.0f, 0.0f, 0.0f};
 };
 // The frame at the bodies' current pose: the joint tree's, where its tree built its rows at this
-// pose (the same values), else computed (buildJointFrame).
-JointFrame jointFrame(const JointSolverView& view, const Joint& joint);
+// pose (the same values), else computed into scratch (buildJointFrame).
+const JointFrame& jointFrame(const JointSolverView& view, const Joint& joint, JointFrame& scratch);
 JointFrame buildJointFrame(const JointSolverView& view, const Joint& joint);
 
 // The softness of a joint's rows in one pass: the joint's own spring (hertz > 0) in both passes;

@@ -52,7 +52,8 @@ void solveAcrossRows(const JointFrame& f, const SliderRows& rows, const Softness
 }  // namespace
 
 void warmStartSlider(const JointSolverView& view, Joint& joint) {
-  const JointFrame f = jointFrame(view, joint);
+  JointFrame scratch;
+  const JointFrame& f = jointFrame(view, joint, scratch);
   const SliderRows rows = sliderRows(f);
   applyRow(f.a, f.b, rows.along, joint.inTree ? ownAxialImpulse(joint) : axialImpulse(joint));
   if (joint.inTree) return;
@@ -62,7 +63,8 @@ void warmStartSlider(const JointSolverView& view, Joint& joint) {
 }
 
 void solveSlider(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  const JointFrame f = jointFrame(view, joint);
+  JointFrame scratch;
+  const JointFrame& f = jointFrame(view, joint, scratch);
   const SliderRows rows = sliderRows(f);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
   const float offset = glm::dot(rows.axis, f.d);
