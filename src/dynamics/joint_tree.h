@@ -83,7 +83,7 @@ class JointTree {
     return &entryRows_[static_cast<std::size_t>(entry)].ownFrame;
   }
 
-  // The angles tree entry measured for this joint's limits at the bodies' current pose (its
+  // The angles the tree measured for this joint's limits at the bodies' current pose (its
   // tree's limits are at the pose), or null. Read by the Gauss-Seidel passes, whose limits, springs
   // and motors take the same angles at the same poses.
   const JointAngles* anglesAtPose(const Joint& joint) const {
@@ -180,8 +180,7 @@ class JointTree {
                    const BuiltRows& built, bool factored, int round);
   // The pass's impulses of a solved tree applied, and its joints told whether it solved.
   void finishTreePass(Array<Joint>& joints, const Softness& soft, std::size_t t, bool solved);
-  // The same pass for a group of trees of one shape: their first round in lanes, any further
-  // rounds tree by tree.
+  // The same pass for a group of trees of one shape, every round in lanes.
   struct TreeUnit;
   void solveGroupPass(const JointSolverView& view, Array<Joint>& joints, float h, const Softness& soft,
                       bool useBias, TreeUnit& unit);
@@ -190,6 +189,7 @@ class JointTree {
   unsigned fillGroup(const JointSolverView& view, TreeUnit& unit, unsigned lanes, float biasRate,
                      bool factored);
   void copySolution(const TreeUnit& unit, std::uint32_t lane);
+  // The projection's check (rows at the pose, and its limits where none is off) and its Newton step.
   bool rowsOff(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
   void moveOntoRows(std::size_t t);
   bool sameShape(std::size_t t, std::size_t u) const;
