@@ -55,24 +55,6 @@ void addFigure(World& world, const Vec3& at, float spin, std::vector<BodyId>& bo
   }
 }
 
-std::vector<unsigned char> stateBytes(const World& world, const std::vector<BodyId>& bodies) {
-  std::vector<unsigned char> bytes;
-  const auto append = [&](const void* data, std::size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    bytes.insert(bytes.end(), p, p + size);
-  };
-  for (const BodyId b : bodies) {
-    const Transform t = world.transform(b);
-    const Vec3 v = world.linearVelocity(b);
-    const Vec3 w = world.angularVelocity(b);
-    append(&t.position, sizeof t.position);
-    append(&t.rotation, sizeof t.rotation);
-    append(&v, sizeof v);
-    append(&w, sizeof w);
-  }
-  return bytes;
-}
-
 // Nine figures (two groups of four and one alone), the state after each of `steps` steps. With
 // `faultAt` >= 0, a force past the float range on one limb of the second figure (in the first group)
 // before that step: the fault guard stops the limb, its tree cannot be filled, and its joints go to
@@ -95,7 +77,7 @@ std::vector<std::vector<unsigned char>> run(int steps, int workers, std::uint32_
     }
     world.step(kDt);
     if (faults != nullptr) *faults += world.faultEvents().size();
-    states.push_back(stateBytes(world, bodies));
+    states.push_back(test::stateBytes(world, bodies));
   }
   if (groups != nullptr) *groups = detail::lastTreeLaneGroups();
   return states;

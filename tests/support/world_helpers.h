@@ -3,6 +3,8 @@
 
 #include <collide/world.h>
 
+#include <vector>
+
 namespace collide::test {
 
 // The step of most world tests: 60 Hz.
@@ -69,6 +71,25 @@ inline BodyId staticAnchor(World& world, const Vec3& at) {
   def.shape = Shape(Sphere{0.01f});
   def.position = at;
   return world.createBody(def);
+}
+
+// Every listed body's pose and velocities as raw bytes: equal means bit-identical.
+inline std::vector<unsigned char> stateBytes(const World& world, const std::vector<BodyId>& bodies) {
+  std::vector<unsigned char> bytes;
+  const auto append = [&](const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), p, p + size);
+  };
+  for (const BodyId b : bodies) {
+    const Transform t = world.transform(b);
+    const Vec3 v = world.linearVelocity(b);
+    const Vec3 w = world.angularVelocity(b);
+    append(&t.position, sizeof t.position);
+    append(&t.rotation, sizeof t.rotation);
+    append(&v, sizeof v);
+    append(&w, sizeof w);
+  }
+  return bytes;
 }
 
 }  // namespace collide::test

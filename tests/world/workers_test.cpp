@@ -51,25 +51,6 @@ std::vector<BodyId> buildMixedPile(World& world) {
   return bodies;
 }
 
-// Every body's pose and velocities as raw bytes: equal means bit-identical.
-std::vector<unsigned char> stateBytes(const World& world, const std::vector<BodyId>& bodies) {
-  std::vector<unsigned char> bytes;
-  const auto append = [&](const void* data, std::size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    bytes.insert(bytes.end(), p, p + size);
-  };
-  for (const BodyId b : bodies) {
-    const Transform t = world.transform(b);
-    const Vec3 v = world.linearVelocity(b);
-    const Vec3 w = world.angularVelocity(b);
-    append(&t.position, sizeof t.position);
-    append(&t.rotation, sizeof t.rotation);
-    append(&v, sizeof v);
-    append(&w, sizeof w);
-  }
-  return bytes;
-}
-
 std::vector<unsigned char> runPile(WorldDef def, int steps, int switchWorkersAt = -1, int switchTo = 1) {
   World world(def);
   const std::vector<BodyId> bodies = buildMixedPile(world);
@@ -80,7 +61,7 @@ std::vector<unsigned char> runPile(WorldDef def, int steps, int switchWorkersAt 
     }
     world.step(kDt);
   }
-  return stateBytes(world, bodies);
+  return test::stateBytes(world, bodies);
 }
 
 TEST(Workers, BadCountsAndHalfAJobSystemAreRefused) {
@@ -259,7 +240,7 @@ std::vector<unsigned char> runStacks(const WorldDef& def, int steps) {
     }
   }
   for (int step = 0; step < steps; ++step) world.step(kDt);
-  return stateBytes(world, boxes);
+  return test::stateBytes(world, boxes);
 }
 
 TEST(Workers, StacksWhoseColoursSplitIntoRangesEndInTheSameState) {
@@ -335,7 +316,7 @@ std::vector<unsigned char> runIslands(const WorldDef& def, int steps, std::uint3
   }
   for (int step = 0; step < steps; ++step) world.step(kDt);
   if (blocks != nullptr) *blocks = detail::lastSolveBlockCount();
-  return stateBytes(world, bodies);
+  return test::stateBytes(world, bodies);
 }
 
 TEST(Workers, IslandsSolvedInBlocksEndAsSolvedTogether) {
@@ -398,7 +379,7 @@ std::vector<unsigned char> runChains(WorldDef def, int steps) {
     }
   }
   for (int step = 0; step < steps; ++step) world.step(kDt);
-  return stateBytes(world, bodies);
+  return test::stateBytes(world, bodies);
 }
 
 TEST(Workers, JointWavesAndTreesInParallelEndInTheSameState) {
@@ -442,7 +423,7 @@ std::vector<unsigned char> runChainsOnParticles(const WorldDef& def, int steps) 
     }
   }
   for (int step = 0; step < steps; ++step) world.step(kDt);
-  return stateBytes(world, bodies);
+  return test::stateBytes(world, bodies);
 }
 
 TEST(Workers, TreesHangingFromOneParticleEndInTheSameState) {
