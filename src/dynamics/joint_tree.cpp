@@ -835,13 +835,13 @@ void JointTree::finishTreePass(Array<Joint>& joints, const Softness& soft, std::
 }
 
 // The lanes' blocks (unless the lanes hold their factor) and right-hand sides for the trees of
-// `lanes` (a bit per lane), at this pass's sizes: each tree's own, the group's the largest, the
-// blocks zeroed first for the padding. Returns the lanes whose blocks could be filled.
+// `lanes` (a bit per lane), at this pass's sizes: each tree's own, the group's the largest, what the
+// padding needs zeroed first. Returns the lanes whose blocks could be filled.
 unsigned JointTree::fillGroup(const JointSolverView& view, TreeUnit& unit, unsigned lanes, float biasRate,
                               bool factored) {
   LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
-  double* matrices = laneMatrices_.data() + std::size_t{unit.laneMatrices} * kTreeLanes;
-  double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  double* matrices = laneMatricesOf(unit);
+  double* vectors = laneVectorsOf(unit);
   const auto firstOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l]; };
   const auto lastOf = [&](std::uint32_t l) { return treeStart_[unit.firstTree + l + 1]; };
   for (std::uint32_t l = 0; l < kTreeLanes; ++l) {
@@ -891,7 +891,7 @@ unsigned JointTree::fillGroup(const JointSolverView& view, TreeUnit& unit, unsig
 // Lane l's solution into its tree's own (solution_), where forEachRow reads it.
 void JointTree::copySolution(const TreeUnit& unit, std::uint32_t l) {
   const LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
-  const double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  const double* vectors = laneVectorsOf(unit);
   const std::size_t first = treeStart_[unit.firstTree + l];
   for (std::size_t i = 0; i < unit.nodeCount; ++i) {
     const Node& node = nodes_[first + i];
@@ -918,8 +918,8 @@ void JointTree::solveGroupPass(const JointSolverView& view, Array<Joint>& joints
     reuse = reuse && factored_[t] != 0 && built[l].sameLimits;
   }
   LaneNode* laneNodes = laneNodes_.data() + unit.laneNodes;
-  double* matrices = laneMatrices_.data() + std::size_t{unit.laneMatrices} * kTreeLanes;
-  double* vectors = laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  double* matrices = laneMatricesOf(unit);
+  double* vectors = laneVectorsOf(unit);
   unsigned active = (1u << kTreeLanes) - 1;  // the lanes still in the rounds
   unsigned solved = 0;
   for (int round = 0; active != 0 && round < kLimitRounds; ++round) {
@@ -1066,8 +1066,8 @@ JointTree::NodeBlocks JointTree::blocksOf(const BlockLayout& layout, std::size_t
           stride};
 }
 
-// Laid out in a group's lanes, the blocks are at the group's sizes, zeroed for all lanes at once
-// before (the rows and columns past a tree's own are padding).
+// A tree alone zeroes its D here; laid out in a group's lanes, the blocks are at the group's sizes
+// and fillGroup has zeroed what this leaves (D's lower triangle, padded couplings) for all lanes.
 bool JointTree::fillBlocks(const JointSolverView& view, std::size_t first, std::size_t last, bool positions,
                            const BlockLayout& layout) {
   double g[6];

@@ -239,6 +239,13 @@ class JointTree {
   Array<LaneNode> laneNodes_;
   Array<double> laneMatrices_;
   Array<double> laneVectors_;
+  // A group's lane records: its blocks, and its right-hand side (then solution).
+  double* laneMatricesOf(const TreeUnit& unit) {
+    return laneMatrices_.data() + std::size_t{unit.laneMatrices} * kTreeLanes;
+  }
+  double* laneVectorsOf(const TreeUnit& unit) {
+    return laneVectors_.data() + std::size_t{unit.laneVectors} * kTreeLanes;
+  }
 
   float h_ = 0.0f;  // the substep of the last solve pass
   // frameAtPose's map: the step's joints, each joint's entry (-1 for none) and each entry's tree.

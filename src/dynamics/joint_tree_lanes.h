@@ -57,9 +57,11 @@ std::uint32_t lastTreeLaneGroups();
 namespace lanes {
 
 // Lane record e of a block: its four doubles.
-inline double* at(double* base, std::uint32_t offset, int e) { return base + (std::size_t{offset} + e) * 4; }
+inline double* at(double* base, std::uint32_t offset, int e) {
+  return base + (std::size_t{offset} + e) * kTreeLanes;
+}
 inline const double* at(const double* base, std::uint32_t offset, int e) {
-  return base + (std::size_t{offset} + e) * 4;
+  return base + (std::size_t{offset} + e) * kTreeLanes;
 }
 
 // A size known at compile time (kN > 0), which the compiler unrolls loops over, or at run time.

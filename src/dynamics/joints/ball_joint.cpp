@@ -20,7 +20,7 @@ static_assert(kBallLanes == kLanes);
 void warmStartBall(const JointSolverView& view, Joint& joint) {
   // In a tree with no friction impulse there is nothing to apply here (a net of 10,000 of them).
   if (joint.inTree && joint.frictionImpulse == Vec3(0.0f)) return;
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   applyAngularImpulse(f.a, f.b, joint.frictionImpulse);
   if (!joint.inTree) applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
@@ -28,7 +28,7 @@ void warmStartBall(const JointSolverView& view, Joint& joint) {
 
 void solveBall(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
   if (joint.inTree && !(joint.friction > 0.0f)) return;
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   solveAngularFriction(f, joint.friction, h, joint.frictionImpulse);
   if (joint.inTree) return;

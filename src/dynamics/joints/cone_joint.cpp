@@ -37,7 +37,7 @@ JointAngles coneRows(const JointFrame& f, const Joint& joint, bool withAngles = 
 }  // namespace
 
 void warmStartCone(const JointSolverView& view, Joint& joint) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const JointAngles* measured = anglesAtPose(view, joint);
   const JointAngles rows = measured != nullptr ? *measured : coneRows(f, joint, false);
@@ -52,7 +52,7 @@ void warmStartCone(const JointSolverView& view, Joint& joint) {
 }
 
 void solveCone(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const JointAngles* measured = anglesAtPose(view, joint);
   const JointAngles rows = measured != nullptr ? *measured : coneRows(f, joint);

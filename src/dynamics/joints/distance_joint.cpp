@@ -40,14 +40,14 @@ float axialInverseMass(const JointFrame& f, const Vec3& n) {
 }  // namespace
 
 void warmStartDistance(const JointSolverView& view, Joint& joint) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const Axis axis = axisOf(f, joint);
   applyImpulse(f.a, f.b, f.rA, f.rB, (joint.impulse + joint.lowerImpulse - joint.upperImpulse) * axis.n);
 }
 
 void solveDistance(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const Axis axis = axisOf(f, joint);
   const float k = axialInverseMass(f, axis.n);
@@ -82,7 +82,7 @@ void solveDistance(const JointSolverView& view, Joint& joint, float h, float rig
 bool projectDistance(const JointSolverView& view, Joint& joint) {
   const bool rod = !hasSpring(joint) && !joint.limits.enabled;
   if (joint.softness.hertz > 0.0f || (!rod && !joint.limits.enabled)) return false;
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const Axis axis = axisOf(f, joint);
   float excess = 0.0f;

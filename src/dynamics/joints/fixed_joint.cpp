@@ -65,7 +65,7 @@ Matrix6 weldInverseMass(const JointFrame& f) {
 
 void warmStartFixed(const JointSolverView& view, Joint& joint) {
   if (joint.inTree) return;
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   applyAngularImpulse(f.a, f.b, joint.angularImpulse);
   applyImpulse(f.a, f.b, f.rA, f.rB, joint.linearImpulse);
@@ -73,7 +73,7 @@ void warmStartFixed(const JointSolverView& view, Joint& joint) {
 
 void solveFixed(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
   if (joint.inTree) return;
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const Softness linear = rowSoftness(joint.softness, rigidHertz, h, useBias);
   const Softness angular = rowSoftness(joint.angularSoftness, rigidHertz, h, useBias);

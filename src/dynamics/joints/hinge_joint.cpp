@@ -46,7 +46,7 @@ void solveAxisRows(const JointFrame& f, const HingeAxes& axes, const Softness& s
 }  // namespace
 
 void warmStartHinge(const JointSolverView& view, Joint& joint) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const HingeAxes axes = hingeAxes(f);
   if (joint.inTree) {
@@ -60,7 +60,7 @@ void warmStartHinge(const JointSolverView& view, Joint& joint) {
 }
 
 void solveHinge(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const HingeAxes axes = hingeAxes(f);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);

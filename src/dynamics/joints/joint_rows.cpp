@@ -8,30 +8,6 @@
 
 namespace collide::detail {
 
-namespace {
-
-// What jointBody gives of a body besides its pose: its solver records and masses (none for a body
-// the solver does not move or the guard stopped).
-void jointBodyMasses(const JointSolverView& view, std::uint32_t body, JointBody& out) {
-  out.moving = nullptr;
-  out.solver = nullptr;
-  out.inverseMass = 0.0f;
-  out.inverseInertia = Mat3(0.0f);
-  const std::int32_t j = view.solverOf[body];
-  if (j == kNoSolverBody) return;
-  SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
-  const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
-  if (info.faulted) return;
-  out.moving = &b;
-  if (info.dynamic) {
-    out.solver = &b;
-    out.inverseMass = info.inverseMass;
-    out.inverseInertia = info.inverseInertiaWorld;
-  }
-}
-
-}  // namespace
-
 JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
   JointBody out;
   const std::int32_t j = view.solverOf[body];
@@ -39,21 +15,28 @@ JointBody jointBody(const JointSolverView& view, std::uint32_t body) {
     const BodyState& s = view.storage.states[body];
     out.centerOfMass = s.centerOfMass;
     out.rotation = s.rotation;
-  } else {
-    const SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
-    const SolverBodyStart& start = view.starts[static_cast<std::size_t>(j)];
-    out.centerOfMass = start.centerOfMass + b.deltaPosition;
-    out.rotation = b.deltaRotation * start.rotation;
+    return out;
   }
-  jointBodyMasses(view, body, out);
+  SolverBody& b = view.bodies[static_cast<std::size_t>(j)];
+  const SolverBodyInfo& info = view.infos[static_cast<std::size_t>(j)];
+  const SolverBodyStart& start = view.starts[static_cast<std::size_t>(j)];
+  out.centerOfMass = start.centerOfMass + b.deltaPosition;
+  out.rotation = b.deltaRotation * start.rotation;
+  if (info.faulted) return out;
+  out.moving = &b;
+  if (info.dynamic) {
+    out.solver = &b;
+    out.inverseMass = info.inverseMass;
+    out.inverseInertia = info.inverseInertiaWorld;
+  }
   return out;
 }
 
-const JointFrame& jointFrame(const JointSolverView& view, const Joint& joint, JointFrame& scratch) {
+const JointFrame& jointFrame(const JointSolverView& view, const Joint& joint,
+                             std::optional<JointFrame>& scratch) {
   const JointFrame* atPose = view.trees != nullptr ? view.trees->frameAtPose(joint) : nullptr;
   if (atPose != nullptr) return *atPose;
-  scratch = buildJointFrame(view, joint);
-  return scratch;
+  return scratch.emplace(buildJointFrame(view, joint));
 }
 
 const JointAngles* anglesAtPose(const JointSolverView& view, const Joint& joint) {

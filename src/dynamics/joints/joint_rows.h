@@ -9,6 +9,7 @@
 #include "memory/prefetch.h"
 
 #include <array>
+#include <optional>
 
 namespace collide::detail {
 
@@ -72,8 +73,10 @@ struct JointFrame {
   Quat frameB{1.0f, 0.0f, 0.0f, 0.0f};
 };
 // The frame at the bodies' current pose: the joint tree's, where its tree built its rows at this
-// pose (the same values), else computed into scratch (buildJointFrame).
-const JointFrame& jointFrame(const JointSolverView& view, const Joint& joint, JointFrame& scratch);
+// pose (the same values), else computed into scratch (buildJointFrame), which is left empty
+// otherwise (a frame is some 250 bytes to construct for nothing).
+const JointFrame& jointFrame(const JointSolverView& view, const Joint& joint,
+                             std::optional<JointFrame>& scratch);
 JointFrame buildJointFrame(const JointSolverView& view, const Joint& joint);
 
 // The softness of a joint's rows in one pass: the joint's own spring (hertz > 0) in both passes;

@@ -52,7 +52,7 @@ void solveAcrossRows(const JointFrame& f, const SliderRows& rows, const Softness
 }  // namespace
 
 void warmStartSlider(const JointSolverView& view, Joint& joint) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const SliderRows rows = sliderRows(f);
   applyRow(f.a, f.b, rows.along, joint.inTree ? ownAxialImpulse(joint) : axialImpulse(joint));
@@ -63,7 +63,7 @@ void warmStartSlider(const JointSolverView& view, Joint& joint) {
 }
 
 void solveSlider(const JointSolverView& view, Joint& joint, float h, float rigidHertz, bool useBias) {
-  JointFrame scratch;
+  std::optional<JointFrame> scratch;
   const JointFrame& f = jointFrame(view, joint, scratch);
   const SliderRows rows = sliderRows(f);
   const Softness soft = rowSoftness(joint.softness, rigidHertz, h, useBias);
