@@ -265,6 +265,13 @@ NodeKernels nodeKernels(int size, int parentSize) {
 
 }  // namespace
 
+void JointTree::EntryRows::buildAtPose(const JointSolverView& view, Joint& joint) {
+  frame = buildJointFrame(view, joint);
+  ownFrame = frame;
+  equalityRows(frame, joint, rows);
+  equalityCount = rows.count;
+}
+
 void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   entries_.clear();
   nodes_.clear();
@@ -623,10 +630,7 @@ JointTree::BuiltRows JointTree::buildRows(const JointSolverView& view, Array<Joi
     if (!framesNew) {
       passRows.rows.count = passRows.equalityCount;
     } else {
-      passRows.frame = buildJointFrame(view, joint);
-      passRows.ownFrame = passRows.frame;
-      equalityRows(passRows.frame, joint, passRows.rows);
-      passRows.equalityCount = passRows.rows.count;
+      passRows.buildAtPose(view, joint);
     }
     if (entry.limitSlot >= 0 && !limitsAtPose_[t]) buildLimitCandidates(entry, passRows.frame, joint);
     if (!joint.inTree || entry.limitSlot < 0) {
@@ -1022,10 +1026,7 @@ void JointTree::buildTreeRows(const JointSolverView& view, Array<Joint>& joints,
     Entry& entry = entries_[static_cast<std::size_t>(nodes_[n].joint)];
     EntryRows& passRows = entryRows_[static_cast<std::size_t>(nodes_[n].joint)];
     Joint& joint = joints[entry.joint];
-    passRows.frame = buildJointFrame(view, joint);
-    passRows.ownFrame = passRows.frame;
-    equalityRows(passRows.frame, joint, passRows.rows);
-    passRows.equalityCount = passRows.rows.count;
+    passRows.buildAtPose(view, joint);
   }
 }
 

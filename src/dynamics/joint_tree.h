@@ -126,6 +126,8 @@ class JointTree {
     int equalityCount = 0;  // the equality rows among them
     JointFrame frame;       // this pass's bodies and frame (with the inertia the tree solves with)
     JointFrame ownFrame;    // the same with the bodies' own masses, for the Gauss-Seidel passes
+    // The frames and equality rows at the bodies' current pose (no limit taken yet).
+    void buildAtPose(const JointSolverView& view, Joint& joint);
   };
 
   // The joint's entry this step, or -1.
