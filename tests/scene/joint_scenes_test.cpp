@@ -1,6 +1,6 @@
 // The joint scenes against what they are built to show: the machine's rotor turns at its motor's
 // speed and its lift stops at its limit; the pendulum's whipping chain holds its links; the bridge
-// carries its crate and comes to rest; the ragdolls land on the stairs within their limits.
+// carries its crate and comes to rest; the ragdolls land on the stairs and settle within their limits.
 #include <collide/scene/builtin_scenes.h>
 #include <collide/scene/scene.h>
 
@@ -95,30 +95,91 @@ TEST(JointScenes, BridgeCarriesItsCrateAndComesToRest) {
   EXPECT_GT(p.y, 1.0f);  // on the bridge, not on the ground
 }
 
-TEST(JointScenes, RagdollsLandOnTheStairsWithinTheirLimits) {
-  const Scene scene = loadBuiltinScene("ragdolls");
+// How far the ragdolls' joints went past their limits: a hinge's angle or a cone's twist past its
+// range, a cone's swing past its cone (rad).
+struct LimitExcess {
+  float landing = 0.0f;  // over the whole run
+  float resting = 0.0f;  // over its last 5 s
+};
+
+// The eight ragdolls thrown down the stairs for 20 s with gravity scaled by `gravityScale`.
+struct RagdollLanding {
+  float widestGap = 0.0f;  // widestJointGap over the run
+  LimitExcess excess;
+  // The most the kinetic and potential energy (from the ground) rose above their start at any step,
+  // over the start; 0 if they never did.
+  double energyGain = 0.0;
+  std::vector<Vec3> dollPositions;
+};
+
+double mechanicalEnergy(const Scene& scene, const SceneWorld& sw) {
+  double energy = sw.world.kineticEnergy();
+  for (const BodyId body : sw.bodies)
+    energy -=
+        double(sw.world.mass(body)) * double(glm::dot(scene.world.gravity, sw.world.centerOfMass(body)));
+  return energy;
+}
+
+RagdollLanding landRagdolls(float gravityScale) {
+  Scene scene = loadBuiltinScene("ragdolls");
+  scene.world.gravity *= gravityScale;
   SceneWorld sw = buildWorld(scene);
-  float widest = 0.0f;
-  float overshoot = 0.0f;  // the farthest a hinge's angle or a cone's twist went past its limits
-  for (int step = 0; step < 1200; ++step) {
+  // A cone's axis as body b carries it: the scene's bodies start unturned, so it is the world axis
+  // the joint was made with, in b's frame.
+  std::vector<Vec3> coneAxisOnB(sw.constraints.size(), Vec3(0.0f));
+  for (std::size_t c = 0; c < sw.constraints.size(); ++c) {
+    const JointId j = sw.constraints[c];
+    if (sw.world.jointType(j) == JointType::Cone)
+      coneAxisOnB[c] =
+          glm::conjugate(sw.world.transform(sw.world.jointBodyB(j)).rotation) * sw.world.jointAxis(j);
+  }
+  constexpr int kSteps = 1200, kRestingFrom = 900;
+  RagdollLanding landing;
+  const double startEnergy = mechanicalEnergy(scene, sw);
+  for (int step = 0; step < kSteps; ++step) {
     sw.world.step(kDt);
-    widest = std::max(widest, widestJointGap(sw));
-    for (const JointId j : sw.constraints) {
+    landing.energyGain =
+        std::max(landing.energyGain, (mechanicalEnergy(scene, sw) - startEnergy) / startEnergy);
+    landing.widestGap = std::max(landing.widestGap, widestJointGap(sw));
+    float excess = 0.0f;
+    for (std::size_t c = 0; c < sw.constraints.size(); ++c) {
+      const JointId j = sw.constraints[c];
       const JointLimits limits = sw.world.jointLimits(j);
       const float angle = sw.world.jointPosition(j);
-      overshoot = std::max({overshoot, limits.lower - angle, angle - limits.upper});
+      excess = std::max({excess, limits.lower - angle, angle - limits.upper});
+      if (sw.world.jointType(j) != JointType::Cone) continue;
+      const Vec3 axisB = sw.world.transform(sw.world.jointBodyB(j)).rotation * coneAxisOnB[c];
+      const float swing = std::acos(std::clamp(glm::dot(axisB, sw.world.jointAxis(j)), -1.0f, 1.0f));
+      excess = std::max(excess, swing - sw.world.coneSwingLimit(j));
     }
+    landing.excess.landing = std::max(landing.excess.landing, excess);
+    if (step >= kRestingFrom) landing.excess.resting = std::max(landing.excess.resting, excess);
   }
-  // Landing from 2 m, no joint opens by 1 cm and no limb turns 2 degrees past its limit.
-  EXPECT_LT(widest, 0.01f);
-  EXPECT_LT(overshoot, 0.035f);
-  // After 20 s every doll lies on or past the stairs, none thrown off (the flight is 3 m deep, 6 m
-  // wide). (Not all at rest yet: docs/joints.md, "Limits".)
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].def.name.rfind("doll_", 0) != 0) continue;
-    const Vec3 p = sw.world.transform(sw.bodies[i]).position;
-    EXPECT_GT(p.y, 0.0f) << scene.bodies[i].def.name;
-    EXPECT_LT(std::abs(p.x), 3.5f) << scene.bodies[i].def.name;
+    if (scene.bodies[i].def.name.rfind("doll_", 0) == 0)
+      landing.dollPositions.push_back(sw.world.transform(sw.bodies[i]).position);
+  }
+  return landing;
+}
+
+TEST(JointScenes, RagdollsLandOnTheStairsAndRestWithinTheirLimits) {
+  // The landing is chaotic: gravity changed by a millionth sends the limbs down other paths. The
+  // scene as built and three such neighbours (docs/joints.md, "What the tests hold it to").
+  for (int k = 0; k < 4; ++k) {
+    SCOPED_TRACE("gravity scaled by 1 + " + std::to_string(k) + "e-6");
+    const RagdollLanding landing = landRagdolls(1.0f + static_cast<float>(k) * 1e-6f);
+    // Landing from 2 m, no joint opens by 1 cm.
+    EXPECT_LT(landing.widestGap, 0.01f);
+    // Settled, over the last 5 s, every limit holds within 1 degree, as a hinge's limit holds a door.
+    EXPECT_LT(landing.excess.resting, 0.0175f);
+    // Struck by a stair, a limb goes a few degrees past its limit for a step or two: the contact,
+    // solved after the joint, has the last word on the velocity (docs/joints.md, "Limits"). A limit
+    // that stopped holding would let its limb swing on by tens of degrees.
+    EXPECT_LT(landing.excess.landing, 0.15f);
+    // None thrown off: friction, the landings and the joints' friction take energy, and no step
+    // ends with more than the dolls had on the top stair. Every body above the ground.
+    EXPECT_EQ(landing.energyGain, 0.0);
+    for (const Vec3& p : landing.dollPositions) EXPECT_GT(p.y, 0.0f);
   }
 }
 
