@@ -155,7 +155,10 @@ inline constexpr int kMaxSubsteps = 64;
 
 struct WorldDef {
   Vec3 gravity{0.0f, -9.81f, 0.0f};
-  int substeps = 6;  // 1 to kMaxSubsteps; the contact stiffness cap is a quarter of the substep rate
+  // 1 to kMaxSubsteps; the contact stiffness cap is a quarter of the substep rate. The substeps are
+  // the solver's iterations too: with fewer, tall stacks and loaded joints can give way
+  // (docs/architecture.md, "Fewer substeps").
+  int substeps = 6;
   BroadPhaseSettings broadPhase{};
   CombineRule bouncinessCombine = CombineRule::Max;
   CombineRule frictionCombine = CombineRule::Average;

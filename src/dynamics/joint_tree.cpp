@@ -698,8 +698,11 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
 // over 1000 rad/s, which the rows linearised at the substep's start overshoot whenever that rate
 // times h passes 2: the link turns further each substep and the chain tears (a 100 kg ball under
 // 20 such links). Tournier et al. ("Stable Constrained Dynamics", 2015) take the stiffness into
-// the system implicitly; its share of the substep's inertia, h^2 |f| |r| (1 - r r^T / |r|^2), with f
-// the joint's load when the rows are built at a new pose, is what the tree's bodies get here. It is
+// the system implicitly; its share of the substep's inertia, h^2 f_r |r| (1 - r r^T / |r|^2), with
+// f_r the joint's load's pull along r when the rows are built at a new pose, is what the tree's
+// bodies get here (with Tournier's |f| for any load, a ragdoll's forearm pressed into the ground by
+// its elbow takes a stiffness its contacts do not see, and at 4 substeps the ragdoll pile can come
+// apart: docs/joints.md, "Fewer substeps"). It is
 // inertia only across the anchor's lever, at most a substep's worth: nothing for an unloaded joint,
 // negligible for a limb carrying its weight, and it vanishes as h does. The tree's warm start and
 // velocity passes turn the bodies through it; the joints' internal impulses still cancel, so
@@ -713,22 +716,28 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
   for (std::size_t n = first; n < last; ++n) {
     if (nodes_[n].body >= 0) addedInertia_[static_cast<std::size_t>(nodes_[n].body)] = Mat3(0.0f);
   }
-  const auto add = [&](std::int32_t body, const Vec3& r, float impulse) {
+  // The impulse's pull along the lever, out from the centre, and only that: a pulled anchor off the
+  // centre swings back into line (the stiffness), a pushed one would swing away from it and a
+  // sideways load does neither. A limb pressed between its joint and the ground is pushed, and
+  // its contacts, solved with its own inertia, would fight a stiffened tree.
+  const auto add = [&](std::int32_t body, const Vec3& r, const Vec3& impulse) {
     if (body < 0) return;
     const float lever = glm::length(r);
-    if (!(lever > 0.0f) || !(impulse > 0.0f)) return;
+    if (!(lever > 0.0f)) return;
     const Vec3 n = r / lever;
+    const float pull = glm::dot(impulse, n);
+    if (!(pull > 0.0f)) return;
     addedInertia_[static_cast<std::size_t>(body)] +=
-        (h * impulse * lever) * (Mat3(1.0f) - glm::outerProduct(n, n));
+        (h * pull * lever) * (Mat3(1.0f) - glm::outerProduct(n, n));
   };
   for (std::uint32_t k = treeEntryStart_[t]; k < treeEntryStart_[t + 1]; ++k) {
     const Entry& entry = entries_[treeEntries_[k]];
     const EntryRows& passRows = entryRows_[treeEntries_[k]];
     const Joint& joint = joints[entry.joint];
     if (joint.type == JointType::Slider) continue;  // its linear rows hold no point
-    const float impulse = glm::length(joint.linearImpulse);
-    add(entry.bodyA, passRows.frame.rA, impulse);
-    add(entry.bodyB, passRows.frame.rB, impulse);
+    // The point rows' impulse acts on b and, negated, on a.
+    add(entry.bodyA, passRows.frame.rA, -joint.linearImpulse);
+    add(entry.bodyB, passRows.frame.rB, joint.linearImpulse);
   }
   for (std::size_t n = first; n < last; ++n) {
     if (nodes_[n].body < 0) continue;

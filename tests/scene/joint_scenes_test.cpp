@@ -183,5 +183,24 @@ TEST(JointScenes, RagdollsLandOnTheStairsAndRestWithinTheirLimits) {
   }
 }
 
+TEST(JointScenes, RagdollPileLandsWholeAtFourSubsteps) {
+  // 100 ragdolls dropped into a pile at 4 substeps (the default is 6): limbs pressed into the ground
+  // by their joints carry large loads through the landing. With the geometric stiffness of every
+  // load (not only of the pull along its lever) this pile came apart at step 75, the fault guard
+  // freezing its bodies (docs/joints.md, "Geometric stiffness").
+  Scene scene = loadBuiltinScene("ragdoll-pile");
+  scene.world.substeps = 4;
+  SceneWorld sw = buildWorld(scene);
+  float widest = 0.0f;
+  std::size_t faults = 0;
+  for (int step = 0; step < 150; ++step) {
+    sw.world.step(kDt);
+    faults += sw.world.faultEvents().size();
+    widest = std::max(widest, widestJointGap(sw));
+  }
+  EXPECT_EQ(faults, 0u);
+  EXPECT_LT(widest, 0.05f);  // no joint torn open
+}
+
 }  // namespace
 }  // namespace collide::scene
