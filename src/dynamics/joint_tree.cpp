@@ -700,12 +700,11 @@ bool JointTree::dropPullingLimits(Array<Joint>& joints, std::size_t first, std::
 // 20 such links). Tournier et al. ("Stable Constrained Dynamics", 2015) take the stiffness into
 // the system implicitly; its share of the substep's inertia, h^2 f_r |r| (1 - r r^T / |r|^2), with
 // f_r the joint's load's pull along r when the rows are built at a new pose, is what the tree's
-// bodies get here (with Tournier's |f| for any load, a ragdoll's forearm pressed into the ground by
-// its elbow takes a stiffness its contacts do not see, and at 4 substeps the ragdoll pile can come
-// apart: docs/joints.md, "Fewer substeps"). It is
-// inertia only across the anchor's lever, at most a substep's worth: nothing for an unloaded joint,
-// negligible for a limb carrying its weight, and it vanishes as h does. The tree's warm start and
-// velocity passes turn the bodies through it; the joints' internal impulses still cancel, so
+// bodies get here (Tournier's |f| for any load gives a stiffness where there is none: a forearm
+// pressed into the ground by its elbow). It is inertia only across the anchor's lever, at most a
+// substep's worth: nothing for an unloaded joint, negligible for a limb carrying its weight, and it
+// vanishes as h does. The tree's warm start and velocity passes, and the contacts
+// (swapInverseInertia), turn the bodies through it; the joints' internal impulses still cancel, so
 // momentum is kept. The projection uses the bodies' own inertia: through the stiffened one, its
 // Newton steps after a plank chain's hard landing moved the planks off their rows instead of onto
 // them.
@@ -754,6 +753,20 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
       passRows.frame.a.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyA)];
     if (entry.bodyB >= 0)
       passRows.frame.b.inverseInertia = effectiveInverseInertia_[static_cast<std::size_t>(entry.bodyB)];
+  }
+}
+
+void JointTree::buildStartRows(const JointSolverView& view, Array<Joint>& joints, float h,
+                               TaskRunner& tasks) {
+  if (entries_.empty()) return;
+  forEachTree(tasks, [&](std::size_t t) { buildRows(view, joints, h, RowPass::WarmStart, t); });
+}
+
+void JointTree::swapInverseInertia(Array<SolverBodyInfo>& infos) {
+  for (const Node& node : nodes_) {
+    if (node.body >= 0)
+      std::swap(infos[static_cast<std::size_t>(node.body)].inverseInertiaWorld,
+                effectiveInverseInertia_[static_cast<std::size_t>(node.body)]);
   }
 }
 

@@ -42,6 +42,16 @@ class JointTree {
  public:
   // Once per step, after prepareJoints: the forest of the active rigid joints and its order.
   void prepare(const JointSolverView& view, Array<Joint>& joints);
+  // Once per step, after prepare and before the contacts are prepared: each tree's rows and their
+  // geometric stiffness at the step's start pose (the first substep's warm start takes them as they
+  // are), so that the contacts can meet a tree's bodies with the inertia the tree solves them with.
+  void buildStartRows(const JointSolverView& view, Array<Joint>& joints, float h, TaskRunner& tasks);
+  // Swaps each tree body's inverse inertia in `infos` with the one its tree solves it with (its own
+  // plus the stiffness of its joints' pull): called before and after the contacts are prepared,
+  // their rows take the tree's, one inertia for one body as in Tournier's implicit step. Without
+  // it a limb whose tree stiffens it meets its contacts as the lighter body it is not, the two
+  // solves disagree on how it turns, and at few substeps they fight until the limb is flung.
+  void swapInverseInertia(Array<SolverBodyInfo>& infos);
   // Trees share no body that moves, so each pass takes them in parallel on the step's workers
   // (tasks); the answer does not depend on which worker solved which tree.
   //

@@ -167,12 +167,16 @@ void StepSolver::solve(BodyStorage& storage, Array<Contact>& contacts, Array<Joi
   contactSettings.tuning = settings.tuning;
   contactSettings.friction = settings.friction;
   contactSettings.gravity = settings.gravity;
-  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings,
-                    inBlocks ? &blocks_ : nullptr, h, tasks);
-  if (settings.projection)
-    projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   jointWaves_.prepare(view, joints);
   jointTree_.prepare(view, joints);
+  // The contacts meet a joint tree's bodies with the inertia the tree solves them with.
+  jointTree_.buildStartRows(view, joints, h, tasks);
+  jointTree_.swapInverseInertia(infos_);
+  contacts_.prepare(contacts, storage, bodies_, infos_, solverOf_, contactSettings,
+                    inBlocks ? &blocks_ : nullptr, h, tasks);
+  jointTree_.swapInverseInertia(infos_);
+  if (settings.projection)
+    projection_.prepare(contacts, contacts_.solvedContacts(), solverOf_, infos_, storage);
   jointWaves_.plan(joints);
   const Substeps loop{storage, view, joints, settings, h};
   if (inBlocks) {

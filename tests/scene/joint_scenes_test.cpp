@@ -186,8 +186,9 @@ TEST(JointScenes, RagdollsLandOnTheStairsAndRestWithinTheirLimits) {
 TEST(JointScenes, RagdollPileLandsWholeAtFourSubsteps) {
   // 100 ragdolls dropped into a pile at 4 substeps (the default is 6): limbs pressed into the ground
   // by their joints carry large loads through the landing. With the geometric stiffness of every
-  // load (not only of the pull along its lever) this pile came apart at step 75, the fault guard
-  // freezing its bodies (docs/joints.md, "Geometric stiffness").
+  // load (not only of the pull along its lever) and the contacts solved with the bodies' own
+  // inertia, this pile came apart at step 75, the fault guard freezing its bodies (docs/joints.md,
+  // "One inertia for one body").
   Scene scene = loadBuiltinScene("ragdoll-pile");
   scene.world.substeps = 4;
   SceneWorld sw = buildWorld(scene);
