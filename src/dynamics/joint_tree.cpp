@@ -717,8 +717,8 @@ void JointTree::addGeometricStiffness(const JointSolverView& view, Array<Joint>&
   }
   // The impulse's pull along the lever, out from the centre, and only that: a pulled anchor off the
   // centre swings back into line (the stiffness), a pushed one would swing away from it and a
-  // sideways load does neither. A limb pressed between its joint and the ground is pushed, and
-  // its contacts, solved with its own inertia, would fight a stiffened tree.
+  // sideways load does neither. A limb pressed between its joint and the ground is pushed: its
+  // load, however large, adds nothing.
   const auto add = [&](std::int32_t body, const Vec3& r, const Vec3& impulse) {
     if (body < 0) return;
     const float lever = glm::length(r);

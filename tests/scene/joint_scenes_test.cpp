@@ -95,6 +95,22 @@ TEST(JointScenes, BridgeCarriesItsCrateAndComesToRest) {
   EXPECT_GT(p.y, 1.0f);  // on the bridge, not on the ground
 }
 
+// A scene's world stepped `steps` times: the fault guard's events and the widest joint gap seen.
+struct WatchedRun {
+  std::size_t faults = 0;
+  float widestGap = 0.0f;
+};
+
+WatchedRun stepWatching(SceneWorld& sw, int steps) {
+  WatchedRun run;
+  for (int step = 0; step < steps; ++step) {
+    sw.world.step(kDt);
+    run.faults += sw.world.faultEvents().size();
+    run.widestGap = std::max(run.widestGap, widestJointGap(sw));
+  }
+  return run;
+}
+
 TEST(JointScenes, BridgeCarriesItsCrateAtTwoSubsteps) {
   // At 2 substeps (the default is 6) the planks under the crate carry its weight with a third of the
   // iterations. Their contacts with the crate meet them with the inertia their tree solves them
@@ -103,15 +119,9 @@ TEST(JointScenes, BridgeCarriesItsCrateAtTwoSubsteps) {
   Scene scene = loadBuiltinScene("bridge");
   scene.world.substeps = 2;
   SceneWorld sw = buildWorld(scene);
-  std::size_t faults = 0;
-  float widest = 0.0f;
-  for (int step = 0; step < 600; ++step) {
-    sw.world.step(kDt);
-    faults += sw.world.faultEvents().size();
-    widest = std::max(widest, widestJointGap(sw));
-  }
-  EXPECT_EQ(faults, 0u);
-  EXPECT_LT(widest, 0.1f);  // a torn bridge opens by metres
+  const WatchedRun run = stepWatching(sw, 600);
+  EXPECT_EQ(run.faults, 0u);
+  EXPECT_LT(run.widestGap, 0.1f);  // a torn bridge opens by metres
   // After 10 s, softer than at 6 substeps but whole: the far post's hinge, a loop's Gauss-Seidel
   // joint, the most open (3.2 cm), nothing faster than a few cm/s (2.4).
   EXPECT_LT(widestJointGap(sw), 0.05f);
@@ -218,15 +228,9 @@ TEST(JointScenes, RagdollPileLandsWholeAtFourSubsteps) {
   Scene scene = loadBuiltinScene("ragdoll-pile");
   scene.world.substeps = 4;
   SceneWorld sw = buildWorld(scene);
-  float widest = 0.0f;
-  std::size_t faults = 0;
-  for (int step = 0; step < 150; ++step) {
-    sw.world.step(kDt);
-    faults += sw.world.faultEvents().size();
-    widest = std::max(widest, widestJointGap(sw));
-  }
-  EXPECT_EQ(faults, 0u);
-  EXPECT_LT(widest, 0.05f);  // no joint torn open
+  const WatchedRun run = stepWatching(sw, 150);
+  EXPECT_EQ(run.faults, 0u);
+  EXPECT_LT(run.widestGap, 0.05f);  // no joint torn open
 }
 
 }  // namespace
