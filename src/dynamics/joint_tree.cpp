@@ -507,6 +507,7 @@ void JointTree::prepare(const JointSolverView& view, Array<Joint>& joints) {
   }
   matrices_.resize(matrices);
   addedInertia_.resize(bodyCount);
+  projectionTurn_.resize(bodyCount);
   effectiveInverseInertia_.resize(bodyCount);
   for (const Node& node : nodes_) {
     if (node.body >= 0)
@@ -991,7 +992,7 @@ void JointTree::projectTree(const JointSolverView& view, Array<Joint>& joints, s
     factored_[t] = 0;  // the blocks take the projection's system
     if (!fillTree(view, first, last, 1.0f, true) || !factorTree(first, last)) break;
     solveTree(first, last);
-    moveOntoRows(t);
+    moveOntoRows(view, t);
   }
 }
 
@@ -1019,11 +1020,43 @@ bool JointTree::rowsOff(const JointSolverView& view, Array<Joint>& joints, std::
   return false;
 }
 
-// The projection's Newton step on tree t's bodies, by the last solve's lambda (K lambda = -C).
-void JointTree::moveOntoRows(std::size_t t) {
-  forEachRow(treeStart_[t], treeStart_[t + 1], [&](EntryRows& passRows, EqualityRow& row, double lambda) {
-    applyRowPosition(passRows.frame.a, passRows.frame.b, row.row, float(lambda));
-  });
+// The projection's Newton step on tree t's bodies, by the last solve's lambda (K lambda = -C): each
+// body moved by M^-1 G^T lambda, the turns of all its rows summed before it turns once. Turned row
+// by row, a light body between heavy ones (a hub welded to four blades) took each row's turn, radians
+// where its rows' impulses are large, whole before the next one's turned it back, and a quaternion
+// stepped by radians is far from the linear step: the step left the rows further off than it found
+// them.
+void JointTree::moveOntoRows(const JointSolverView& view, std::size_t t) {
+  const std::size_t first = treeStart_[t];
+  const std::size_t last = treeStart_[t + 1];
+  for (std::size_t n = first; n < last; ++n) {
+    if (nodes_[n].body >= 0) projectionTurn_[static_cast<std::size_t>(nodes_[n].body)] = Vec3(0.0f);
+  }
+  for (std::size_t n = first; n < last; ++n) {
+    const Node& node = nodes_[n];
+    if (node.joint < 0) continue;
+    const Entry& entry = entries_[static_cast<std::size_t>(node.joint)];
+    const EntryRows& passRows = entryRows_[static_cast<std::size_t>(node.joint)];
+    const JointBody& a = passRows.frame.a;
+    const JointBody& b = passRows.frame.b;
+    const double* lambda = solution_.data() + node.vector + (node.body >= 0 ? 6 : 0);
+    for (int i = 0; i < passRows.rows.count; ++i) {
+      const JointRow& row = passRows.rows.rows[static_cast<std::size_t>(i)].row;
+      const auto l = float(lambda[i]);
+      if (entry.bodyA >= 0) {
+        a.solver->deltaPosition -= (a.inverseMass * l) * row.linear;
+        projectionTurn_[static_cast<std::size_t>(entry.bodyA)] -= a.inverseInertia * (l * row.angularA);
+      }
+      if (entry.bodyB >= 0) {
+        b.solver->deltaPosition += (b.inverseMass * l) * row.linear;
+        projectionTurn_[static_cast<std::size_t>(entry.bodyB)] += b.inverseInertia * (l * row.angularB);
+      }
+    }
+  }
+  for (std::size_t n = first; n < last; ++n) {
+    const auto body = static_cast<std::size_t>(nodes_[n].body);
+    if (nodes_[n].body >= 0) turnSolverBody(view.bodies[body], projectionTurn_[body]);
+  }
   rowsAtPose_[t] = 0;
   limitsAtPose_[t] = 0;
 }
@@ -1231,8 +1264,8 @@ std::size_t JointTree::memoryBytes() const {
          heapBytes(solution_) + heapBytes(units_) + heapBytes(laneNodes_) + heapBytes(laneMatrices_) +
          heapBytes(laneVectors_) + heapBytes(parentOf_) + heapBytes(groundJoint_) + heapBytes(grounded_) +
          heapBytes(forestCounts_) + heapBytes(inMesh_) + heapBytes(adjacencyStart_) + heapBytes(adjacency_) +
-         heapBytes(bodyNode_) + heapBytes(addedInertia_) + heapBytes(effectiveInverseInertia_) +
-         heapBytes(entryOfJoint_) + heapBytes(entryTree_);
+         heapBytes(bodyNode_) + heapBytes(addedInertia_) + heapBytes(projectionTurn_) +
+         heapBytes(effectiveInverseInertia_) + heapBytes(entryOfJoint_) + heapBytes(entryTree_);
 }
 
 }  // namespace collide::detail

@@ -203,7 +203,7 @@ class JointTree {
   void copySolution(const TreeUnit& unit, std::uint32_t lane);
   // The projection's check (rows at the pose, and its limits where none is off) and its Newton step.
   bool rowsOff(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
-  void moveOntoRows(std::size_t t);
+  void moveOntoRows(const JointSolverView& view, std::size_t t);
   bool sameShape(std::size_t t, std::size_t u) const;
   void groupTrees();
   void projectTree(const JointSolverView& view, Array<Joint>& joints, std::size_t t);
@@ -299,6 +299,7 @@ class JointTree {
   // Per solver body of a tree: the inertia its loads add this pass, and its inverse inertia with it.
   Array<Mat3> addedInertia_;
   Array<Mat3> effectiveInverseInertia_;
+  Array<Vec3> projectionTurn_;  // per solver body of a tree: the projection step's turn
 };
 
 }  // namespace collide::detail

@@ -36,10 +36,10 @@ constexpr ReferenceRun kReferenceRuns[] = {
     {"proxies", 0x0e5957ba8e3d24b9},        {"revert", 0x4f62f27975a4eb13},
     {"revert-project", 0x8491a7fbcc272714}, {"revert-soft", 0x7d561b2c39fd7e2d},
     {"breakable", 0x3ead5165968c2a4f},      {"chain", 0x3f8830e5ab406df8},
-    {"tunneling", 0x935a5f9071b1f803},      {"pendulum", 0x557b81347413b900},
-    {"bridge", 0xb38039e0d2c7cac3},         {"ragdolls", 0x0d118ee61ca3edd3},
-    {"machine", 0x164b2b05e2ce656c},        {"joint-grid", 0x59cf60525bfbd3b9},
-    {"ragdoll-pile", 0x76db9953f76dd801},   {"large-pile", 0x01d5a781327adae6},
+    {"tunneling", 0x935a5f9071b1f803},      {"pendulum", 0x264d61509af256db},
+    {"bridge", 0x2d7a9d02a296d43f},         {"ragdolls", 0xcd43e13b3df67cd8},
+    {"machine", 0x804f94edf66e5718},        {"joint-grid", 0x59cf60525bfbd3b9},
+    {"ragdoll-pile", 0x24b1c74c65437711},   {"large-pile", 0x01d5a781327adae6},
     {"character", 0xcf582801b64f387e},
 };
 

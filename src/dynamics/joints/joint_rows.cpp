@@ -194,22 +194,18 @@ void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float
   }
 }
 
-namespace {
-
-void turnBy(SolverBody& body, const Vec3& turn) {
+void turnSolverBody(SolverBody& body, const Vec3& turn) {
   body.deltaRotation = glm::normalize(body.deltaRotation + 0.5f * Quat(0.0f, turn) * body.deltaRotation);
 }
-
-}  // namespace
 
 void applyRowPosition(const JointBody& a, const JointBody& b, const JointRow& row, float lambda) {
   if (a.solver) {
     a.solver->deltaPosition -= (a.inverseMass * lambda) * row.linear;
-    turnBy(*a.solver, -(a.inverseInertia * (lambda * row.angularA)));
+    turnSolverBody(*a.solver, -(a.inverseInertia * (lambda * row.angularA)));
   }
   if (b.solver) {
     b.solver->deltaPosition += (b.inverseMass * lambda) * row.linear;
-    turnBy(*b.solver, b.inverseInertia * (lambda * row.angularB));
+    turnSolverBody(*b.solver, b.inverseInertia * (lambda * row.angularB));
   }
 }
 

@@ -128,6 +128,8 @@ JointRow linearTreeRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA
 JointRow angularTreeRow(const Vec3& axis);
 float rowSpeed(const JointBody& a, const JointBody& b, const JointRow& row);
 void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
+// A solver body turned by a small rotation vector (world): its pose's first-order step.
+void turnSolverBody(SolverBody& body, const Vec3& turn);
 // The row's positional impulse (kg m along it): each body moved and turned as its masses say.
 void applyRowPosition(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
 
