@@ -1,5 +1,6 @@
 // Hinge (revolute) joints against known answers: the physical pendulum's period and energy, a
-// door held at its limit, a motor at its speed and at its torque, a spring at its frequency.
+// door held at its limit, a motor at its speed and at its torque, a spring at its frequency, a car
+// on motorised wheels rolling at their spin times their radius.
 #include "support/collide_error.h"
 #include "support/test_assertions.h"
 #include "support/world_helpers.h"
@@ -203,6 +204,54 @@ TEST(HingeJoint, SpringSwingsAtItsFrequency) {
   ASSERT_GE(crossings.size(), 4u);
   const float period = (crossings.back() - crossings.front()) / static_cast<float>(crossings.size() - 1);
   EXPECT_NEAR(period, 1.0f, 0.01f);
+}
+
+TEST(HingeJoint, AMotorisedCarRollsItsWheelsWithoutSlipping) {
+  // A 1,500 kg chassis on four 20 kg ball wheels of radius 0.4 m, each on a hinge across the car
+  // whose motor asks for 5 rad/s (at most 2,000 N m). Rolling without slipping, the car moves at
+  // the wheels' spin times their radius; the chassis stays level at its height, and straight.
+  World world;
+  world.createBody(test::groundBox());
+  const BodyId chassis =
+      world.createBody(test::boxBody(Vec3(0.0f, 0.9f, 0.0f), Vec3(1.0f, 0.25f, 2.0f), 1500.0f));
+  std::vector<BodyId> wheels;
+  for (const float x : {-1.2f, 1.2f}) {
+    for (const float z : {-1.5f, 1.5f}) {
+      wheels.push_back(world.createBody(test::sphereBody(Vec3(x, 0.4f, z), 0.4f, 20.0f)));
+      HingeJointDef axle{
+          .a = chassis, .b = wheels.back(), .anchor = Vec3(x, 0.4f, z), .axis = Vec3(1.0f, 0.0f, 0.0f)};
+      axle.motor = {true, 5.0f, 2000.0f};
+      world.createHingeJoint(axle);
+    }
+  }
+  float lowest = 1.0f;
+  float highest = 0.0f;
+  double turned = 0.0;  // the wheels' mean spin relative to the chassis, integrated (rad)
+  double rolled = 0.0;  // and times the height of their centres, the radius they roll on (m)
+  float start = 0.0f;
+  for (int step = 0; step < 600; ++step) {
+    world.step(kDt);
+    if (step < 120) {  // under way after 2 s
+      start = world.transform(chassis).position.z;
+      continue;
+    }
+    const float y = world.transform(chassis).position.y;
+    lowest = std::min(lowest, y);
+    highest = std::max(highest, y);
+    for (const BodyId wheel : wheels) {
+      const double spin =
+          0.25 * double(kDt) * (world.angularVelocity(wheel) - world.angularVelocity(chassis)).x;
+      turned += spin;
+      rolled += spin * double(world.transform(wheel).position.y);
+    }
+  }
+  const float travelled = world.transform(chassis).position.z - start;
+  EXPECT_NEAR(travelled, float(rolled), 0.005f * travelled);
+  // The motors under the contacts' and the axles' load: their mean speed within 2 %.
+  EXPECT_NEAR(float(turned) / (480.0f * kDt), 5.0f, 0.1f);
+  EXPECT_LT(highest - lowest, 0.005f);
+  EXPECT_NEAR(lowest, 0.9f, 0.005f);
+  EXPECT_LT(std::abs(world.transform(chassis).position.x), 0.01f);
 }
 
 TEST(HingeJoint, SettersTakeEffectAndRefuseWhatDoesNotApply) {
