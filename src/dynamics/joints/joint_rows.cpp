@@ -198,17 +198,6 @@ void turnSolverBody(SolverBody& body, const Vec3& turn) {
   body.deltaRotation = glm::normalize(body.deltaRotation + 0.5f * Quat(0.0f, turn) * body.deltaRotation);
 }
 
-void applyRowPosition(const JointBody& a, const JointBody& b, const JointRow& row, float lambda) {
-  if (a.solver) {
-    a.solver->deltaPosition -= (a.inverseMass * lambda) * row.linear;
-    turnSolverBody(*a.solver, -(a.inverseInertia * (lambda * row.angularA)));
-  }
-  if (b.solver) {
-    b.solver->deltaPosition += (b.inverseMass * lambda) * row.linear;
-    turnSolverBody(*b.solver, b.inverseInertia * (lambda * row.angularB));
-  }
-}
-
 void solveSpring(const JointFrame& f, const JointRow& row, float position, const JointSpring& spring, float h,
                  float& accumulated) {
   if (!spring.enabled || spring.hertz <= 0.0f || row.mass == 0.0f) return;

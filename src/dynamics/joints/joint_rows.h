@@ -128,10 +128,9 @@ JointRow linearTreeRow(const JointFrame& f, const Vec3& axis, const Vec3& leverA
 JointRow angularTreeRow(const Vec3& axis);
 float rowSpeed(const JointBody& a, const JointBody& b, const JointRow& row);
 void applyRow(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
-// A solver body turned by a small rotation vector (world): its pose's first-order step.
+// A solver body turned by a small rotation vector (world): its pose's first-order step (the trees'
+// projection turns each body once by the sum of its rows' turns).
 void turnSolverBody(SolverBody& body, const Vec3& turn);
-// The row's positional impulse (kg m along it): each body moved and turned as its masses say.
-void applyRowPosition(const JointBody& a, const JointBody& b, const JointRow& row, float lambda);
 
 // The free coordinate's rows, in Box2D v3's order (spring, motor, limits), given its position.
 // The spring pulls position towards spring.target in both passes; the motor's accumulated impulse
