@@ -72,8 +72,10 @@ struct ContactTuning {
   // on a light one, and a stack of any mass ratio, rest instead of sinking into themselves. Other
   // stacks are solved as they are. Off: the true masses everywhere (momentum kept in every contact).
   bool supportMasses = true;
-  // A sticking friction patch holds its place (a point fixed in each body); when the two points
-  // drift apart farther than this (m) along the surface, the anchor is taken again where the patch is.
+  // A sticking friction patch holds its place: a point in each body, taken again at the patch every
+  // step with the gap the patch has slipped since it stuck (so that the anchor follows a rolling
+  // wheel); when the gap grows farther than this (m) along the surface, the anchor lets go and is
+  // taken where the patch is.
   float frictionAnchorReach = 0.02f;
   // A pair of which no point of either body moved more than this (m) relative to the other since
   // its manifold was computed gets that manifold placed at the new poses instead of a new

@@ -30,17 +30,17 @@ struct ReferenceRun {
 };
 
 constexpr ReferenceRun kReferenceRuns[] = {
-    {"billiards", 0x08a5b21835494c52},      {"pile", 0x07aec86cc5b6ae08},
-    {"rain", 0xdface9156540e385},           {"rain-jittered", 0xc08ce1234fc4a51c},
-    {"pyramid", 0x8c49eb4a433140c8},        {"terrain", 0x9e1f94ea01f98461},
-    {"proxies", 0x0e5957ba8e3d24b9},        {"revert", 0x4f62f27975a4eb13},
-    {"revert-project", 0x8491a7fbcc272714}, {"revert-soft", 0x7d561b2c39fd7e2d},
-    {"breakable", 0x3ead5165968c2a4f},      {"chain", 0x3f8830e5ab406df8},
-    {"tunneling", 0x935a5f9071b1f803},      {"pendulum", 0x264d61509af256db},
-    {"bridge", 0x2d7a9d02a296d43f},         {"ragdolls", 0xcd43e13b3df67cd8},
-    {"machine", 0x804f94edf66e5718},        {"joint-grid", 0x59cf60525bfbd3b9},
-    {"ragdoll-pile", 0x24b1c74c65437711},   {"large-pile", 0x01d5a781327adae6},
-    {"character", 0xcf582801b64f387e},
+    {"billiards", 0x72ce044392ccc8d0},      {"pile", 0x5c4ce0fd6d05ace3},
+    {"rain", 0xdface9156540e385},           {"rain-jittered", 0xe3486d671c6ec022},
+    {"pyramid", 0x740868d17186d5b5},        {"terrain", 0x1b7588b4d6446760},
+    {"proxies", 0xeeaf803d7014a034},        {"revert", 0xb3ef4055efa0bcdf},
+    {"revert-project", 0xad04b72d62555a76}, {"revert-soft", 0x947cd53baaa59032},
+    {"breakable", 0x48e3d966f1d1186c},      {"chain", 0x32cbd4d6a4bb1ebf},
+    {"tunneling", 0xa9851618eb31fa67},      {"pendulum", 0x3103546b80f70646},
+    {"bridge", 0xa1a3c113fd69f59b},         {"ragdolls", 0x3787fbe7f03e5bb5},
+    {"machine", 0xc70c01c589203282},        {"joint-grid", 0x59cf60525bfbd3b9},
+    {"ragdoll-pile", 0x267f0b556ff9d603},   {"large-pile", 0xdc38a4a372127d4f},
+    {"character", 0xcfcb44a29ffb3652},
 };
 
 std::string hex(std::uint64_t value) {

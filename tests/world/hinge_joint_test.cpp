@@ -208,8 +208,11 @@ TEST(HingeJoint, SpringSwingsAtItsFrequency) {
 
 TEST(HingeJoint, AMotorisedCarRollsItsWheelsWithoutSlipping) {
   // A 1,500 kg chassis on four 20 kg ball wheels of radius 0.4 m, each on a hinge across the car
-  // whose motor asks for 5 rad/s (at most 2,000 N m). Rolling without slipping, the car moves at
-  // the wheels' spin times their radius; the chassis stays level at its height, and straight.
+  // whose motor asks for 5 rad/s (at most 2,000 N m). From 2 s on, every step: each motor keeps its
+  // speed within 1 %, and each wheel rolls without slipping, its centre moving at its spin times
+  // its height (the radius it rolls on) within 0.5 %; the chassis stays level at its height, and
+  // straight. With the contacts' static anchor fixed in the wheel, the anchor went round with it,
+  // the friction braked the wheel until the patch slid, and the speed swung by 3 % every 6 steps.
   World world;
   world.createBody(test::groundBox());
   const BodyId chassis =
@@ -226,29 +229,19 @@ TEST(HingeJoint, AMotorisedCarRollsItsWheelsWithoutSlipping) {
   }
   float lowest = 1.0f;
   float highest = 0.0f;
-  double turned = 0.0;  // the wheels' mean spin relative to the chassis, integrated (rad)
-  double rolled = 0.0;  // and times the height of their centres, the radius they roll on (m)
-  float start = 0.0f;
   for (int step = 0; step < 600; ++step) {
     world.step(kDt);
-    if (step < 120) {  // under way after 2 s
-      start = world.transform(chassis).position.z;
-      continue;
-    }
+    if (step < 120) continue;  // under way after 2 s
     const float y = world.transform(chassis).position.y;
     lowest = std::min(lowest, y);
     highest = std::max(highest, y);
     for (const BodyId wheel : wheels) {
-      const double spin =
-          0.25 * double(kDt) * (world.angularVelocity(wheel) - world.angularVelocity(chassis)).x;
-      turned += spin;
-      rolled += spin * double(world.transform(wheel).position.y);
+      const float spin = (world.angularVelocity(wheel) - world.angularVelocity(chassis)).x;
+      ASSERT_NEAR(spin, 5.0f, 0.05f) << "step " << step;
+      const float rolling = spin * world.transform(wheel).position.y;
+      ASSERT_NEAR(world.linearVelocity(wheel).z, rolling, 0.005f * rolling) << "step " << step;
     }
   }
-  const float travelled = world.transform(chassis).position.z - start;
-  EXPECT_NEAR(travelled, float(rolled), 0.005f * travelled);
-  // The motors under the contacts' and the axles' load: their mean speed within 2 %.
-  EXPECT_NEAR(float(turned) / (480.0f * kDt), 5.0f, 0.1f);
   EXPECT_LT(highest - lowest, 0.005f);
   EXPECT_NEAR(lowest, 0.9f, 0.005f);
   EXPECT_LT(std::abs(world.transform(chassis).position.x), 0.01f);

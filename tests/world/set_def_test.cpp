@@ -119,10 +119,16 @@ TEST(WorldSetDef, SwitchingTheBroadPhaseChangesNoResult) {
     ++checked;
   }
   EXPECT_EQ(checked, 37);
-  // Queries go through the new broad phase: a ray down the middle hits the pile's top.
-  const auto hit = switched.castRay(Ray{Vec3(0.0f, 20.0f, 0.0f), Vec3(0.0f, -1.0f, 0.0f), 100.0f});
+  // Queries go through the new broad phase: a ray down the middle hits the pile's top, the body and
+  // the point the world that never switched finds.
+  const Ray down{Vec3(0.0f, 20.0f, 0.0f), Vec3(0.0f, -1.0f, 0.0f), 100.0f};
+  const auto hit = switched.castRay(down);
+  const auto expected = kept.castRay(down);
   ASSERT_TRUE(hit.has_value());
-  EXPECT_GT(hit->point.y, 3.0f);
+  ASSERT_TRUE(expected.has_value());
+  EXPECT_EQ(hit->body.index, expected->body.index);
+  EXPECT_NE(switched.type(hit->body), BodyType::Static);  // a box of the pile, not the ground
+  EXPECT_TRUE(sameBits(hit->point, expected->point));
 }
 
 TEST(WorldSetDef, SleepingOffWakesSleepingBodies) {
