@@ -771,6 +771,9 @@ class LaneContactSolver final : public ContactLanes {
     laneOf(c.tangentImpulse2, lane) = glm::dot(contact.frictionImpulse, t2);
     laneOf(c.twistImpulse, lane) = contact.twistImpulse;
 
+    laneOf(c.surfaceSpeed1, lane) = glm::dot(contact.surfaceVelocity, t1);
+    laneOf(c.surfaceSpeed2, lane) = glm::dot(contact.surfaceVelocity, t2);
+
     // The static anchor: a point in each body, B's the gap the patch has slipped since it stuck
     // away from A's. Each step both are taken again at the patch with the gap they have come to
     // (their slip over the last step added), so that the anchor follows the patch as a wheel or a
@@ -779,12 +782,6 @@ class LaneContactSolver final : public ContactLanes {
     // the patch slid (a driven wheel's speed swung by 3 % every few steps). Let go, the anchor is
     // taken where the patch is, gap 0: when the patch slid last step, is new, or has slipped
     // beyond the reach.
-    const auto anchorHere = [&](const Vec3& gap) {
-      contact.stickLocalA = glm::conjugate(stateA.rotation) * rA;
-      contact.stickLocalB = glm::conjugate(stateB.rotation) * (rB + gap);
-    };
-    laneOf(c.surfaceSpeed1, lane) = glm::dot(contact.surfaceVelocity, t1);
-    laneOf(c.surfaceSpeed2, lane) = glm::dot(contact.surfaceVelocity, t2);
     const bool anchored = friction > 0.0f && contact.surfaceVelocity == Vec3(0.0f);
     laneOf(bias.stickRate, lane) = anchored ? s.biasRate : 0.0f;
     Vec3 gap(0.0f);
@@ -795,9 +792,10 @@ class LaneContactSolver final : public ContactLanes {
       gap -= glm::dot(gap, n) * n;
       if (glm::dot(gap, gap) > in.anchorReach * in.anchorReach) gap = Vec3(0.0f);
     }
-    anchorHere(gap);
     const Vec3 stickA = rA;
     const Vec3 stickB = rB + gap;
+    contact.stickLocalA = glm::conjugate(stateA.rotation) * stickA;
+    contact.stickLocalB = glm::conjugate(stateB.rotation) * stickB;
     contact.stuck = anchored;
     contact.sliding = false;
     setLane(bias.stickA, lane, stickA);

@@ -1054,8 +1054,9 @@ void JointTree::moveOntoRows(const JointSolverView& view, std::size_t t) {
     }
   }
   for (std::size_t n = first; n < last; ++n) {
+    if (nodes_[n].body < 0) continue;
     const auto body = static_cast<std::size_t>(nodes_[n].body);
-    if (nodes_[n].body >= 0) turnSolverBody(view.bodies[body], projectionTurn_[body]);
+    turnSolverBody(view.bodies[body], projectionTurn_[body]);
   }
   rowsAtPose_[t] = 0;
   limitsAtPose_[t] = 0;
